@@ -1,0 +1,85 @@
+// `tinlod`: view-dependent TINs from elevation rasters and meshes (see README.md).
+#include "commands.hpp"
+
+#include "tinlod/error.hpp"
+#include "tinlod/raster.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+
+namespace tinlod::cli {
+
+std::vector<Command>& registry() {
+    static std::vector<Command> commands;
+    return commands;
+}
+
+void CameraOptions::add(CLI::App& cmd, bool required) {
+    auto* e = cmd.add_option("--eye", eye, "observer position X,Y,Z (world units, see `tinlod info`)");
+    auto* a = cmd.add_option("--at", at, "point the observer looks toward X,Y,Z");
+    if (required) {
+        e->required();
+        a->required();
+    }
+    cmd.add_option("--fov", fov, "vertical field of view, degrees")->capture_default_str();
+    cmd.add_option("--viewport", viewport, "viewport WxH, pixels")->capture_default_str();
+}
+
+View CameraOptions::view() const {
+    View v;
+    v.eye = parse_vec3(eye, "--eye");
+    v.at = parse_vec3(at, "--at");
+    v.fov_deg = fov;
+    parse_viewport(viewport, v.viewport_w, v.viewport_h);
+    validate(v, "--eye/--at");
+    return v;
+}
+
+void RasterOptions::add(CLI::App& cmd) {
+    cmd.add_option("--cell", cell, "ground size of a pixel for rasters without georeferencing")
+        ->capture_default_str();
+    cmd.add_option("--zscale", zscale, "factor applied to every elevation")->capture_default_str();
+    cmd.add_flag("--terrain-rgb", terrain_rgb,
+                 "decode an RGB image as Mapbox Terrain-RGB: (R*65536+G*256+B)/10-10000");
+}
+
+} // namespace tinlod::cli
+
+int main(int argc, char** argv) {
+    using namespace tinlod::cli;
+    CLI::App app{"tinlod: view-dependent triangulated irregular networks from elevation rasters and "
+                 "meshes"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "tinlod 0.1.0");
+    auto& commands = registry();
+    std::sort(commands.begin(), commands.end(),
+              [](const Command& a, const Command& b) { return a.order < b.order; });
+    std::vector<std::pair<CLI::App*, std::function<void()>>> runs;
+    for (auto& c : commands) {
+        CLI::App* sub = nullptr;
+        runs.emplace_back(nullptr, nullptr);
+        runs.back().second = c.setup(*(sub = app.add_subcommand(c.name, "")));
+        runs.back().first = sub;
+    }
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        for (auto& [sub, run] : runs)
+            if (sub->parsed())
+                run();
+    } catch (const tinlod::Error& e) {
+        std::fprintf(stderr, "tinlod: error: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "tinlod: error: out of memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "tinlod: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

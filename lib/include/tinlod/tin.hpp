@@ -1,0 +1,38 @@
+// The TIN type of the whole library: one OpenMesh triangle mesh with status attributes, and the
+// conversion of a Heightfield into its full-resolution grid TIN (the reference for every error).
+#pragma once
+
+#include "tinlod/raster.hpp"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <cstdint>
+
+namespace tinlod {
+
+struct TinTraits : public OpenMesh::DefaultTraits {
+    using Point = OpenMesh::Vec3f; // local world frame (see Heightfield), so floats keep mm precision
+    using Normal = OpenMesh::Vec3f;
+    VertexAttributes(OpenMesh::Attributes::Status);
+    FaceAttributes(OpenMesh::Attributes::Status);
+    EdgeAttributes(OpenMesh::Attributes::Status);
+    HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
+};
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<TinTraits>;
+
+// Provenance of each node: the grid sample id (r * width + c) or input vertex index it came from.
+// Stored as the mesh vertex property named k_origin_property; get_origin_property adds it if absent.
+inline constexpr const char* k_origin_property = "tinlod:origin";
+OpenMesh::VPropHandleT<std::int64_t> get_origin_property(Mesh& mesh);
+// Returns an invalid handle when the mesh has no provenance.
+OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh);
+
+// Full-resolution grid TIN: W*H nodes, 2(W-1)(H-1) triangles, every triangle counter-clockwise
+// seen from above, node i = grid sample i (origin property set).
+Mesh grid_tin(const Heightfield& hf);
+
+// Triangles from a compact index list (3 node ids per triangle) over the heightfield samples;
+// only the referenced samples become nodes (origin property = sample id).
+Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& triangles);
+
+} // namespace tinlod

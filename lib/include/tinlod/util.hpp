@@ -1,0 +1,53 @@
+// Small shared services: atomic file writes, timing, peak memory, progress bar, stats JSON.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace tinlod {
+
+// Writes `path` by calling write(tmp) on a temporary in the same folder, then renaming it over
+// `path`. On any exception the temporary is removed and the exception rethrown; `path` is never
+// left half-written. Throws Error when the folder is missing or not writable.
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+// Writes a JSON document atomically (pretty-printed).
+void write_json(const std::string& path, const nlohmann::json& doc);
+
+// Peak resident set size of this process, MiB (VmHWM).
+double peak_rss_mb();
+
+class Stopwatch {
+  public:
+    Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+    double ms() const {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+            .count();
+    }
+    void reset() { start_ = std::chrono::steady_clock::now(); }
+
+  private:
+    std::chrono::steady_clock::time_point start_;
+};
+
+// A progress bar on stderr, drawn only when stderr is a terminal; cheap to call often.
+class Progress {
+  public:
+    Progress(std::string label, std::int64_t total);
+    ~Progress();
+    void update(std::int64_t done);
+    void finish();
+
+  private:
+    std::string label_;
+    std::int64_t total_;
+    int last_percent_ = -1;
+    bool active_;
+    bool finished_ = false;
+};
+
+} // namespace tinlod

@@ -1,0 +1,429 @@
+// Elevation rasters in: SRTM .hgt (our reader), everything else through OpenImageIO, with
+// GeoTIFF georeferencing from libgeotiff and geographic-to-metric conversion with PROJ.
+#include "tinlod/raster.hpp"
+#include "tinlod/error.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <geotiff/geo_normalize.h>
+#include <geotiff/geotiff.h>
+#include <geotiff/geovalues.h>
+#include <geotiff/xtiffio.h>
+#include <glm/glm.hpp>
+#include <proj.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <regex>
+
+namespace tinlod {
+
+namespace fs = std::filesystem;
+
+float Heightfield::min_z() const { return z.empty() ? 0.f : *std::min_element(z.begin(), z.end()); }
+float Heightfield::max_z() const { return z.empty() ? 0.f : *std::max_element(z.begin(), z.end()); }
+
+namespace {
+
+// What a file says about where it stands on Earth.
+struct Georef {
+    bool present = false;
+    bool geographic = false; // degrees of longitude/latitude
+    int epsg = 0;            // EPSG code of the CRS (geographic or projected), 0 if unknown
+    double west = 0, north = 0; // CRS coordinates of the NW corner of the NW pixel's area
+    double sx = 1, sy = 1;   // pixel size in CRS units (positive)
+    std::optional<double> nodata;
+};
+
+// Samples as read, row 0 = north, with the voids marked.
+struct RawGrid {
+    int width = 0, height = 0;
+    std::vector<float> z;
+    std::vector<std::uint8_t> is_void;
+};
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+void check_size(const std::string& path, std::int64_t w, std::int64_t h) {
+    if (w < 2 || h < 2)
+        throw Error(path, "raster is " + std::to_string(w) + "x" + std::to_string(h) +
+                              "; at least 2x2 samples are needed");
+    if (w * h > k_max_raster_samples || w > (1 << 20) || h > (1 << 20))
+        throw Error(path, "raster is " + std::to_string(w) + "x" + std::to_string(h) +
+                              ", beyond the supported maximum of 2^31 samples");
+}
+
+// --- SRTM .hgt: big-endian int16, square 1201 or 3601, row 0 north, file name = SW corner. ---
+
+RawGrid read_hgt(const std::string& path, Georef& geo) {
+    const auto bytes = fs::file_size(path);
+    int n = 0;
+    for (int side : {1201, 3601})
+        if (bytes == std::uintmax_t(side) * side * 2)
+            n = side;
+    if (n == 0)
+        throw Error(path, "size " + std::to_string(bytes) +
+                              " bytes is not an SRTM tile (1201x1201 or 3601x3601 int16 = " +
+                              std::to_string(1201 * 1201 * 2) + " or " + std::to_string(3601 * 3601 * 2) +
+                              " bytes)");
+    static const std::regex name(R"(^([NSns])(\d{2})([EWew])(\d{3}))");
+    std::smatch m;
+    const std::string stem = fs::path(path).filename().string();
+    if (std::regex_search(stem, m, name)) {
+        const double lat = std::stod(m[2]) * (std::toupper(m[1].str()[0]) == 'S' ? -1 : 1);
+        const double lon = std::stod(m[4]) * (std::toupper(m[3].str()[0]) == 'W' ? -1 : 1);
+        geo.present = true;
+        geo.geographic = true;
+        geo.epsg = 4326;
+        geo.sx = geo.sy = 1.0 / (n - 1);
+        // Samples sit on whole-degree lines (pixel is point): the NW sample is at (lon, lat + 1).
+        geo.west = lon - geo.sx / 2;
+        geo.north = lat + 1 + geo.sy / 2;
+    }
+    geo.nodata = -32768.0;
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> buf(bytes);
+    if (!in.read(reinterpret_cast<char*>(buf.data()), std::streamsize(bytes)))
+        throw Error(path, "cannot read file");
+    RawGrid g;
+    g.width = g.height = n;
+    g.z.resize(std::size_t(n) * n);
+    for (std::size_t i = 0; i < g.z.size(); ++i)
+        g.z[i] = static_cast<std::int16_t>((buf[2 * i] << 8) | buf[2 * i + 1]);
+    return g;
+}
+
+// --- GeoTIFF tags through libgeotiff. ---
+
+Georef read_geotiff_tags(const std::string& path) {
+    Georef geo;
+    TIFFSetWarningHandler(nullptr);
+    TIFFSetErrorHandler(nullptr);
+    TIFF* tif = XTIFFOpen(path.c_str(), "r");
+    if (!tif)
+        return geo;
+    std::uint16_t count = 0;
+    double* scale = nullptr;
+    double* ties = nullptr;
+    if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
+        geo.sx = std::abs(scale[0]);
+        geo.sy = std::abs(scale[1]);
+        std::uint16_t tcount = 0;
+        if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &tcount, &ties) && tcount >= 6) {
+            geo.west = ties[3] - ties[0] * geo.sx;
+            geo.north = ties[4] + ties[1] * geo.sy;
+            geo.present = geo.sx > 0 && geo.sy > 0;
+        }
+    }
+    // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
+    std::uint16_t ncount = 0;
+    char* nodata = nullptr;
+    if (TIFFGetField(tif, TIFFTAG_GDAL_NODATA, &ncount, &nodata) && nodata && ncount > 0) {
+        char* end = nullptr;
+        const double v = std::strtod(nodata, &end);
+        if (end != nodata)
+            geo.nodata = v;
+    }
+    if (GTIF* gtif = GTIFNew(tif)) {
+        unsigned short model = 0, code = 0, raster = RasterPixelIsArea;
+        GTIFKeyGetSHORT(gtif, GTModelTypeGeoKey, &model, 0, 1);
+        GTIFKeyGetSHORT(gtif, GTRasterTypeGeoKey, &raster, 0, 1);
+        if (model == ModelTypeGeographic) {
+            geo.geographic = true;
+            geo.epsg = GTIFKeyGetSHORT(gtif, GeographicTypeGeoKey, &code, 0, 1) && code != KvUserDefined
+                           ? code : 4326;
+        } else if (model == ModelTypeProjected &&
+                   GTIFKeyGetSHORT(gtif, ProjectedCSTypeGeoKey, &code, 0, 1) && code != KvUserDefined) {
+            geo.epsg = code;
+        }
+        if (raster == RasterPixelIsPoint) {
+            // The tie point names the sample itself; shift to the corner of its area.
+            geo.west -= geo.sx / 2;
+            geo.north += geo.sy / 2;
+        }
+        GTIFFree(gtif);
+    }
+    XTIFFClose(tif);
+    return geo;
+}
+
+// --- Everything else through OpenImageIO, samples in their native type. ---
+
+template <typename T>
+void copy_channel(const std::vector<T>& src, int channels, std::vector<float>& dst) {
+    for (std::size_t i = 0; i < dst.size(); ++i)
+        dst[i] = static_cast<float>(src[i * channels]);
+}
+
+RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        if (why.empty())
+            why = "not a readable raster";
+        const auto nl = why.find('\n');
+        throw Error(path, "cannot read raster: " + why.substr(0, nl));
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    check_size(path, spec.width, spec.height);
+    if (spec.depth > 1)
+        throw Error(path, "volume images are not elevation rasters");
+    RawGrid g;
+    g.width = spec.width;
+    g.height = spec.height;
+    const std::size_t n = std::size_t(g.width) * g.height;
+    const int nc = spec.nchannels;
+    g.z.resize(n);
+    auto read = [&](auto tag) {
+        using T = decltype(tag);
+        std::vector<T> buf(n * nc);
+        if (!in->read_image(0, 0, 0, nc, OIIO::TypeDescFromC<T>::value(), buf.data())) {
+            std::string why = in->geterror();
+            const auto nl = why.find('\n');
+            throw Error(path, "cannot read samples (truncated or corrupt): " + why.substr(0, nl));
+        }
+        return buf;
+    };
+    if (options.terrain_rgb) {
+        if (nc < 3 || spec.format != OIIO::TypeDesc::UINT8)
+            throw Error(path, "--terrain-rgb needs an 8-bit RGB image, this one has " +
+                                  std::to_string(nc) + " channel(s) of " + spec.format.c_str());
+        const auto buf = read(std::uint8_t{});
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint8_t* px = &buf[i * nc];
+            g.z[i] = static_cast<float>((px[0] * 65536.0 + px[1] * 256.0 + px[2]) / 10.0 - 10000.0);
+        }
+        return g;
+    }
+    switch (spec.format.basetype) {
+    case OIIO::TypeDesc::INT16: copy_channel(read(std::int16_t{}), nc, g.z); break;
+    case OIIO::TypeDesc::UINT16: copy_channel(read(std::uint16_t{}), nc, g.z); break;
+    case OIIO::TypeDesc::INT32: copy_channel(read(std::int32_t{}), nc, g.z); break;
+    case OIIO::TypeDesc::UINT32: copy_channel(read(std::uint32_t{}), nc, g.z); break;
+    case OIIO::TypeDesc::UINT8: copy_channel(read(std::uint8_t{}), nc, g.z); break;
+    case OIIO::TypeDesc::INT8: copy_channel(read(char{}), nc, g.z); break;
+    case OIIO::TypeDesc::DOUBLE: copy_channel(read(double{}), nc, g.z); break;
+    default: copy_channel(read(float{}), nc, g.z); break; // half and float
+    }
+    return g;
+}
+
+// Marks voids (the nodata value; NaN only when NaN is the declared nodata) and rejects
+// non-finite heights.
+void mark_voids(const std::string& path, RawGrid& g, const Georef& geo) {
+    g.is_void.assign(g.z.size(), 0);
+    const bool nan_is_nodata = geo.nodata && std::isnan(*geo.nodata);
+    for (std::size_t i = 0; i < g.z.size(); ++i) {
+        const float v = g.z[i];
+        if (std::isnan(v)) {
+            if (!nan_is_nodata)
+                throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
+                                      std::to_string(i % g.width) + " is NaN (no nodata value declared)");
+            g.is_void[i] = 1;
+        } else if (geo.nodata && (v == static_cast<float>(*geo.nodata) ||
+                                  (*geo.nodata < -1e30 && v < -1e30))) {
+            g.is_void[i] = 1;
+        } else if (!std::isfinite(v)) {
+            throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
+                                  std::to_string(i % g.width) + " is infinite");
+        }
+    }
+}
+
+// Voids are missing data, never heights. Whole rows/columns of voids at the edges are cropped
+// away (too large to invent); the rest are filled from valid neighbours, ring by ring inward.
+void crop_and_fill(const std::string& path, RawGrid& g, Georef& geo, Heightfield& hf, bool fill) {
+    int top = g.height, bottom = -1, left = g.width, right = -1;
+    std::int64_t voids = 0;
+    for (int r = 0; r < g.height; ++r)
+        for (int c = 0; c < g.width; ++c) {
+            if (g.is_void[std::size_t(r) * g.width + c]) {
+                ++voids;
+                continue;
+            }
+            top = std::min(top, r), bottom = std::max(bottom, r);
+            left = std::min(left, c), right = std::max(right, c);
+        }
+    if (bottom < 0)
+        throw Error(path, "every sample is a void (nodata); there is no terrain to use");
+    hf.voids = voids;
+    if (top > 0 || left > 0 || bottom < g.height - 1 || right < g.width - 1) {
+        const int w = right - left + 1, h = bottom - top + 1;
+        check_size(path, w, h);
+        RawGrid cropped;
+        cropped.width = w;
+        cropped.height = h;
+        cropped.z.resize(std::size_t(w) * h);
+        cropped.is_void.resize(std::size_t(w) * h);
+        for (int r = 0; r < h; ++r)
+            for (int c = 0; c < w; ++c) {
+                const std::size_t src = std::size_t(r + top) * g.width + c + left;
+                cropped.z[std::size_t(r) * w + c] = g.z[src];
+                cropped.is_void[std::size_t(r) * w + c] = g.is_void[src];
+            }
+        hf.cropped = std::int64_t(g.width) * g.height - std::int64_t(w) * h;
+        geo.west += left * geo.sx;
+        geo.north -= top * geo.sy;
+        g = std::move(cropped);
+    }
+    std::vector<std::size_t> frontier;
+    std::int64_t remaining = 0;
+    for (std::size_t i = 0; i < g.z.size(); ++i)
+        remaining += g.is_void[i];
+    if (remaining == 0)
+        return;
+    if (!fill)
+        throw Error(path, std::to_string(remaining) + " void samples inside the terrain");
+    // known: 0 void, 1 valid or filled in an earlier ring.
+    std::vector<std::uint8_t> known(g.z.size());
+    for (std::size_t i = 0; i < g.z.size(); ++i)
+        known[i] = !g.is_void[i];
+    for (std::size_t i = 0; i < g.z.size(); ++i)
+        if (!known[i])
+            frontier.push_back(i);
+    const int w = g.width, h = g.height;
+    while (!frontier.empty()) {
+        std::vector<std::pair<std::size_t, float>> ring;
+        std::vector<std::size_t> rest;
+        for (std::size_t i : frontier) {
+            const int r = int(i / w), c = int(i % w);
+            double sum = 0;
+            int count = 0;
+            for (int dr = -1; dr <= 1; ++dr)
+                for (int dc = -1; dc <= 1; ++dc) {
+                    const int rr = r + dr, cc = c + dc;
+                    if ((dr || dc) && rr >= 0 && rr < h && cc >= 0 && cc < w &&
+                        known[std::size_t(rr) * w + cc]) {
+                        sum += g.z[std::size_t(rr) * w + cc];
+                        ++count;
+                    }
+                }
+            if (count)
+                ring.emplace_back(i, float(sum / count));
+            else
+                rest.push_back(i);
+        }
+        for (auto [i, v] : ring) {
+            g.z[i] = v;
+            known[i] = 1;
+        }
+        frontier.swap(rest);
+    }
+    hf.filled = remaining;
+}
+
+// Local metric frame: projected CRSs keep their units; geographic ones go to the UTM zone of
+// the centre with PROJ; ground spacing is measured there at the centre of the raster.
+void apply_georef(const std::string& path, const Georef& geo, const LoadOptions& options,
+                  const RawGrid& g, Heightfield& hf) {
+    if (!geo.present) {
+        hf.dx = hf.dy = options.cell;
+        hf.crs = "none (cell " + std::to_string(options.cell) + ")";
+        return;
+    }
+    // Centre of the SW sample in CRS units.
+    const double sw_x = geo.west + geo.sx / 2;
+    const double sw_y = geo.north - (g.height - 0.5) * geo.sy;
+    if (!geo.geographic) {
+        hf.dx = geo.sx;
+        hf.dy = geo.sy;
+        hf.origin_x = sw_x;
+        hf.origin_y = sw_y;
+        hf.crs = geo.epsg ? "EPSG:" + std::to_string(geo.epsg) : "projected (unknown EPSG)";
+        return;
+    }
+    const double lon_c = sw_x + (g.width - 1) * geo.sx / 2;
+    const double lat_c = sw_y + (g.height - 1) * geo.sy / 2;
+    if (std::abs(lat_c) > 84)
+        throw Error(path, "latitude beyond UTM coverage (|lat| > 84)");
+    const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
+    const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
+    PJ_CONTEXT* ctx = proj_context_create();
+    const std::string src = "EPSG:" + std::to_string(geo.epsg ? geo.epsg : 4326);
+    const std::string dst = "EPSG:" + std::to_string(utm);
+    PJ* raw = proj_create_crs_to_crs(ctx, src.c_str(), dst.c_str(), nullptr);
+    PJ* pj = raw ? proj_normalize_for_visualization(ctx, raw) : nullptr;
+    if (raw)
+        proj_destroy(raw);
+    if (!pj) {
+        proj_context_destroy(ctx);
+        throw Error(path, "cannot convert " + src + " to " + dst + " (PROJ database missing?)");
+    }
+    auto project = [&](double lon, double lat) {
+        PJ_COORD out = proj_trans(pj, PJ_FWD, proj_coord(lon, lat, 0, 0));
+        return glm::dvec2(out.xy.x, out.xy.y);
+    };
+    const glm::dvec2 c = project(lon_c, lat_c);
+    hf.dx = glm::length(project(lon_c + geo.sx, lat_c) - c);
+    hf.dy = glm::length(project(lon_c, lat_c + geo.sy) - c);
+    const glm::dvec2 sw = project(sw_x, sw_y);
+    proj_destroy(pj);
+    proj_context_destroy(ctx);
+    if (!std::isfinite(hf.dx) || !std::isfinite(hf.dy) || hf.dx <= 0 || hf.dy <= 0)
+        throw Error(path, "georeferencing gives no usable ground spacing");
+    hf.origin_x = sw.x;
+    hf.origin_y = sw.y;
+    hf.crs = dst + " (UTM zone " + std::to_string(zone) + (lat_c >= 0 ? "N" : "S") + ", from " + src +
+             " degrees)";
+}
+
+} // namespace
+
+Heightfield load_heightfield(const std::string& path, const LoadOptions& options) {
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        throw Error(path, "no such file");
+    if (!fs::is_regular_file(path, ec))
+        throw Error(path, "not a regular file");
+    if (fs::file_size(path, ec) == 0)
+        throw Error(path, "file is empty");
+    if (!(options.cell > 0) || !std::isfinite(options.cell))
+        throw Error("--cell", "ground size of a pixel must be a positive number");
+    if (!std::isfinite(options.zscale) || options.zscale == 0)
+        throw Error("--zscale", "must be a non-zero finite number");
+    {
+        std::ifstream probe(path);
+        if (!probe)
+            throw Error(path, "cannot open for reading");
+    }
+    Georef geo;
+    RawGrid g;
+    const std::string ext = lower_extension(path);
+    if (ext == ".hgt") {
+        g = read_hgt(path, geo);
+    } else {
+        g = read_oiio(path, options);
+        if (ext == ".tif" || ext == ".tiff")
+            geo = read_geotiff_tags(path);
+    }
+    mark_voids(path, g, geo);
+    Heightfield hf;
+    crop_and_fill(path, g, geo, hf, options.fill_voids);
+    apply_georef(path, geo, options, g, hf);
+    hf.width = g.width;
+    hf.height = g.height;
+    hf.z.resize(g.z.size());
+    hf.void_mask.assign(g.z.size(), 0);
+    // Files run north to south; the Heightfield runs south to north.
+    for (int r = 0; r < g.height; ++r) {
+        const std::size_t src = std::size_t(g.height - 1 - r) * g.width;
+        const std::size_t dst = std::size_t(r) * g.width;
+        for (int c = 0; c < g.width; ++c) {
+            hf.z[dst + c] = static_cast<float>(g.z[src + c] * options.zscale);
+            hf.void_mask[dst + c] = g.is_void[src + c];
+        }
+    }
+    if (hf.voids == 0)
+        hf.void_mask.clear();
+    return hf;
+}
+
+} // namespace tinlod

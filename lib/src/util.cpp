@@ -1,0 +1,87 @@
+// Atomic writes, timing, memory, progress.
+#include "tinlod/util.hpp"
+#include "tinlod/error.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace tinlod {
+
+namespace fs = std::filesystem;
+
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+    const fs::path target(path);
+    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw Error(path, "output folder '" + folder.string() + "' does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw Error(path, "output folder '" + folder.string() + "' is not writable");
+    if (fs::is_directory(target, ec))
+        throw Error(path, "output path is a folder");
+    std::random_device rd;
+    const fs::path tmp = folder / ("." + target.filename().string() + "." + std::to_string(rd()) +
+                                   ".tmp" + target.extension().string());
+    try {
+        write(tmp.string());
+        fs::rename(tmp, target);
+    } catch (...) {
+        fs::remove(tmp, ec);
+        throw;
+    }
+}
+
+void write_json(const std::string& path, const nlohmann::json& doc) {
+    write_atomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp);
+        out << doc.dump(2) << '\n';
+        if (!out.flush())
+            throw Error(path, "cannot write: " + std::string(std::strerror(errno)));
+    });
+}
+
+double peak_rss_mb() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0)
+            return std::stod(line.substr(6)) / 1024.0;
+    return 0.0;
+}
+
+Progress::Progress(std::string label, std::int64_t total)
+    : label_(std::move(label)), total_(total), active_(::isatty(STDERR_FILENO) != 0) {}
+
+Progress::~Progress() {
+    if (active_ && !finished_ && last_percent_ >= 0)
+        std::fputc('\n', stderr);
+}
+
+void Progress::update(std::int64_t done) {
+    if (!active_ || total_ <= 0)
+        return;
+    const int percent = static_cast<int>(100 * std::min(done, total_) / total_);
+    if (percent == last_percent_)
+        return;
+    last_percent_ = percent;
+    const int width = 30;
+    const int filled = percent * width / 100;
+    std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", label_.c_str(), filled,
+                 "==============================", width - filled, "", percent);
+    std::fflush(stderr);
+}
+
+void Progress::finish() {
+    update(total_);
+    if (active_ && last_percent_ >= 0 && !finished_)
+        std::fputc('\n', stderr);
+    finished_ = true;
+}
+
+} // namespace tinlod

@@ -1,0 +1,90 @@
+#include "assets.hpp"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <sys/wait.h>
+#include <vector>
+
+namespace tinlod::test {
+
+namespace fs = std::filesystem;
+
+std::string asset(const std::string& name) { return std::string(TINLOD_MESHES_DIR) + "/" + name; }
+
+namespace {
+struct TempDirs {
+    std::vector<fs::path> dirs;
+    ~TempDirs() {
+        std::error_code ec;
+        for (auto& d : dirs)
+            fs::remove_all(d, ec);
+    }
+};
+TempDirs& temp_dirs() {
+    static TempDirs t;
+    return t;
+}
+} // namespace
+
+std::string temp_dir() {
+    std::random_device rd;
+    fs::path p = fs::temp_directory_path() / ("tinlod-test-" + std::to_string(rd()));
+    fs::create_directories(p);
+    temp_dirs().dirs.push_back(p);
+    return p.string();
+}
+
+static std::string slurp(const fs::path& p) {
+    std::string s;
+    if (FILE* f = std::fopen(p.c_str(), "rb")) {
+        std::array<char, 4096> buf;
+        std::size_t n;
+        while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0)
+            s.append(buf.data(), n);
+        std::fclose(f);
+    }
+    return s;
+}
+
+RunResult run_cli(const std::string& args) {
+    const fs::path dir = temp_dir();
+    const std::string cmd = std::string("'") + TINLOD_CLI + "' " + args + " >'" +
+                            (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
+    const int raw = std::system(cmd.c_str());
+    RunResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(dir / "out");
+    r.err = slurp(dir / "err");
+    return r;
+}
+
+std::int64_t count_folded_faces(const Mesh& mesh) {
+    std::int64_t folded = 0;
+    for (auto f : mesh.faces()) {
+        Mesh::Point p[3];
+        int i = 0;
+        for (auto v : f.vertices())
+            p[i++] = mesh.point(v);
+        const double area2 = double(p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
+                             double(p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+        folded += area2 <= 0.0;
+    }
+    return folded;
+}
+
+double xy_area(const Mesh& mesh) {
+    double sum = 0;
+    for (auto f : mesh.faces()) {
+        Mesh::Point p[3];
+        int i = 0;
+        for (auto v : f.vertices())
+            p[i++] = mesh.point(v);
+        sum += 0.5 * (double(p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
+                      double(p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
+    }
+    return sum;
+}
+
+} // namespace tinlod::test

@@ -1,0 +1,31 @@
+// Test helpers: the bundled real assets in meshes/, running the CLI, and TIN invariants.
+#pragma once
+
+#include "tinlod/raster.hpp"
+#include "tinlod/tin.hpp"
+
+#include <string>
+
+namespace tinlod::test {
+
+// Absolute path of a file in meshes/.
+std::string asset(const std::string& name);
+// A fresh empty temporary folder for this test (removed at exit).
+std::string temp_dir();
+
+struct RunResult {
+    int status = 0;
+    std::string out; // stdout
+    std::string err; // stderr
+};
+// Runs the tinlod CLI with `args` (a shell-quoted string).
+RunResult run_cli(const std::string& args);
+
+// Invariants of a TIN: every edge manifold (<= 2 faces, OpenMesh guarantees it for a valid mesh),
+// every face counter-clockwise seen from above with positive xy area. Returns the number of faces
+// that violate the orientation (0 for a valid TIN).
+std::int64_t count_folded_faces(const Mesh& mesh);
+// Sum of the xy areas of the live faces.
+double xy_area(const Mesh& mesh);
+
+} // namespace tinlod::test
