@@ -134,7 +134,8 @@ void write_mesh(const Mesh& input, const std::string& path) {
         bool ok = false;
         {
             QuietOpenMesh quiet;
-            ok = OpenMesh::IO::write_mesh(*mesh, tmp, options);
+            // 9 significant digits keep every float exactly in the ASCII formats.
+            ok = OpenMesh::IO::write_mesh(*mesh, tmp, options, 9);
         }
         if (!ok)
             throw Error(path, "cannot write mesh");

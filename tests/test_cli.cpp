@@ -1,0 +1,103 @@
+// Foundation: the command line on real files and on bad input (one error line naming the file,
+// non-zero exit, no partial output).
+#include "assets.hpp"
+
+#include "tinlod/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using tinlod::test::asset;
+using tinlod::test::run_cli;
+
+namespace fs = std::filesystem;
+
+TEST(Cli, InfoReportsRasterAndMeshAsJson) {
+    auto r = run_cli("info --json '" + asset("dem_squared.tif") + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["width"], 129);
+    EXPECT_EQ(j["height"], 129);
+    EXPECT_EQ(j["voids"], 0);
+    ASSERT_EQ(j["bounds"].size(), 6u);
+    // Bounds span the grid: (width-1) cells east at the reported cell size.
+    EXPECT_NEAR(j["bounds"][3].get<double>(), 128 * j["cell_size"][0].get<double>(), 1e-6);
+
+    r = run_cli("info --json '" + asset("bun_zipper_res2.ply") + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto m = nlohmann::json::parse(r.out);
+    EXPECT_EQ(m["faces"], 16301);            // MANIFEST
+    EXPECT_EQ(m["non_manifold_edges"], 150); // MANIFEST
+    EXPECT_GT(m["boundary_edges"].get<int>(), 0);
+}
+
+TEST(Cli, RetrieveFullWritesGridTinAndStats) {
+    const std::string dir = tinlod::test::temp_dir();
+    auto r = run_cli("retrieve '" + asset("crater_u16.png") + "' --full -o " + dir +
+                     "/full.ply --stats " + dir + "/stats.json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
+    EXPECT_EQ(stats["input"]["nodes"], 336 * 459);
+    EXPECT_EQ(stats["output"]["nodes"], 336 * 459);
+    EXPECT_EQ(stats["output"]["triangles"], 2 * 335 * 458);
+    for (const char* key : {"load", "retrieve", "write"})
+        EXPECT_TRUE(stats["time_ms"].contains(key)) << key;
+    EXPECT_GT(stats["peak_rss_mb"].get<double>(), 0.0);
+    const tinlod::Mesh mesh = tinlod::read_mesh(dir + "/full.ply");
+    EXPECT_EQ(mesh.n_faces(), std::size_t(2 * 335 * 458));
+}
+
+struct BadCase {
+    std::string name;
+    std::string args; // {dir} is the temp folder
+    std::string message;
+};
+
+TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
+    const std::string dir = tinlod::test::temp_dir();
+    const fs::path in = fs::path(dir) / "in";
+    const fs::path out = fs::path(dir) / "out";
+    fs::create_directories(in);
+    fs::create_directories(out);
+    auto write = [&](const std::string& name, const std::string& bytes) {
+        std::ofstream(in / name, std::ios::binary) << bytes;
+        return (in / name).string();
+    };
+    std::string hgt(std::size_t(1201) * 1201 * 2, '\0');
+    const std::string truncated_tif = [&] {
+        std::ifstream src(asset("dem_srtm30.tif"), std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(src)), {});
+        return write("truncated.tif", bytes.substr(0, bytes.size() / 3));
+    }();
+    const std::vector<BadCase> cases = {
+        {"missing", "retrieve --full " + (in / "nope.tif").string() + " -o {out}/a.ply", "no such file"},
+        {"empty", "retrieve --full " + write("empty.tif", "") + " -o {out}/a.ply", "file is empty"},
+        {"garbage", "retrieve --full " + write("garbage.png", "not a png") + " -o {out}/a.ply",
+         "cannot read raster"},
+        {"truncated", "retrieve --full " + truncated_tif + " -o {out}/a.ply", truncated_tif},
+        {"hgt size", "retrieve --full " + write("N00E000.hgt", hgt.substr(0, 5000)) + " -o {out}/a.ply",
+         "not an SRTM tile"},
+        {"missing folder", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/no/such/a.ply",
+         "does not exist"},
+        {"bad extension", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/a.xyz",
+         "unknown mesh format"},
+        {"mesh garbage", "info " + write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 99\n"),
+         "bad.ply"},
+        {"bad cell", "info --cell -1 " + asset("crater_u16.png"), "--cell"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        std::string args = c.args;
+        for (auto pos = args.find("{out}"); pos != std::string::npos; pos = args.find("{out}"))
+            args.replace(pos, 5, out.string());
+        const auto r = run_cli(args);
+        EXPECT_NE(r.status, 0);
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        // One line: the message ends with the only newline.
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_TRUE(fs::is_empty(out)) << "partial output left behind";
+    }
+}
