@@ -86,6 +86,12 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "unknown mesh format"},
         {"mesh garbage", "info " + write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 99\n"),
          "bad.ply"},
+        {"absurd mesh count",
+         "info " + write("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\n"
+                                     "property float x\nproperty float y\nproperty float z\n"
+                                     "end_header\n"),
+         "declares 3000000000"},
+        {"absurd OFF count", "info " + write("huge.off", "OFF\n300000000 1 0\n0 0 0\n"), "declares 300000000"},
         {"bad cell", "info --cell -1 " + asset("crater_u16.png"), "--cell"},
     };
     for (const auto& c : cases) {

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <sstream>
 #include <map>
 
 namespace tinlod {
@@ -28,12 +30,64 @@ bool is_mesh_path(const std::string& path) {
     return ext == ".ply" || ext == ".obj" || ext == ".off" || ext == ".stl";
 }
 
-// OpenMesh prints "complex edge" and similar complaints on its error stream; we report counts
-// instead, so silence it while reading.
+// OpenMesh prints "complex edge" and similar complaints on its streams and on std::cerr; we
+// report counts instead, so silence them while reading.
 struct QuietOpenMesh {
-    QuietOpenMesh() { omerr().disable(); omlog().disable(); }
-    ~QuietOpenMesh() { omerr().enable(); omlog().enable(); }
+    QuietOpenMesh() : cerr_(std::cerr.rdbuf(nullptr)) { omerr().disable(); omlog().disable(); }
+    ~QuietOpenMesh() {
+        omerr().enable();
+        omlog().enable();
+        std::cerr.rdbuf(cerr_);
+    }
+    std::streambuf* cerr_;
 };
+
+// OpenMesh's readers loop forever on a PLY header without end_header and allocate whatever
+// count a header declares. Check the header and the declared counts against the file size first.
+static void check_header(const std::string& path, const std::string& ext, std::uintmax_t bytes) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(std::size_t(std::min<std::uintmax_t>(bytes, 1 << 16)), '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    auto too_many = [&](const char* what, std::uintmax_t count, std::uintmax_t min_bytes) {
+        if (count > bytes / min_bytes)
+            throw Error(path, "header declares " + std::to_string(count) + " " + what +
+                                  " but the file holds only " + std::to_string(bytes) + " bytes");
+    };
+    if (ext == ".ply") {
+        if (head.rfind("ply", 0) != 0)
+            throw Error(path, "not a PLY file (no 'ply' magic)");
+        const auto end = head.find("end_header");
+        if (end == std::string::npos)
+            throw Error(path, "truncated or malformed PLY header (no end_header)");
+        std::istringstream lines(head.substr(0, end));
+        std::string line, element;
+        while (std::getline(lines, line)) {
+            std::istringstream words(line);
+            std::string key, name;
+            std::uintmax_t count = 0;
+            words >> key;
+            if (key == "element" && (words >> name >> count))
+                too_many(name == "face" ? "faces" : "elements", count, 1);
+        }
+    } else if (ext == ".off") {
+        std::istringstream words(head);
+        std::string magic;
+        std::uintmax_t nv = 0, nf = 0;
+        words >> magic;
+        if (magic.find("OFF") == std::string::npos)
+            throw Error(path, "not an OFF file (no 'OFF' magic)");
+        if (magic.find("BINARY") == std::string::npos && (words >> nv >> nf)) {
+            too_many("vertices", nv, 6);
+            too_many("faces", nf, 6);
+        }
+    } else if (ext == ".stl" && head.rfind("solid", 0) != 0 && bytes >= 84) {
+        const auto* p = reinterpret_cast<const unsigned char*>(head.data()) + 80;
+        const std::uintmax_t n = p[0] | p[1] << 8 | p[2] << 16 | std::uintmax_t(p[3]) << 24;
+        if (84 + 50 * n != bytes)
+            throw Error(path, "binary STL declares " + std::to_string(n) + " triangles but holds " +
+                                  std::to_string(bytes) + " bytes");
+    }
+}
 
 // OpenMesh splits faces that would make an edge non-manifold onto duplicated vertices. Welding
 // vertices by exact position recovers the file's topology, so edges used by more than two faces
@@ -77,6 +131,7 @@ Mesh read_mesh(const std::string& path, MeshReport* report) {
         if (!probe)
             throw Error(path, "cannot open for reading");
     }
+    check_header(path, extension(path), fs::file_size(path, ec));
     Mesh mesh;
     OpenMesh::IO::Options options;
     bool ok = false;

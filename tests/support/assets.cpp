@@ -50,7 +50,8 @@ static std::string slurp(const fs::path& p) {
 
 RunResult run_cli(const std::string& args) {
     const fs::path dir = temp_dir();
-    const std::string cmd = std::string("'") + TINLOD_CLI + "' " + args + " >'" +
+    // A hang is a failure, not a stuck test run: give up after two minutes (exit status 124).
+    const std::string cmd = std::string("timeout 120 '") + TINLOD_CLI + "' " + args + " >'" +
                             (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
     const int raw = std::system(cmd.c_str());
     RunResult r;
