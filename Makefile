@@ -10,7 +10,9 @@ BUILD_TYPE ?= RelWithDebInfo
 endif
 BUILD_TYPE ?= Release
 
-.PHONY: setup configure build demo test bench clean
+FUZZ_SECONDS ?= 60
+
+.PHONY: setup configure build demo test bench fuzz clean
 
 setup:
 	@./scripts/setup.sh
@@ -32,5 +34,14 @@ test: build
 bench: build
 	@./bench/run.sh $(BUILD)/bin $(ARGS)
 
+# Each fuzz target runs FUZZ_SECONDS, seeded from the real files in meshes/; findings land in
+# build-fuzz/findings/.
+fuzz: setup
+	@mkdir -p build-fuzz
+	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -DTINLOD_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+		> build-fuzz/configure.log 2>&1 || (cat build-fuzz/configure.log; exit 1)
+	@cmake --build build-fuzz -j $(JOBS)
+	@./scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS)
+
 clean:
-	rm -rf build build-sanitize
+	rm -rf build build-sanitize build-fuzz
