@@ -1,0 +1,68 @@
+// `tinlod build DEM -o STORE`: the quad-tree store on disk (lib/store), with a progress bar.
+#include "commands.hpp"
+
+#include "tinlod/error.hpp"
+#include "tinlod/mesh_io.hpp"
+#include "tinlod/quadtree.hpp"
+#include "tinlod/raster.hpp"
+#include "tinlod/store.hpp"
+#include "tinlod/util.hpp"
+
+#include <cstdio>
+
+namespace tinlod::cli {
+
+static Register build("build", 20, [](CLI::App& cmd) {
+    cmd.description("Write the quad-tree store of a DEM (.tlq): elevations in tiles, node error bounds, "
+                    "checksums; `retrieve` reads it partially");
+    struct Args {
+        std::string input, output, stats;
+        RasterOptions raster;
+    };
+    auto args = std::make_shared<Args>();
+    cmd.add_option("DEM", args->input, "DEM file (GeoTIFF, PNG, EXR, .hgt, ...)")->required();
+    cmd.add_option("-o,--output", args->output, "store file to write (.tlq)")->required();
+    cmd.add_option("--stats", args->stats, "write statistics as JSON");
+    args->raster.add(cmd);
+    return [args] {
+        if (is_mesh_path(args->output))
+            throw Error(args->output, "a store is not a mesh file; name it .tlq");
+        Stopwatch clock;
+        LoadOptions lo;
+        lo.cell = args->raster.cell;
+        lo.zscale = args->raster.zscale;
+        lo.terrain_rgb = args->raster.terrain_rgb;
+        const Heightfield hf = load_heightfield(args->input, lo);
+        const double ms_load = clock.ms();
+        clock.reset();
+        const int levels = QuadLayout(hf.width, hf.height).levels();
+        Progress bounds_bar("bounds", hf.size() * std::max(levels - 1, 1));
+        const QuadTree tree(hf, &bounds_bar);
+        bounds_bar.finish();
+        const double ms_bounds = clock.ms();
+        clock.reset();
+        Progress write_bar("write ", std::int64_t(hf.width - 1) * (hf.height - 1));
+        write_store(tree, args->output, &write_bar);
+        write_bar.finish();
+        const double ms_write = clock.ms();
+        const TileStore store(args->output);
+        const double samples_per_s = hf.size() / ((ms_bounds + ms_write) / 1000.0);
+        if (!args->stats.empty())
+            write_json(args->stats,
+                       {{"input", {{"file", args->input}, {"nodes", hf.size()},
+                                   {"width", hf.width}, {"height", hf.height}}},
+                        {"output", {{"file", args->output}, {"bytes", store.file_bytes()},
+                                    {"levels", levels}, {"tile_level", store.tile_level()},
+                                    {"tiles", store.tile_count()},
+                                    {"tree_nodes", tree.node_count()}}},
+                        {"time_ms", {{"load", ms_load}, {"bounds", ms_bounds}, {"write", ms_write}}},
+                        {"build_samples_per_s", samples_per_s},
+                        {"peak_rss_mb", peak_rss_mb()}});
+        std::printf("%s: %dx%d samples, %d levels, %lld tiles, %.1f MB in %.0f ms (%.1f M samples/s)\n",
+                    args->output.c_str(), hf.width, hf.height, levels,
+                    static_cast<long long>(store.tile_count()), store.file_bytes() / 1e6,
+                    ms_bounds + ms_write, samples_per_s / 1e6);
+    };
+});
+
+} // namespace tinlod::cli

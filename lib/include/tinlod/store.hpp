@@ -1,0 +1,78 @@
+// The quad-tree store on disk (.tlq): the paper's quad-tree "database", read partially, tile by
+// tile, as the traversal reaches it, through a memory map and a size-capped cache.
+//
+// Layout (little-endian): a header (magic "TINLODQT", version, grid size, spacing, origin, CRS, the
+// level of the tiles, section offsets, checksums), a tile directory (offset, bytes, CRC-32 per
+// tile), the bounds of every node down to the tile level, the elevations at the corners of the
+// level below it, then the tiles, each page aligned. A tile is one node of the tile level: its
+// samples (inclusive rectangle, row-major) followed by the bounds of all its descendant nodes,
+// level by level.
+#pragma once
+
+#include "tinlod/quadtree.hpp"
+#include "tinlod/raster.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+class Progress;
+
+inline constexpr std::uint32_t k_store_version = 1;
+inline constexpr int k_store_tile_cells = 64; // tiles are the first level whose nodes span <= this
+
+// Writes `tree` as a store at `path` through write_atomically. Throws Error naming the path when it
+// cannot be written. `progress` (optional) advances by samples written, out of width * height.
+void write_store(const QuadTree& tree, const std::string& path, Progress* progress = nullptr);
+
+// True when the file starts with the store magic (it may still be corrupt).
+bool is_store_file(const std::string& path);
+
+struct StoreOptions {
+    double cache_mb = 256.0; // tiles kept resident between retrievals, MiB; the tiles of the view
+                             // in progress stay resident until it ends
+};
+
+struct StoreStats {
+    std::int64_t tiles_read = 0; // tiles loaded and verified (cache misses)
+    std::int64_t bytes_read = 0; // their bytes
+    std::int64_t tiles_evicted = 0;
+};
+
+// A store opened for retrieval. Opening checks the header, the directory and the top sections
+// (sizes, checksums) and throws Error naming the file on any mismatch; a tile is verified against
+// its checksum when it is first read, and a mismatch throws Error naming the tile.
+class TileStore final : public NodeSource {
+  public:
+    explicit TileStore(const std::string& path, const StoreOptions& options = {});
+    ~TileStore() override;
+    TileStore(const TileStore&) = delete;
+    TileStore& operator=(const TileStore&) = delete;
+
+    const QuadLayout& layout() const override;
+    const GridFrame& frame() const override;
+    NodeBound bound(int d, std::uint32_t i, std::uint32_t j) override;
+    float vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
+                   std::uint32_t r) override;
+    void begin_retrieval() override;
+    void end_retrieval() override;
+
+    int tile_level() const;
+    std::int64_t tile_count() const;
+    std::int64_t resident_tiles() const;
+    std::int64_t resident_bytes() const; // bytes of the resident tiles
+    std::int64_t file_bytes() const;
+    const StoreStats& last_stats() const;  // of the last retrieval
+    const StoreStats& total_stats() const; // since opening
+    // Every sample, each tile verified (for exhaustive checks); does not touch the cache or stats.
+    Heightfield heightfield() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace tinlod

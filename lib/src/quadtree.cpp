@@ -1,0 +1,675 @@
+// The quad-tree of a Heightfield and its view-dependent retrieval (see quadtree.hpp): conservative
+// node bounds built bottom-up over every sample (Lindstrom et al. 1996), a top-down traversal that
+// splits a node when its bound seen from the nearest point of its box exceeds the tolerance (the
+// paper's method 1), kept restricted as in Röttger et al. 1998 / Pajarola 1998 so the per-node
+// triangle fans meet without cracks.
+#include "tinlod/quadtree.hpp"
+
+#include "tinlod/error.hpp"
+#include "tinlod/util.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <thread>
+
+namespace tinlod {
+
+// ---------------------------------------------------------------------------------------------
+// Layout
+
+int AxisSplit::levels_for(int samples) {
+    assert(samples >= 2);
+    int levels = 1;
+    for (int len = samples - 1; len > 1; len = (len + 1) / 2)
+        ++levels;
+    return levels;
+}
+
+AxisSplit::AxisSplit(int samples, int levels) {
+    assert(samples >= 2 && levels >= levels_for(samples));
+    starts_.assign(levels, {});
+    parent_.assign(levels, {});
+    first_child_.assign(levels, {});
+    starts_[0] = {0, static_cast<std::uint32_t>(samples - 1)};
+    parent_[0] = {0};
+    for (int d = 1; d < levels; ++d) {
+        const auto& prev = starts_[d - 1];
+        auto& cur = starts_[d];
+        auto& fc = first_child_[d - 1];
+        fc.resize(prev.size() - 1);
+        for (std::uint32_t k = 0; k + 1 < prev.size(); ++k) {
+            fc[k] = static_cast<std::uint32_t>(cur.size());
+            const std::uint32_t a = prev[k], b = prev[k + 1];
+            cur.push_back(a);
+            parent_[d].push_back(k);
+            if (b - a >= 2) {
+                cur.push_back((a + b) / 2);
+                parent_[d].push_back(k);
+            }
+        }
+        cur.push_back(prev.back());
+    }
+}
+
+std::uint32_t AxisSplit::bound_index(int d, std::uint32_t s) const {
+    const auto& st = starts_[d];
+    const auto it = std::lower_bound(st.begin(), st.end(), s);
+    assert(it != st.end() && *it == s);
+    return static_cast<std::uint32_t>(it - st.begin());
+}
+
+QuadLayout::QuadLayout(int w, int h) : width(w), height(h) {
+    const int levels = std::max(AxisSplit::levels_for(w), AxisSplit::levels_for(h));
+    x = AxisSplit(w, levels);
+    y = AxisSplit(h, levels);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bounds
+
+namespace {
+
+struct GridPoint {
+    double c, r, z;
+};
+
+// z of the plane through a triangle, evaluated at grid position (c, r).
+struct Plane {
+    double z0, c0, r0, gc, gr;
+    Plane(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2) {
+        const double e1c = p1.c - p0.c, e1r = p1.r - p0.r, e2c = p2.c - p0.c, e2r = p2.r - p0.r;
+        const double d1 = p1.z - p0.z, d2 = p2.z - p0.z;
+        const double det = e1c * e2r - e1r * e2c;
+        z0 = p0.z;
+        c0 = p0.c;
+        r0 = p0.r;
+        gc = (d1 * e2r - d2 * e1r) / det;
+        gr = (e1c * d2 - e2c * d1) / det;
+    }
+};
+
+float round_up(double e) {
+    float f = static_cast<float>(e);
+    if (static_cast<double>(f) < e)
+        f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
+
+struct OwnBound {
+    double error = 0.0;
+    float zmin = std::numeric_limits<float>::max();
+    float zmax = std::numeric_limits<float>::lowest();
+    void box(float z) {
+        zmin = std::min(zmin, z);
+        zmax = std::max(zmax, z);
+    }
+};
+
+// A node at least two cells wide and tall: a fan around its centre over the four corners, each
+// side optionally split at its midpoint. The four wedges are independent, so the worst case over
+// the 16 variants is, per sample, the worse of its wedge with and without the side midpoint. Each
+// row crosses the wedges in at most three spans (cut by the diagonals), and inside a span the half
+// of the split wedge is fixed by the row or by the centre column.
+OwnBound fan_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::uint32_t x1,
+                   std::uint32_t y0, std::uint32_t y1) {
+    auto at = [&](std::uint32_t c, std::uint32_t r) {
+        return GridPoint{double(c), double(r), double(z[std::size_t{r} * w + c])};
+    };
+    const std::uint32_t mx = (x0 + x1) / 2, my = (y0 + y1) / 2;
+    const GridPoint ctr = at(mx, my);
+    const GridPoint bl = at(x0, y0), br = at(x1, y0), tr = at(x1, y1), tl = at(x0, y1);
+    const GridPoint mb = at(mx, y0), mr = at(x1, my), mt = at(mx, y1), ml = at(x0, my);
+    // Wedges bottom, right, top, left: the whole triangle and its two halves.
+    const Plane full[4] = {Plane(ctr, bl, br), Plane(ctr, br, tr), Plane(ctr, tr, tl),
+                           Plane(ctr, tl, bl)};
+    const Plane bottom[2] = {Plane(ctr, bl, mb), Plane(ctr, mb, br)}; // c <= mx, c >= mx
+    const Plane top[2] = {Plane(ctr, mt, tl), Plane(ctr, tr, mt)};    // c <= mx, c >= mx
+    const Plane right[2] = {Plane(ctr, br, mr), Plane(ctr, mr, tr)};  // r <= my, r >= my
+    const Plane left[2] = {Plane(ctr, ml, bl), Plane(ctr, tl, ml)};   // r <= my, r >= my
+    OwnBound out;
+    double e = 0.0;
+    auto span = [&](const float* row, double r, std::uint32_t c0, std::uint32_t c1, const Plane& a,
+                    const Plane& b) {
+        const double za = a.z0 + a.gr * (r - a.r0) - a.gc * a.c0;
+        const double zb = b.z0 + b.gr * (r - b.r0) - b.gc * b.c0;
+        for (std::uint32_t c = c0; c <= c1; ++c) {
+            const double zs = row[c];
+            e = std::max(e, std::max(std::abs(zs - (za + a.gc * c)), std::abs(zs - (zb + b.gc * c))));
+        }
+    };
+    for (std::uint32_t r = y0; r <= y1; ++r) {
+        const float* row = &z[std::size_t{r} * w];
+        for (std::uint32_t c = x0; c <= x1; ++c)
+            out.box(row[c]);
+        const double rr = r;
+        const bool below = r <= my;
+        const double t = below ? double(my - r) / (my - y0) : double(r - my) / (y1 - my);
+        // Columns up to `lo` lie in the left wedge, from `hi` in the right one.
+        const auto lo = static_cast<std::int64_t>(std::floor(mx - (mx - x0) * t));
+        const auto hi = static_cast<std::int64_t>(std::ceil(mx + (x1 - mx) * t));
+        const Plane& lh = left[below ? 0 : 1];
+        const Plane& rh = right[below ? 0 : 1];
+        span(row, rr, x0, std::uint32_t(lo), full[3], lh);
+        span(row, rr, std::uint32_t(hi), x1, full[1], rh);
+        const Plane& mid = full[below ? 0 : 2];
+        const Plane* halves = below ? bottom : top;
+        if (std::int64_t(mx) > lo)
+            span(row, rr, std::uint32_t(lo), mx, mid, halves[0]);
+        if (std::int64_t(mx) < hi)
+            span(row, rr, mx, std::uint32_t(hi), mid, halves[1]);
+    }
+    out.error = e;
+    return out;
+}
+
+// A node of 2x2 cells (the most numerous): every sample is a vertex of the fan with all side
+// midpoints, so the error is that of a side midpoint left out.
+OwnBound small_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::uint32_t y0) {
+    OwnBound out;
+    float s[3][3];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            out.box(s[r][c] = z[std::size_t{y0 + r} * w + x0 + c]);
+    auto gap = [](float m, float a, float b) { return std::abs(double(m) - 0.5 * (double(a) + b)); };
+    out.error = std::max({gap(s[0][1], s[0][0], s[0][2]), gap(s[2][1], s[2][0], s[2][2]),
+                          gap(s[1][0], s[0][0], s[2][0]), gap(s[1][2], s[0][2], s[2][2])});
+    return out;
+}
+
+// One side of a one-cell-wide node: samples z(0..n) along it, optionally split at n/2. In such a
+// node every sample lies on a side, so the sides alone give the bound.
+template <class Z> double side_bound(Z z, std::uint32_t n) {
+    const std::uint32_t m = n / 2;
+    const double z0 = z(0), zm = z(m), zn = z(n);
+    double e = 0.0;
+    for (std::uint32_t s = 1; s < n; ++s) {
+        const double zs = z(s);
+        const double whole = z0 + (zn - z0) * s / n;
+        const double half = s <= m ? z0 + (zm - z0) * s / m : zm + (zn - zm) * (s - m) / (n - m);
+        e = std::max({e, std::abs(zs - whole), std::abs(zs - half)});
+    }
+    return e;
+}
+
+OwnBound strip_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::uint32_t x1,
+                     std::uint32_t y0, std::uint32_t y1) {
+    OwnBound out;
+    for (std::uint32_t r = y0; r <= y1; ++r)
+        for (std::uint32_t c = x0; c <= x1; ++c)
+            out.box(z[std::size_t{r} * w + c]);
+    if (x1 - x0 == 1) {
+        for (std::uint32_t c : {x0, x1})
+            out.error = std::max(out.error, side_bound([&](std::uint32_t s) {
+                                     return double(z[std::size_t{y0 + s} * w + c]);
+                                 }, y1 - y0));
+    } else if (y1 - y0 == 1) {
+        for (std::uint32_t r : {y0, y1})
+            out.error = std::max(out.error, side_bound([&](std::uint32_t s) {
+                                     return double(z[std::size_t{r} * w + x0 + s]);
+                                 }, x1 - x0));
+    }
+    return out;
+}
+
+} // namespace
+
+QuadTree::QuadTree(const Heightfield& hf, Progress* progress) {
+    if (hf.width < 2 || hf.height < 2)
+        throw Error("quad-tree", "the grid must be at least 2x2 samples, got " +
+                                     std::to_string(hf.width) + "x" + std::to_string(hf.height));
+    if (hf.size() > k_max_raster_samples)
+        throw Error("quad-tree", "the grid has more than 2^31 samples");
+    assert(hf.z.size() == static_cast<std::size_t>(hf.size()));
+    layout_ = QuadLayout(hf.width, hf.height);
+    frame_ = {hf.width, hf.height, hf.dx, hf.dy, hf.origin_x, hf.origin_y, hf.crs};
+    z_ = hf.z;
+    const int levels = layout_.levels();
+    bounds_.resize(std::max(levels - 1, 0));
+    std::int64_t done = 0;
+    for (int d = levels - 2; d >= 0; --d) {
+        const std::uint32_t nx = layout_.x.count(d), ny = layout_.y.count(d);
+        auto& level = bounds_[d];
+        level.resize(std::size_t{nx} * ny);
+        auto rows = [&](std::uint32_t j0, std::uint32_t j1) {
+            for (std::uint32_t j = j0; j < j1; ++j)
+                for (std::uint32_t i = 0; i < nx; ++i) {
+                    const std::uint32_t x0 = layout_.x.lo(d, i), x1 = layout_.x.hi(d, i);
+                    const std::uint32_t y0 = layout_.y.lo(d, j), y1 = layout_.y.hi(d, j);
+                    const OwnBound own =
+                        x1 - x0 == 2 && y1 - y0 == 2 ? small_bound(z_, hf.width, x0, y0)
+                        : x1 - x0 >= 2 && y1 - y0 >= 2 ? fan_bound(z_, hf.width, x0, x1, y0, y1)
+                                                       : strip_bound(z_, hf.width, x0, x1, y0, y1);
+                    float children = 0.0f;
+                    if (d + 1 < levels - 1) {
+                        const std::uint32_t cx = layout_.x.first_child(d, i);
+                        const std::uint32_t cy = layout_.y.first_child(d, j);
+                        const std::uint32_t ncx = x1 - x0 >= 2 ? 2 : 1, ncy = y1 - y0 >= 2 ? 2 : 1;
+                        for (std::uint32_t b = 0; b < ncy; ++b)
+                            for (std::uint32_t a = 0; a < ncx; ++a)
+                                children = std::max(children, bound(d + 1, cx + a, cy + b).error);
+                    }
+                    level[std::size_t{j} * nx + i] = {std::max(round_up(own.error), children),
+                                                      own.zmin, own.zmax};
+                }
+        };
+        // Rows of nodes are independent (the level below is complete): split them over threads.
+        const std::uint32_t workers = std::min<std::uint32_t>(
+            std::max(1u, std::thread::hardware_concurrency()), ny);
+        std::vector<std::thread> pool;
+        for (std::uint32_t t = 1; t < workers; ++t)
+            pool.emplace_back(rows, ny * t / workers, ny * (t + 1) / workers);
+        rows(0, ny / workers);
+        for (auto& th : pool)
+            th.join();
+        done += hf.size();
+        if (progress)
+            progress->update(done);
+    }
+}
+
+std::int64_t QuadTree::node_count() const {
+    std::int64_t n = 0;
+    for (const auto& level : bounds_)
+        n += static_cast<std::int64_t>(level.size());
+    return n;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Retrieval
+
+namespace {
+
+class MemorySource final : public NodeSource {
+  public:
+    explicit MemorySource(const QuadTree& tree) : tree_(tree) {}
+    const QuadLayout& layout() const override { return tree_.layout(); }
+    const GridFrame& frame() const override { return tree_.frame(); }
+    NodeBound bound(int d, std::uint32_t i, std::uint32_t j) override {
+        return tree_.bound(d, i, j);
+    }
+    float vertex_z(int, std::uint32_t, std::uint32_t, std::uint32_t c, std::uint32_t r) override {
+        return tree_.elevation(c, r);
+    }
+
+  private:
+    const QuadTree& tree_;
+};
+
+// Zero-initialised arrays from calloc: untouched pages of a large status array cost no memory.
+struct FreeDeleter {
+    void operator()(void* p) const { std::free(p); }
+};
+template <class T> std::unique_ptr<T[], FreeDeleter> zeroed(std::size_t n) {
+    void* p = std::calloc(std::max<std::size_t>(n, 1), sizeof(T));
+    if (!p)
+        throw std::bad_alloc();
+    return std::unique_ptr<T[], FreeDeleter>(static_cast<T*>(p));
+}
+
+constexpr std::uint8_t k_unread = 0, k_leaf = 1, k_split = 2;
+
+std::uint64_t pack(int d, std::uint32_t i, std::uint32_t j) {
+    return (std::uint64_t(d) << 58) | (std::uint64_t(i) << 29) | j;
+}
+
+} // namespace
+
+struct QuadTreeLod::Impl {
+    std::unique_ptr<NodeSource> source;
+    const QuadLayout* lay = nullptr;
+    int last = 0; // the level of one-cell nodes only; it has no status array
+    std::vector<std::unique_ptr<std::uint8_t[], FreeDeleter>> status;
+    std::unique_ptr<std::uint64_t[], FreeDeleter> emitted; // one bit per sample
+    std::vector<std::uint64_t> touched;                    // every node given a status
+    std::vector<std::vector<std::uint64_t>> pending;       // per level: created nodes to evaluate
+    std::vector<std::size_t> cursor;                       // per level: first not yet evaluated
+    Retrieval out;
+
+    // The view of the retrieval in progress.
+    glm::dvec3 eye{0.0};
+    double k = 1.0, tol = 1.0, dx = 1.0, dy = 1.0;
+    bool cull = false;
+    glm::dvec3 planes[5]; // the frustum: p is inside when dot(plane, p - eye) <= 0 for all
+
+    explicit Impl(std::unique_ptr<NodeSource> src) : source(std::move(src)) {
+        lay = &source->layout();
+        last = lay->levels() - 1;
+        for (int d = 0; d < last; ++d)
+            status.push_back(zeroed<std::uint8_t>(lay->level_nodes(d)));
+        pending.resize(last);
+        cursor.assign(last, 0);
+        emitted = zeroed<std::uint64_t>((std::size_t(lay->width) * lay->height + 63) / 64);
+        dx = source->frame().dx;
+        dy = source->frame().dy;
+    }
+
+    std::uint8_t& st(int d, std::uint32_t i, std::uint32_t j) {
+        return status[d][std::size_t{j} * lay->x.count(d) + i];
+    }
+
+    void set_view(const View& view, const RetrieveOptions& options) {
+        eye = view.eye;
+        k = view.k();
+        tol = options.tol_px;
+        cull = options.cull;
+        const glm::dvec3 f = view.axis();
+        const glm::dvec3 up = std::abs(f.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+        const glm::dvec3 r = glm::normalize(glm::cross(f, up));
+        const glm::dvec3 u = glm::cross(r, f);
+        const double hw = view.viewport_w / 2.0, hh = view.viewport_h / 2.0;
+        planes[0] = k * r - hw * f;
+        planes[1] = -k * r - hw * f;
+        planes[2] = k * u - hh * f;
+        planes[3] = -k * u - hh * f;
+        planes[4] = -f;
+    }
+
+    bool outside_frustum(const glm::dvec3& lo, const glm::dvec3& hi) const {
+        for (const glm::dvec3& n : planes) {
+            // The box corner deepest inside this plane; slack of a micrometre for rounding.
+            const glm::dvec3 p(n.x > 0 ? lo.x : hi.x, n.y > 0 ? lo.y : hi.y, n.z > 0 ? lo.z : hi.z);
+            if (glm::dot(n, p - eye) > 1e-6 * glm::length(n))
+                return true;
+        }
+        return false;
+    }
+
+    bool wants_split(int d, std::uint32_t i, std::uint32_t j) {
+        if (lay->is_cell(d, i, j))
+            return false;
+        if (tol <= 0.0)
+            return true;
+        const NodeBound b = source->bound(d, i, j);
+        const glm::dvec3 lo(lay->x.lo(d, i) * dx, lay->y.lo(d, j) * dy, b.zmin);
+        const glm::dvec3 hi(lay->x.hi(d, i) * dx, lay->y.hi(d, j) * dy, b.zmax);
+        if (cull && outside_frustum(lo, hi))
+            return false;
+        const glm::dvec3 gap = glm::max(glm::max(lo - eye, eye - hi), glm::dvec3(0.0));
+        const double dist = glm::length(gap);
+        const double px = b.error * k;
+        if (px > tol * dist)
+            return true;
+        if (dist > 0.0)
+            out.bound_px = std::max(out.bound_px, px / dist);
+        return false;
+    }
+
+    void create(int d, std::uint32_t i, std::uint32_t j) {
+        touched.push_back(pack(d, i, j));
+        if (d < last) {
+            st(d, i, j) = k_leaf;
+            pending[d].push_back(touched.back());
+        }
+    }
+
+    // Splits an existing node of level d at the request of a finer neighbour: its own neighbours
+    // first (recursion climbs one level per call, so its depth is bounded by the tree's).
+    void force(int d, std::uint32_t i, std::uint32_t j) {
+        if (st(d, i, j) == k_unread)
+            force(d - 1, lay->x.parent(d, i), lay->y.parent(d, j));
+        if (st(d, i, j) != k_split) {
+            ++out.forced;
+            split(d, i, j);
+        }
+    }
+
+    // Marks the node split and creates its children (evaluated later, level by level). The
+    // restriction: the neighbours across every side that splits must exist, so no leaf meets a
+    // node more than one level finer and the fans meet without T-junctions.
+    void split(int d, std::uint32_t i, std::uint32_t j) {
+        st(d, i, j) = k_split;
+        const std::uint32_t lx = lay->x.length(d, i), ly = lay->y.length(d, j);
+        const std::uint32_t cx = lay->x.first_child(d, i), cy = lay->y.first_child(d, j);
+        const std::uint32_t ncx = lx >= 2 ? 2 : 1, ncy = ly >= 2 ? 2 : 1;
+        for (std::uint32_t b = 0; b < ncy; ++b)
+            for (std::uint32_t a = 0; a < ncx; ++a)
+                create(d + 1, cx + a, cy + b);
+        const std::uint32_t nx = lay->x.count(d), ny = lay->y.count(d);
+        auto need = [&](std::uint32_t ni, std::uint32_t nj) {
+            if (st(d, ni, nj) == k_unread)
+                force(d - 1, lay->x.parent(d, ni), lay->y.parent(d, nj));
+        };
+        if (ly >= 2) {
+            if (i > 0)
+                need(i - 1, j);
+            if (i + 1 < nx)
+                need(i + 1, j);
+        }
+        if (lx >= 2) {
+            if (j > 0)
+                need(i, j - 1);
+            if (j + 1 < ny)
+                need(i, j + 1);
+        }
+    }
+
+    // Evaluates the created nodes level by level; a forced split may create nodes on a level
+    // already done, so the sweep goes back to the lowest level with work left.
+    void traverse() {
+        int d = 0;
+        while (d < last) {
+            auto& queue = pending[d];
+            while (cursor[d] < queue.size()) {
+                const std::uint64_t key = queue[cursor[d]++];
+                const std::uint32_t i = (key >> 29) & 0x1fffffff, j = key & 0x1fffffff;
+                if (st(d, i, j) != k_split && wants_split(d, i, j))
+                    split(d, i, j);
+            }
+            int next = d + 1;
+            for (int e = 0; e <= d; ++e)
+                if (cursor[e] < pending[e].size()) {
+                    next = e;
+                    break;
+                }
+            d = next;
+        }
+    }
+
+    void reset() {
+        for (std::uint64_t key : touched) {
+            const int d = static_cast<int>(key >> 58);
+            if (d < last)
+                st(d, (key >> 29) & 0x1fffffff, key & 0x1fffffff) = k_unread;
+        }
+        touched.clear();
+        for (int d = 0; d < last; ++d) {
+            pending[d].clear();
+            cursor[d] = 0;
+        }
+        for (std::uint32_t id : out.nodes)
+            emitted[id >> 6] &= ~(std::uint64_t{1} << (id & 63));
+        out.nodes.clear();
+        out.z.clear();
+        out.triangles.clear();
+        out.tree_nodes = out.leaves = out.forced = 0;
+        out.bound_px = 0.0;
+    }
+
+    std::uint32_t vertex(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c, std::uint32_t r) {
+        const std::uint32_t id = r * static_cast<std::uint32_t>(lay->width) + c;
+        std::uint64_t& word = emitted[id >> 6];
+        const std::uint64_t bit = std::uint64_t{1} << (id & 63);
+        if (!(word & bit)) {
+            word |= bit;
+            out.nodes.push_back(id);
+            out.z.push_back(source->vertex_z(d, i, j, c, r));
+        }
+        return id;
+    }
+
+    void tri(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        out.triangles.insert(out.triangles.end(), {a, b, c});
+    }
+
+    bool split_at(int d, std::uint32_t i, std::uint32_t j) {
+        return d < last && st(d, i, j) == k_split;
+    }
+
+    // The leaf's triangles, counter-clockwise from above: a fan around the centre over the
+    // corners and the midpoints of the sides whose neighbour is split (a one-cell-wide leaf has no
+    // centre and gets its few triangles case by case).
+    void emit_leaf(int d, std::uint32_t i, std::uint32_t j) {
+        const std::uint32_t x0 = lay->x.lo(d, i), x1 = lay->x.hi(d, i);
+        const std::uint32_t y0 = lay->y.lo(d, j), y1 = lay->y.hi(d, j);
+        auto v = [&](std::uint32_t c, std::uint32_t r) { return vertex(d, i, j, c, r); };
+        const std::uint32_t bl = v(x0, y0), br = v(x1, y0), tr = v(x1, y1), tl = v(x0, y1);
+        const std::uint32_t lx = x1 - x0, ly = y1 - y0;
+        const std::uint32_t mx = (x0 + x1) / 2, my = (y0 + y1) / 2;
+        const bool bottom = lx >= 2 && j > 0 && split_at(d, i, j - 1);
+        const bool top = lx >= 2 && j + 1 < lay->y.count(d) && split_at(d, i, j + 1);
+        const bool left = ly >= 2 && i > 0 && split_at(d, i - 1, j);
+        const bool right = ly >= 2 && i + 1 < lay->x.count(d) && split_at(d, i + 1, j);
+        if (lx >= 2 && ly >= 2) {
+            std::uint32_t ring[8];
+            int n = 0;
+            ring[n++] = bl;
+            if (bottom)
+                ring[n++] = v(mx, y0);
+            ring[n++] = br;
+            if (right)
+                ring[n++] = v(x1, my);
+            ring[n++] = tr;
+            if (top)
+                ring[n++] = v(mx, y1);
+            ring[n++] = tl;
+            if (left)
+                ring[n++] = v(x0, my);
+            const std::uint32_t ctr = v(mx, my);
+            for (int s = 0; s < n; ++s)
+                tri(ctr, ring[s], ring[(s + 1) % n]);
+        } else if (lx == 1 && ly >= 2 && (left || right)) {
+            if (left && right) {
+                const std::uint32_t l = v(x0, my), r = v(x1, my);
+                tri(bl, br, r);
+                tri(bl, r, l);
+                tri(l, r, tr);
+                tri(l, tr, tl);
+            } else if (right) {
+                const std::uint32_t r = v(x1, my);
+                tri(bl, br, r);
+                tri(bl, r, tl);
+                tri(r, tr, tl);
+            } else {
+                const std::uint32_t l = v(x0, my);
+                tri(bl, br, l);
+                tri(br, tr, l);
+                tri(tr, tl, l);
+            }
+        } else if (ly == 1 && lx >= 2 && (bottom || top)) {
+            if (bottom && top) {
+                const std::uint32_t b = v(mx, y0), t = v(mx, y1);
+                tri(bl, b, t);
+                tri(bl, t, tl);
+                tri(b, br, tr);
+                tri(b, tr, t);
+            } else if (bottom) {
+                const std::uint32_t b = v(mx, y0);
+                tri(bl, b, tl);
+                tri(b, br, tr);
+                tri(b, tr, tl);
+            } else {
+                const std::uint32_t t = v(mx, y1);
+                tri(bl, br, t);
+                tri(br, tr, t);
+                tri(bl, t, tl);
+            }
+        } else {
+            tri(bl, br, tr);
+            tri(bl, tr, tl);
+        }
+    }
+
+    const Retrieval& run(const View& view, const RetrieveOptions& options) {
+        assert(options.tol_px >= 0.0);
+        reset();
+        set_view(view, options);
+        source->begin_retrieval();
+        try {
+            create(0, 0, 0);
+            traverse();
+            for (std::uint64_t key : touched) {
+                const int d = static_cast<int>(key >> 58);
+                const std::uint32_t i = (key >> 29) & 0x1fffffff, j = key & 0x1fffffff;
+                if (split_at(d, i, j))
+                    continue;
+                ++out.leaves;
+                emit_leaf(d, i, j);
+            }
+        } catch (...) {
+            source->end_retrieval();
+            throw;
+        }
+        source->end_retrieval();
+        out.tree_nodes = static_cast<std::int64_t>(touched.size());
+        return out;
+    }
+};
+
+QuadTreeLod::QuadTreeLod(const QuadTree& tree)
+    : impl_(std::make_unique<Impl>(std::make_unique<MemorySource>(tree))) {}
+
+QuadTreeLod::QuadTreeLod(std::unique_ptr<NodeSource> source)
+    : impl_(std::make_unique<Impl>(std::move(source))) {}
+
+QuadTreeLod::~QuadTreeLod() = default;
+
+const Retrieval& QuadTreeLod::retrieve(const View& view, const RetrieveOptions& options) {
+    return impl_->run(view, options);
+}
+
+const QuadLayout& QuadTreeLod::layout() const { return *impl_->lay; }
+const GridFrame& QuadTreeLod::frame() const { return impl_->source->frame(); }
+
+NodeStatus QuadTreeLod::status(int d, std::uint32_t i, std::uint32_t j) const {
+    assert(d >= 0 && d <= impl_->last);
+    if (d == impl_->last) {
+        if (d == 0)
+            return NodeStatus::leaf;
+        const std::uint8_t p =
+            impl_->st(d - 1, impl_->lay->x.parent(d, i), impl_->lay->y.parent(d, j));
+        return p == k_split ? NodeStatus::leaf : NodeStatus::unread;
+    }
+    switch (impl_->st(d, i, j)) {
+    case k_leaf:
+        return NodeStatus::leaf;
+    case k_split:
+        return NodeStatus::subdivide;
+    default:
+        return NodeStatus::unread;
+    }
+}
+
+Retrieval retrieve(const QuadTree& tree, const View& view, const RetrieveOptions& options) {
+    QuadTreeLod lod(tree);
+    return lod.retrieve(view, options);
+}
+
+Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame) {
+    Mesh mesh;
+    mesh.reserve(retrieval.nodes.size(), 3 * retrieval.nodes.size(), retrieval.triangles.size() / 3);
+    auto origin = get_origin_property(mesh);
+    std::vector<std::pair<std::uint32_t, int>> index(retrieval.nodes.size());
+    const auto w = static_cast<std::uint32_t>(frame.width);
+    for (std::size_t n = 0; n < retrieval.nodes.size(); ++n) {
+        const std::uint32_t id = retrieval.nodes[n];
+        const auto v = mesh.add_vertex(Mesh::Point(float((id % w) * frame.dx),
+                                                   float((id / w) * frame.dy), retrieval.z[n]));
+        mesh.property(origin, v) = id;
+        index[n] = {id, v.idx()};
+    }
+    std::sort(index.begin(), index.end());
+    auto handle = [&](std::uint32_t id) {
+        const auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(id, -1));
+        assert(it != index.end() && it->first == id);
+        return Mesh::VertexHandle(it->second);
+    };
+    const auto& t = retrieval.triangles;
+    for (std::size_t n = 0; n + 2 < t.size(); n += 3)
+        mesh.add_face(handle(t[n]), handle(t[n + 1]), handle(t[n + 2]));
+    return mesh;
+}
+
+} // namespace tinlod

@@ -1,0 +1,631 @@
+// The quad-tree store on disk (see store.hpp): written tile-major with a CRC-32 per section and per
+// tile, read through a memory map that only the tiles the traversal reaches are paged in from, and
+// a cache that drops the least recently used tiles (madvise) beyond its cap.
+#include "tinlod/store.hpp"
+
+#include "tinlod/error.hpp"
+#include "tinlod/util.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cassert>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+namespace tinlod {
+
+static_assert(std::endian::native == std::endian::little, "the store format is little-endian");
+static_assert(sizeof(NodeBound) == 12);
+
+namespace {
+
+constexpr char k_magic[8] = {'T', 'I', 'N', 'L', 'O', 'D', 'Q', 'T'};
+constexpr std::size_t k_fixed_header = 128; // bytes before the CRS string
+constexpr std::size_t k_dir_entry = 24;     // offset u64, bytes u64, crc u32, pad u32
+constexpr std::uint64_t k_page = 4096;
+
+// CRC-32 (IEEE 802.3, as zlib's crc32), slicing by 8 bytes.
+using CrcTables = std::array<std::array<std::uint32_t, 256>, 8>;
+constexpr CrcTables make_crc_tables() {
+    CrcTables t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+        std::uint32_t c = n;
+        for (int k = 0; k < 8; ++k)
+            c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        t[0][n] = c;
+    }
+    for (std::uint32_t n = 0; n < 256; ++n)
+        for (int k = 1; k < 8; ++k)
+            t[k][n] = (t[k - 1][n] >> 8) ^ t[0][t[k - 1][n] & 0xFF];
+    return t;
+}
+constexpr CrcTables k_crc = make_crc_tables();
+
+std::uint32_t crc32(const void* data, std::size_t n) {
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (; n >= 8; n -= 8, p += 8) {
+        std::uint32_t lo, hi;
+        std::memcpy(&lo, p, 4);
+        std::memcpy(&hi, p + 4, 4);
+        lo ^= c;
+        c = k_crc[7][lo & 0xFF] ^ k_crc[6][(lo >> 8) & 0xFF] ^ k_crc[5][(lo >> 16) & 0xFF] ^
+            k_crc[4][lo >> 24] ^ k_crc[3][hi & 0xFF] ^ k_crc[2][(hi >> 8) & 0xFF] ^
+            k_crc[1][(hi >> 16) & 0xFF] ^ k_crc[0][hi >> 24];
+    }
+    for (; n > 0; --n, ++p)
+        c = k_crc[0][(c ^ *p) & 0xFF] ^ (c >> 8);
+    return c ^ 0xFFFFFFFFu;
+}
+
+std::uint64_t align(std::uint64_t v, std::uint64_t a) { return (v + a - 1) / a * a; }
+
+// Where every node and sample of a layout goes in the store: the tile level, the level of the
+// corner elevations, each tile's descendants per level and the byte layout of each tile.
+struct StoreGeometry {
+    int levels = 0;
+    int tile_level = 0;
+    int corner_level = 0;
+    std::uint32_t tiles_x = 0, tiles_y = 0;
+    // Per axis, per level d >= tile_level: first descendant and count of each tile interval, and
+    // the tile interval of each node interval.
+    struct Axis {
+        std::vector<std::vector<std::uint32_t>> first, count, tile_of;
+    } ax, ay;
+    std::vector<std::uint64_t> tile_bytes;
+    std::vector<std::uint32_t> level_offset; // per tile, per level below the tile level (bytes)
+    int tile_levels = 0;                     // levels stored inside tiles
+
+    static void make_axis(const AxisSplit& s, int tile_level, Axis& a) {
+        const int levels = s.levels();
+        a.first.assign(levels, {});
+        a.count.assign(levels, {});
+        a.tile_of.assign(levels, {});
+        const std::uint32_t n = s.count(tile_level);
+        for (std::uint32_t t = 0; t < n; ++t) {
+            a.first[tile_level].push_back(t);
+            a.count[tile_level].push_back(1);
+            a.tile_of[tile_level].push_back(t);
+        }
+        for (int d = tile_level; d + 1 < levels; ++d) {
+            a.tile_of[d + 1].resize(s.count(d + 1));
+            for (std::uint32_t t = 0; t < n; ++t) {
+                const std::uint32_t f = a.first[d][t], last = f + a.count[d][t] - 1;
+                const std::uint32_t cf = s.first_child(d, f);
+                const std::uint32_t cl = s.first_child(d, last) + (s.length(d, last) >= 2 ? 1 : 0);
+                a.first[d + 1].push_back(cf);
+                a.count[d + 1].push_back(cl - cf + 1);
+                for (std::uint32_t k = cf; k <= cl; ++k)
+                    a.tile_of[d + 1][k] = t;
+            }
+        }
+    }
+
+    explicit StoreGeometry(const QuadLayout& lay) {
+        levels = lay.levels();
+        auto widest = [](const AxisSplit& s, int d) {
+            std::uint32_t m = 0;
+            for (std::uint32_t k = 0; k < s.count(d); ++k)
+                m = std::max(m, s.length(d, k));
+            return m;
+        };
+        while (tile_level + 1 < levels && (widest(lay.x, tile_level) > k_store_tile_cells ||
+                                           widest(lay.y, tile_level) > k_store_tile_cells))
+            ++tile_level;
+        corner_level = std::min(tile_level + 1, levels - 1);
+        tiles_x = lay.x.count(tile_level);
+        tiles_y = lay.y.count(tile_level);
+        make_axis(lay.x, tile_level, ax);
+        make_axis(lay.y, tile_level, ay);
+        tile_levels = std::max(levels - 2 - tile_level, 0);
+        tile_bytes.resize(std::size_t{tiles_x} * tiles_y);
+        level_offset.resize(tile_bytes.size() * tile_levels);
+        for (std::uint32_t tj = 0; tj < tiles_y; ++tj)
+            for (std::uint32_t ti = 0; ti < tiles_x; ++ti) {
+                const std::size_t t = std::size_t{tj} * tiles_x + ti;
+                std::uint64_t bytes = 4ull * (lay.x.length(tile_level, ti) + 1) *
+                                      (lay.y.length(tile_level, tj) + 1);
+                for (int d = tile_level + 1; d < levels - 1; ++d) {
+                    level_offset[t * tile_levels + (d - tile_level - 1)] =
+                        static_cast<std::uint32_t>(bytes);
+                    bytes += 12ull * ax.count[d][ti] * ay.count[d][tj];
+                }
+                tile_bytes[t] = bytes;
+            }
+    }
+
+    std::size_t tile_count() const { return tile_bytes.size(); }
+    std::uint64_t top_nodes(const QuadLayout& lay) const {
+        std::uint64_t n = 0;
+        for (int d = 0; d <= std::min(tile_level, levels - 2); ++d)
+            n += lay.level_nodes(d);
+        return n;
+    }
+    std::uint64_t corner_count(const QuadLayout& lay) const {
+        return std::uint64_t{lay.x.count(corner_level) + 1} * (lay.y.count(corner_level) + 1);
+    }
+};
+
+struct Header {
+    std::int32_t width = 0, height = 0;
+    double dx = 1, dy = 1, origin_x = 0, origin_y = 0;
+    std::uint32_t levels = 0, tile_level = 0, corner_level = 0, tile_count = 0;
+    std::uint64_t dir_offset = 0, top_offset = 0, top_bytes = 0, corner_offset = 0,
+                  corner_bytes = 0;
+    std::uint32_t top_crc = 0, corner_crc = 0, dir_crc = 0;
+    std::string crs;
+};
+
+template <class T> void put(std::vector<std::uint8_t>& b, std::size_t at, const T& v) {
+    std::memcpy(b.data() + at, &v, sizeof(T));
+}
+template <class T> T get(const std::uint8_t* p, std::size_t at) {
+    T v;
+    std::memcpy(&v, p + at, sizeof(T));
+    return v;
+}
+
+std::vector<std::uint8_t> encode(const Header& h) {
+    std::vector<std::uint8_t> b(k_fixed_header + h.crs.size() + 4, 0);
+    std::memcpy(b.data(), k_magic, 8);
+    put(b, 8, k_store_version);
+    put(b, 12, static_cast<std::uint32_t>(b.size()));
+    put(b, 16, h.width);
+    put(b, 20, h.height);
+    put(b, 24, h.dx);
+    put(b, 32, h.dy);
+    put(b, 40, h.origin_x);
+    put(b, 48, h.origin_y);
+    put(b, 56, h.levels);
+    put(b, 60, h.tile_level);
+    put(b, 64, h.corner_level);
+    put(b, 68, h.tile_count);
+    put(b, 72, h.dir_offset);
+    put(b, 80, h.top_offset);
+    put(b, 88, h.top_bytes);
+    put(b, 96, h.corner_offset);
+    put(b, 104, h.corner_bytes);
+    put(b, 112, h.top_crc);
+    put(b, 116, h.corner_crc);
+    put(b, 120, h.dir_crc);
+    put(b, 124, static_cast<std::uint32_t>(h.crs.size()));
+    std::memcpy(b.data() + k_fixed_header, h.crs.data(), h.crs.size());
+    put(b, b.size() - 4, crc32(b.data(), b.size() - 4));
+    return b;
+}
+
+class File {
+  public:
+    File(const std::string& path, const std::string& subject) : subject_(subject) {
+        f_ = std::fopen(path.c_str(), "wb");
+        if (!f_)
+            fail();
+    }
+    ~File() {
+        if (f_)
+            std::fclose(f_);
+    }
+    void write(const void* p, std::size_t n) {
+        if (n && std::fwrite(p, 1, n, f_) != n)
+            fail();
+    }
+    void pad_to(std::uint64_t offset) {
+        static const std::array<std::uint8_t, k_page> zeros{};
+        std::uint64_t at = position();
+        while (at < offset) {
+            const std::size_t n = std::min<std::uint64_t>(offset - at, zeros.size());
+            write(zeros.data(), n);
+            at += n;
+        }
+    }
+    std::uint64_t position() const { return static_cast<std::uint64_t>(std::ftell(f_)); }
+    void seek(std::uint64_t offset) {
+        if (std::fseek(f_, static_cast<long>(offset), SEEK_SET) != 0)
+            fail();
+    }
+    void close() {
+        const int rc = std::fclose(f_);
+        f_ = nullptr;
+        if (rc != 0)
+            fail();
+    }
+
+  private:
+    [[noreturn]] void fail() const {
+        throw Error(subject_, std::string("cannot write: ") + std::strerror(errno));
+    }
+    std::FILE* f_ = nullptr;
+    std::string subject_;
+};
+
+} // namespace
+
+void write_store(const QuadTree& tree, const std::string& path, Progress* progress) {
+    const QuadLayout& lay = tree.layout();
+    const GridFrame& fr = tree.frame();
+    const StoreGeometry g(lay);
+    Header h;
+    h.width = fr.width;
+    h.height = fr.height;
+    h.dx = fr.dx;
+    h.dy = fr.dy;
+    h.origin_x = fr.origin_x;
+    h.origin_y = fr.origin_y;
+    h.crs = fr.crs;
+    h.levels = static_cast<std::uint32_t>(g.levels);
+    h.tile_level = static_cast<std::uint32_t>(g.tile_level);
+    h.corner_level = static_cast<std::uint32_t>(g.corner_level);
+    h.tile_count = static_cast<std::uint32_t>(g.tile_count());
+
+    // The top tree (levels down to the tile level) and the corner elevations.
+    std::vector<NodeBound> top;
+    top.reserve(g.top_nodes(lay));
+    for (int d = 0; d <= std::min(g.tile_level, g.levels - 2); ++d)
+        for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
+            for (std::uint32_t i = 0; i < lay.x.count(d); ++i)
+                top.push_back(tree.bound(d, i, j));
+    std::vector<float> corners;
+    corners.reserve(g.corner_count(lay));
+    for (std::uint32_t j = 0; j <= lay.y.count(g.corner_level); ++j)
+        for (std::uint32_t i = 0; i <= lay.x.count(g.corner_level); ++i) {
+            const std::uint32_t c = i < lay.x.count(g.corner_level) ? lay.x.lo(g.corner_level, i)
+                                                                    : fr.width - 1;
+            const std::uint32_t r = j < lay.y.count(g.corner_level) ? lay.y.lo(g.corner_level, j)
+                                                                    : fr.height - 1;
+            corners.push_back(tree.elevation(c, r));
+        }
+    h.dir_offset = align(encode(h).size(), 8);
+    h.top_offset = align(h.dir_offset + k_dir_entry * g.tile_count(), 8);
+    h.top_bytes = top.size() * sizeof(NodeBound);
+    h.corner_offset = align(h.top_offset + h.top_bytes, 8);
+    h.corner_bytes = corners.size() * sizeof(float);
+    h.top_crc = crc32(top.data(), h.top_bytes);
+    h.corner_crc = crc32(corners.data(), h.corner_bytes);
+
+    write_atomically(path, [&](const std::string& tmp) {
+        File f(tmp, path);
+        f.pad_to(h.top_offset);
+        f.write(top.data(), h.top_bytes);
+        f.pad_to(h.corner_offset);
+        f.write(corners.data(), h.corner_bytes);
+        std::vector<std::uint8_t> dir(k_dir_entry * g.tile_count(), 0);
+        std::vector<std::uint8_t> tile;
+        std::int64_t samples_done = 0;
+        for (std::uint32_t tj = 0; tj < g.tiles_y; ++tj)
+            for (std::uint32_t ti = 0; ti < g.tiles_x; ++ti) {
+                const std::size_t t = std::size_t{tj} * g.tiles_x + ti;
+                tile.assign(g.tile_bytes[t], 0);
+                const std::uint32_t x0 = lay.x.lo(g.tile_level, ti), x1 = lay.x.hi(g.tile_level, ti);
+                const std::uint32_t y0 = lay.y.lo(g.tile_level, tj), y1 = lay.y.hi(g.tile_level, tj);
+                std::size_t at = 0;
+                for (std::uint32_t r = y0; r <= y1; ++r) {
+                    std::memcpy(tile.data() + at, &tree.elevations()[std::size_t{r} * fr.width + x0],
+                                4 * (x1 - x0 + 1));
+                    at += 4 * (x1 - x0 + 1);
+                }
+                for (int d = g.tile_level + 1; d < g.levels - 1; ++d)
+                    for (std::uint32_t b = 0; b < g.ay.count[d][tj]; ++b)
+                        for (std::uint32_t a = 0; a < g.ax.count[d][ti]; ++a) {
+                            const NodeBound nb =
+                                tree.bound(d, g.ax.first[d][ti] + a, g.ay.first[d][tj] + b);
+                            std::memcpy(tile.data() + at, &nb, sizeof nb);
+                            at += sizeof nb;
+                        }
+                assert(at == tile.size());
+                const std::uint64_t offset = align(f.position(), k_page);
+                f.pad_to(offset);
+                f.write(tile.data(), tile.size());
+                put(dir, t * k_dir_entry, offset);
+                put(dir, t * k_dir_entry + 8, std::uint64_t{tile.size()});
+                put(dir, t * k_dir_entry + 16, crc32(tile.data(), tile.size()));
+                samples_done += std::int64_t{x1 - x0} * (y1 - y0);
+                if (progress)
+                    progress->update(samples_done);
+            }
+        h.dir_crc = crc32(dir.data(), dir.size());
+        f.seek(0);
+        const auto head = encode(h);
+        f.write(head.data(), head.size());
+        f.pad_to(h.dir_offset);
+        f.write(dir.data(), dir.size());
+        f.close();
+    });
+}
+
+bool is_store_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[8] = {};
+    return in.read(magic, 8) && std::memcmp(magic, k_magic, 8) == 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+
+struct TileStore::Impl {
+    std::string path;
+    int fd = -1;
+    const std::uint8_t* base = nullptr;
+    std::size_t size = 0;
+    QuadLayout lay;
+    GridFrame frame;
+    std::unique_ptr<StoreGeometry> g;
+    struct Tile {
+        std::uint64_t offset = 0, bytes = 0;
+        std::uint32_t crc = 0;
+        std::uint32_t stamp = 0; // retrieval that last used it
+        bool resident = false;   // verified and kept
+    };
+    std::vector<Tile> tiles;
+    std::vector<const NodeBound*> top; // per level down to the tile level
+    const float* corners = nullptr;
+    std::uint32_t retrieval = 0;
+    std::uint64_t resident_bytes = 0, cap_bytes = 0;
+    std::int64_t resident_count = 0;
+    StoreStats last, total;
+
+    [[noreturn]] void bad(const std::string& reason) const { throw Error(path, reason); }
+
+    ~Impl() {
+        if (base)
+            ::munmap(const_cast<std::uint8_t*>(base), size);
+        if (fd >= 0)
+            ::close(fd);
+    }
+
+    void open(const std::string& p, const StoreOptions& options) {
+        path = p;
+        cap_bytes = static_cast<std::uint64_t>(std::max(options.cache_mb, 0.0) * 1024 * 1024);
+        fd = ::open(p.c_str(), O_RDONLY);
+        if (fd < 0)
+            bad(std::string("cannot open: ") + std::strerror(errno));
+        struct stat sb;
+        if (::fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode))
+            bad("not a regular file");
+        size = static_cast<std::size_t>(sb.st_size);
+        if (size < 8)
+            bad("not a tinlod quad-tree store (file too short)");
+        void* m = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+        if (m == MAP_FAILED)
+            bad(std::string("cannot map: ") + std::strerror(errno));
+        base = static_cast<const std::uint8_t*>(m);
+        if (std::memcmp(base, k_magic, 8) != 0)
+            bad("not a tinlod quad-tree store (bad magic)");
+        if (size < k_fixed_header + 4)
+            bad("truncated store: the header is incomplete");
+        const auto version = get<std::uint32_t>(base, 8);
+        if (version != k_store_version)
+            bad("store version " + std::to_string(version) + " is not supported (expected " +
+                std::to_string(k_store_version) + ")");
+        const auto header_bytes = get<std::uint32_t>(base, 12);
+        const auto crs_len = get<std::uint32_t>(base, 124);
+        if (header_bytes != k_fixed_header + std::uint64_t{crs_len} + 4 || header_bytes > size)
+            bad("corrupt or truncated store header");
+        if (get<std::uint32_t>(base, header_bytes - 4) != crc32(base, header_bytes - 4))
+            bad("corrupt store header (checksum mismatch)");
+        Header h;
+        h.width = get<std::int32_t>(base, 16);
+        h.height = get<std::int32_t>(base, 20);
+        h.dx = get<double>(base, 24);
+        h.dy = get<double>(base, 32);
+        h.origin_x = get<double>(base, 40);
+        h.origin_y = get<double>(base, 48);
+        h.levels = get<std::uint32_t>(base, 56);
+        h.tile_level = get<std::uint32_t>(base, 60);
+        h.corner_level = get<std::uint32_t>(base, 64);
+        h.tile_count = get<std::uint32_t>(base, 68);
+        h.dir_offset = get<std::uint64_t>(base, 72);
+        h.top_offset = get<std::uint64_t>(base, 80);
+        h.top_bytes = get<std::uint64_t>(base, 88);
+        h.corner_offset = get<std::uint64_t>(base, 96);
+        h.corner_bytes = get<std::uint64_t>(base, 104);
+        h.top_crc = get<std::uint32_t>(base, 112);
+        h.corner_crc = get<std::uint32_t>(base, 116);
+        h.dir_crc = get<std::uint32_t>(base, 120);
+        h.crs.assign(reinterpret_cast<const char*>(base) + k_fixed_header, crs_len);
+        if (h.width < 2 || h.height < 2 ||
+            std::int64_t{h.width} * h.height > k_max_raster_samples)
+            bad("corrupt store header (grid size " + std::to_string(h.width) + "x" +
+                std::to_string(h.height) + ")");
+        if (!(std::isfinite(h.dx) && h.dx > 0 && std::isfinite(h.dy) && h.dy > 0))
+            bad("corrupt store header (cell size)");
+        // Every sample is in some tile: a file smaller than the samples is cut short.
+        if (4 * std::uint64_t(h.width) * std::uint64_t(h.height) > size)
+            bad("truncated store: " + std::to_string(size) + " bytes cannot hold " +
+                std::to_string(h.width) + "x" + std::to_string(h.height) + " samples");
+        lay = QuadLayout(h.width, h.height);
+        frame = {h.width, h.height, h.dx, h.dy, h.origin_x, h.origin_y, h.crs};
+        g = std::make_unique<StoreGeometry>(lay);
+        if (h.levels != std::uint32_t(g->levels) || h.tile_level != std::uint32_t(g->tile_level) ||
+            h.corner_level != std::uint32_t(g->corner_level) || h.tile_count != g->tile_count())
+            bad("corrupt store header (tree shape does not match the grid size)");
+        auto section = [&](std::uint64_t offset, std::uint64_t bytes, const char* what) {
+            if (offset % 8 != 0 || offset > size || bytes > size - offset)
+                bad(std::string("truncated store: the ") + what + " lies beyond the end of the file");
+        };
+        section(h.dir_offset, k_dir_entry * g->tile_count(), "tile directory");
+        section(h.top_offset, h.top_bytes, "top tree");
+        section(h.corner_offset, h.corner_bytes, "corner elevations");
+        if (h.top_bytes != g->top_nodes(lay) * sizeof(NodeBound) ||
+            h.corner_bytes != g->corner_count(lay) * sizeof(float))
+            bad("corrupt store header (section sizes)");
+        if (crc32(base + h.dir_offset, k_dir_entry * g->tile_count()) != h.dir_crc)
+            bad("corrupt tile directory (checksum mismatch)");
+        if (crc32(base + h.top_offset, h.top_bytes) != h.top_crc)
+            bad("corrupt top tree (checksum mismatch)");
+        if (crc32(base + h.corner_offset, h.corner_bytes) != h.corner_crc)
+            bad("corrupt corner elevations (checksum mismatch)");
+        const auto* top_nodes = reinterpret_cast<const NodeBound*>(base + h.top_offset);
+        for (int d = 0; d <= std::min(g->tile_level, g->levels - 2); ++d) {
+            top.push_back(top_nodes);
+            top_nodes += lay.level_nodes(d);
+        }
+        corners = reinterpret_cast<const float*>(base + h.corner_offset);
+        tiles.resize(g->tile_count());
+        for (std::size_t t = 0; t < tiles.size(); ++t) {
+            const std::uint8_t* e = base + h.dir_offset + t * k_dir_entry;
+            Tile& tile = tiles[t];
+            tile.offset = get<std::uint64_t>(e, 0);
+            tile.bytes = get<std::uint64_t>(e, 8);
+            tile.crc = get<std::uint32_t>(e, 16);
+            if (tile.bytes != g->tile_bytes[t] || tile.offset % k_page != 0)
+                bad("corrupt tile directory (tile " + std::to_string(t) + ")");
+            if (tile.offset > size || tile.bytes > size - tile.offset)
+                bad("truncated store: tile " + std::to_string(t) + " of " +
+                    std::to_string(tiles.size()) + " lies beyond the end of the file (" +
+                    std::to_string(size) + " bytes)");
+        }
+    }
+
+    const std::uint8_t* tile_data(std::size_t t) {
+        Tile& tile = tiles[t];
+        if (!tile.resident) {
+            if (crc32(base + tile.offset, tile.bytes) != tile.crc)
+                bad("corrupt tile " + std::to_string(t) + " (checksum mismatch)");
+            tile.resident = true;
+            resident_bytes += tile.bytes;
+            ++resident_count;
+            ++last.tiles_read;
+            last.bytes_read += static_cast<std::int64_t>(tile.bytes);
+        }
+        tile.stamp = retrieval;
+        return base + tile.offset;
+    }
+
+    std::size_t tile_of(int d, std::uint32_t i, std::uint32_t j, std::uint32_t& ti,
+                        std::uint32_t& tj) const {
+        ti = g->ax.tile_of[d][i];
+        tj = g->ay.tile_of[d][j];
+        return std::size_t{tj} * g->tiles_x + ti;
+    }
+
+    NodeBound bound(int d, std::uint32_t i, std::uint32_t j) {
+        if (d <= g->tile_level)
+            return top[d][std::size_t{j} * lay.x.count(d) + i];
+        std::uint32_t ti, tj;
+        const std::size_t t = tile_of(d, i, j, ti, tj);
+        const std::uint8_t* data = tile_data(t);
+        const std::uint32_t li = i - g->ax.first[d][ti], lj = j - g->ay.first[d][tj];
+        NodeBound b;
+        std::memcpy(&b,
+                    data + g->level_offset[t * g->tile_levels + (d - g->tile_level - 1)] +
+                        sizeof(NodeBound) * (std::size_t{lj} * g->ax.count[d][ti] + li),
+                    sizeof b);
+        return b;
+    }
+
+    float vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c, std::uint32_t r) {
+        if (d <= g->tile_level) {
+            const int cl = g->corner_level;
+            const std::uint32_t ci = lay.x.bound_index(cl, c), ri = lay.y.bound_index(cl, r);
+            return corners[std::size_t{ri} * (lay.x.count(cl) + 1) + ci];
+        }
+        std::uint32_t ti, tj;
+        const std::size_t t = tile_of(d, i, j, ti, tj);
+        const std::uint8_t* data = tile_data(t);
+        const std::uint32_t x0 = lay.x.lo(g->tile_level, ti), y0 = lay.y.lo(g->tile_level, tj);
+        const std::uint32_t w = lay.x.length(g->tile_level, ti) + 1;
+        float z;
+        std::memcpy(&z, data + 4 * (std::size_t{r - y0} * w + (c - x0)), sizeof z);
+        return z;
+    }
+
+    // Drops the least recently used tiles until the cap holds (at the end of a retrieval, so the
+    // tiles of the view in progress stay mapped while it runs); their pages leave memory and are
+    // read and verified again if a later view needs them.
+    void evict() {
+        if (resident_bytes <= cap_bytes)
+            return;
+        std::vector<std::size_t> order;
+        for (std::size_t t = 0; t < tiles.size(); ++t)
+            if (tiles[t].resident)
+                order.push_back(t);
+        std::sort(order.begin(), order.end(),
+                  [&](std::size_t a, std::size_t b) { return tiles[a].stamp < tiles[b].stamp; });
+        for (std::size_t t : order) {
+            if (resident_bytes <= cap_bytes)
+                break;
+            Tile& tile = tiles[t];
+            ::madvise(const_cast<std::uint8_t*>(base) + tile.offset, align(tile.bytes, k_page),
+                      MADV_DONTNEED);
+            tile.resident = false;
+            resident_bytes -= tile.bytes;
+            --resident_count;
+            ++last.tiles_evicted;
+        }
+    }
+};
+
+TileStore::TileStore(const std::string& path, const StoreOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->open(path, options);
+}
+
+TileStore::~TileStore() = default;
+
+const QuadLayout& TileStore::layout() const { return impl_->lay; }
+const GridFrame& TileStore::frame() const { return impl_->frame; }
+NodeBound TileStore::bound(int d, std::uint32_t i, std::uint32_t j) { return impl_->bound(d, i, j); }
+float TileStore::vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
+                          std::uint32_t r) {
+    return impl_->vertex_z(d, i, j, c, r);
+}
+
+void TileStore::begin_retrieval() {
+    ++impl_->retrieval;
+    impl_->last = {};
+}
+
+void TileStore::end_retrieval() {
+    impl_->evict();
+    impl_->total.tiles_read += impl_->last.tiles_read;
+    impl_->total.bytes_read += impl_->last.bytes_read;
+    impl_->total.tiles_evicted += impl_->last.tiles_evicted;
+}
+
+int TileStore::tile_level() const { return impl_->g->tile_level; }
+std::int64_t TileStore::tile_count() const { return static_cast<std::int64_t>(impl_->tiles.size()); }
+std::int64_t TileStore::resident_tiles() const { return impl_->resident_count; }
+std::int64_t TileStore::resident_bytes() const {
+    return static_cast<std::int64_t>(impl_->resident_bytes);
+}
+std::int64_t TileStore::file_bytes() const { return static_cast<std::int64_t>(impl_->size); }
+const StoreStats& TileStore::last_stats() const { return impl_->last; }
+const StoreStats& TileStore::total_stats() const { return impl_->total; }
+
+Heightfield TileStore::heightfield() const {
+    const Impl& s = *impl_;
+    Heightfield hf;
+    hf.width = s.frame.width;
+    hf.height = s.frame.height;
+    hf.dx = s.frame.dx;
+    hf.dy = s.frame.dy;
+    hf.origin_x = s.frame.origin_x;
+    hf.origin_y = s.frame.origin_y;
+    hf.crs = s.frame.crs;
+    hf.z.resize(static_cast<std::size_t>(hf.size()));
+    const int tl = s.g->tile_level;
+    for (std::uint32_t tj = 0; tj < s.g->tiles_y; ++tj)
+        for (std::uint32_t ti = 0; ti < s.g->tiles_x; ++ti) {
+            const std::size_t t = std::size_t{tj} * s.g->tiles_x + ti;
+            const auto& tile = s.tiles[t];
+            if (crc32(s.base + tile.offset, tile.bytes) != tile.crc)
+                s.bad("corrupt tile " + std::to_string(t) + " (checksum mismatch)");
+            const std::uint32_t x0 = s.lay.x.lo(tl, ti), x1 = s.lay.x.hi(tl, ti);
+            const std::uint32_t y0 = s.lay.y.lo(tl, tj), y1 = s.lay.y.hi(tl, tj);
+            const std::uint8_t* p = s.base + tile.offset;
+            for (std::uint32_t r = y0; r <= y1; ++r, p += 4 * (x1 - x0 + 1))
+                std::memcpy(&hf.z[std::size_t{r} * hf.width + x0], p, 4 * (x1 - x0 + 1));
+        }
+    return hf;
+}
+
+} // namespace tinlod
