@@ -1,0 +1,136 @@
+// `tinlod simplify MESH|DEM (--eye ... --at ... [--tol] [--model] | --max-error M) [--max-nodes N]
+// -o OUT [--stats J]`: distance decay by node erase (lib/decimate), or its view-independent mode.
+#include "commands.hpp"
+
+#include "tinlod/decimate.hpp"
+#include "tinlod/error.hpp"
+#include "tinlod/mesh_io.hpp"
+#include "tinlod/metrics.hpp"
+#include "tinlod/raster.hpp"
+#include "tinlod/util.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+namespace tinlod::cli {
+
+static Register simplify("simplify", 40, [](CLI::App &cmd) {
+    cmd.description(
+        "Erase the nodes an observer cannot resolve (distance decay), or every node within "
+        "a vertical bound (--max-error)");
+    struct Args {
+        std::string input, output, stats, model = "screen";
+        double tol = 1.0;
+        double max_error = 0.0;
+        std::int64_t max_nodes = 0;
+        CameraOptions camera;
+        RasterOptions raster;
+    };
+    auto args = std::make_shared<Args>();
+    cmd.add_option("INPUT", args->input,
+                   "DEM (GeoTIFF, PNG, EXR, .hgt, ...) or mesh (PLY, OBJ, OFF, STL)")
+        ->required();
+    cmd.add_option("-o,--output", args->output, "output mesh (.ply .obj .off .stl)")->required();
+    cmd.add_option("--stats", args->stats, "write statistics as JSON");
+    auto *tol = cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
+                    ->capture_default_str();
+    cmd.add_option("--model", args->model, "significance model: screen or paper")
+        ->check(CLI::IsMember({"screen", "paper"}))
+        ->capture_default_str();
+    cmd.add_option(
+        "--max-nodes", args->max_nodes,
+        "node budget: erase until this many nodes remain (without --tol: ignore the bound)");
+    auto *max_error =
+        cmd.add_option("--max-error", args->max_error,
+                       "view-independent: vertical error bound, world units (no camera)");
+    args->camera.add(cmd, false);
+    args->raster.add(cmd);
+    return [args, tol, max_error] {
+        const bool vertical = max_error->count() > 0;
+        if (vertical && args->camera.given())
+            throw Error("--max-error", "is view-independent: give it without --eye/--at");
+        if (!vertical && (args->camera.eye.empty() || args->camera.at.empty()))
+            throw Error("simplify",
+                        "give --eye and --at (or --max-error for a view-independent TIN)");
+        if (vertical && !(args->max_error >= 0.0 && std::isfinite(args->max_error)))
+            throw Error("--max-error", "must be a finite bound >= 0");
+        if (!(args->tol >= 0.0))
+            throw Error("--tol", "must be >= 0 pixels");
+        if (args->max_nodes < 0)
+            throw Error("--max-nodes", "must be >= 0");
+        if (!is_mesh_path(args->output))
+            throw Error(args->output, "unknown mesh format (use .ply, .obj, .off or .stl)");
+        std::optional<View> view;
+        if (!vertical)
+            view = args->camera.view();
+
+        Stopwatch clock;
+        std::optional<Heightfield> hf;
+        Mesh mesh;
+        if (is_mesh_path(args->input)) {
+            mesh = read_mesh(args->input);
+        } else {
+            LoadOptions lo;
+            lo.cell = args->raster.cell;
+            lo.zscale = args->raster.zscale;
+            lo.terrain_rgb = args->raster.terrain_rgb;
+            hf = load_heightfield(args->input, lo);
+            mesh = grid_tin(*hf);
+        }
+        const double ms_load = clock.ms();
+        const std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
+        const std::int64_t input_triangles = std::int64_t(mesh.n_faces());
+
+        EraseOptions options;
+        options.max_nodes = args->max_nodes;
+        if (vertical) {
+            options.significance.model = SpModel::vertical;
+            options.tolerance = args->max_error;
+        } else {
+            options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
+            options.tolerance = args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol;
+        }
+        clock.reset();
+        const EraseStats erased = erase_nodes(mesh, view ? &*view : nullptr, options);
+        const double ms_simplify = clock.ms();
+
+        clock.reset();
+        write_mesh(mesh, args->output);
+        const double ms_write = clock.ms();
+
+        // Against the DEM the error is measured exhaustively; for a mesh it is the decimater's own
+        // bound over every swallowed input node.
+        double max_screen = erased.max_screen_px, max_vertical = erased.max_vertical;
+        if (hf) {
+            ErrorOptions eo;
+            eo.view = view ? &*view : nullptr;
+            const TinError measured = measure_error(*hf, mesh, eo);
+            max_screen = measured.max_screen_px;
+            max_vertical = measured.max_vertical;
+        }
+        nlohmann::json stats = {
+            {"input",
+             {{"file", args->input}, {"nodes", input_nodes}, {"triangles", input_triangles}}},
+            {"output",
+             {{"file", args->output}, {"nodes", mesh.n_vertices()}, {"triangles", mesh.n_faces()}}},
+            {"time_ms", {{"load", ms_load}, {"simplify", ms_simplify}, {"write", ms_write}}},
+            {"error", {{"max_screen_px", max_screen}, {"max_vertical", max_vertical}}},
+            {"simplify",
+             {{"model", vertical ? "vertical" : args->model},
+              {"tolerance", std::isfinite(options.tolerance) ? options.tolerance : -1.0},
+              {"max_nodes", args->max_nodes},
+              {"erased", erased.erased},
+              {"evaluations", erased.evaluations},
+              {"bound_reached", erased.max_weighted}}},
+            {"peak_rss_mb", peak_rss_mb()}};
+        if (!args->stats.empty())
+            write_json(args->stats, stats);
+        std::printf("%s: %zu nodes, %zu triangles (from %lld nodes) in %.0f ms; max error %.3g px, "
+                    "%.3g vertical\n",
+                    args->output.c_str(), mesh.n_vertices(), mesh.n_faces(),
+                    static_cast<long long>(input_nodes), ms_simplify, max_screen, max_vertical);
+    };
+});
+
+} // namespace tinlod::cli

@@ -1,0 +1,163 @@
+// Distance decay of a TIN by node erase (paper steps 3-5): the least significant node is erased
+// and the hole it leaves is re-triangulated locally by ear clipping in a projection plane, with
+// an error bound over the whole output and an exact, invertible record of every erase.
+//
+// Paper: "Dynamic Data Retrieval and Distance Decay of TIN in Three Dimensional Visualizations"
+// (ring ordering, orientation, the erasing-ability test of an ear). Inverse erase and its
+// dependency rule follow Hoppe's view-dependent progressive meshes and De Floriani and Puppo's
+// multi-triangulation.
+//
+// The bound. Every erased node stays attached to the face that covers it (in the projection
+// plane), so a face's error is the largest weighted deviation of the nodes it has swallowed;
+// deviation = vertical distance to the face (TINs) or distance to its plane (general meshes);
+// weight = screen_weight (k / OD * peripheral, significance.hpp), or 1 in the vertical model. An
+// erase is made only when every new triangle keeps all the nodes it covers within `tolerance`, so
+// the output's error over every input node is <= tolerance: in pixels inside the view frustum, and
+// relaxed by 1 / peripheral outside it.
+//
+// Projection plane: xy for a TIN (every face counter-clockwise seen from above), the area-weighted
+// mean plane of the node's fan for a general surface mesh; a node is erased only when its fan is
+// star-shaped in that plane and every new triangle has positive area there (never a fold-over) and,
+// for general meshes, no new edge already exists (never a non-manifold edge).
+//
+// Boundary: a TIN boundary node is erased only when it lies exactly on the straight line of its two
+// boundary neighbours in xy, so the outline never moves (its height error is bounded like any
+// other node's). Corners and every boundary node of a general mesh are locked.
+#pragma once
+
+#include "tinlod/significance.hpp"
+#include "tinlod/tin.hpp"
+#include "tinlod/view.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace tinlod {
+
+// ---- Hole re-triangulation in the projection plane (paper steps 3-4) --------------------------
+
+// One triangle of a re-triangulated ring: three ring indices, counter-clockwise.
+struct RingTriangle {
+    std::uint8_t a, b, c;
+};
+
+enum class RingOrientation { ccw, cw, degenerate };
+
+// Orientation of the closed polygon `ring` by the sign of its area.
+RingOrientation ring_orientation(std::span<const glm::dvec2> ring);
+
+// Paper step 3: the neighbours of a node ordered into a counter-clockwise ring around `centre`
+// (by angle, starting from the negative x axis). Returns indices into `neighbours`.
+std::vector<int> order_ring(const glm::dvec2 &centre, std::span<const glm::dvec2> neighbours);
+
+// The paper's erasing-ability test for the ear at ring index i of the counter-clockwise polygon
+// `ring`: the corner (i-1, i, i+1) is strictly convex and no other ring node lies in the closed
+// triangle.
+bool is_erasable_ear(std::span<const glm::dvec2> ring, int i);
+
+// Ear clipping of a simple counter-clockwise polygon (at most k_max_ring nodes): among the erasable
+// ears it clips the one whose circumcircle holds no other remaining node (a Delaunay ear), then the
+// best shaped (2*sqrt(3)*area2 / sum of squared edges). Returns ring.size() - 2 triangles, or an
+// empty vector when the ring cannot be triangulated without a fold-over.
+std::vector<RingTriangle> triangulate_ring(std::span<const glm::dvec2> ring);
+
+inline constexpr int k_max_ring = 48;
+
+// ---- The node-erase decimater ------------------------------------------------------------------
+
+enum class Projection { automatic, xy, mean_plane };
+
+struct EraseOptions {
+    double tolerance =
+        1.0; // tau: pixels (screen, paper models) or world units (vertical); may be +inf
+    std::int64_t max_nodes = 0;       // stop once this many live nodes remain (0: no budget)
+    SignificanceOptions significance; // SP model and its parameters
+    Projection projection = Projection::automatic; // automatic: xy when every face is CCW in xy
+    bool erase_boundary = true; // TINs: erase boundary nodes lying exactly on the outline's line
+    int max_valence = 24;       // nodes with more neighbours stay (bounds the hole size)
+};
+
+struct EraseStats {
+    std::int64_t input_nodes = 0; // live nodes before
+    std::int64_t input_triangles = 0;
+    std::int64_t output_nodes = 0; // live nodes after
+    std::int64_t output_triangles = 0;
+    std::int64_t erased = 0;      // erases made by this call
+    std::int64_t evaluations = 0; // hole re-triangulations tried (erase cost)
+    double max_weighted =
+        0.0; // the bound reached: max over swallowed nodes of deviation * weight (tolerance units)
+    double max_screen_px =
+        0.0; // max over swallowed nodes inside the frustum of deviation * k / OD (0 without a view)
+    double max_vertical = 0.0; // max deviation over all swallowed nodes, world units
+    double ms = 0.0;           // wall time of the erase
+};
+
+// One erase, enough to undo it exactly: the node and its ring (counter-clockwise; for a boundary
+// node the open chain r_0..r_m along which the new boundary edge r_m -> r_0 runs). The triangles it
+// removed are the fan (node, r_i, r_i+1); the ones it created are the faces inside the ring, so
+// they need not be stored: they are present exactly when every ring node is live.
+struct EraseRecord {
+    std::uint32_t node = 0;       // vertex idx
+    std::uint32_t ring_begin = 0; // offset in the eraser's ring pool
+    std::uint8_t ring_size = 0;
+    bool boundary = false;
+};
+
+// The history of the erases made on a TIN (or surface mesh): erase by significance, recover any
+// erased node exactly. The eraser edits the caller's mesh in place (OpenMesh meshes cannot be
+// moved, only copied); the mesh must outlive it. Vertex handles stay valid for the eraser's whole
+// life: erased vertices, edges and faces are marked deleted and re-used on recover. Call
+// mesh.garbage_collection() only once the eraser is gone.
+class NodeEraser {
+  public:
+    // `mesh`: triangles only, no deleted elements, status attributes (tinlod::Mesh has them).
+    // `view` may be null only for SpModel::vertical; it is copied.
+    NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options);
+    ~NodeEraser();
+    NodeEraser(NodeEraser &&) noexcept;
+    NodeEraser &operator=(NodeEraser &&) noexcept;
+
+    // classify -> rank -> erase -> retriangulate over every live node, until no node can be erased
+    // within options.tolerance or options.max_nodes live nodes remain.
+    EraseStats erase();
+
+    // Re-inserts erased node v at its original position with its original triangles, first
+    // recovering (recursively) any erased ring node it depends on. Returns the number of nodes
+    // recovered (0 when v is live).
+    std::int64_t recover(Mesh::VertexHandle v);
+    // Recovers every erased node; the mesh then has the input's nodes and triangles.
+    std::int64_t recover_all();
+
+    // A new view (and model/tolerance) for the next erase(); recomputes every node's weight.
+    void set_view(const View *view, const EraseOptions &options);
+
+    bool is_erased(Mesh::VertexHandle v) const;
+    // The record of an erased node's last erase; v must be erased.
+    EraseRecord record(Mesh::VertexHandle v) const;
+    // Ring of a record, as vertex idx values.
+    std::span<const std::uint32_t> ring(const EraseRecord &record) const;
+
+    // The current TIN, the caller's mesh: erased elements are marked deleted, not removed.
+    const Mesh &mesh() const;
+    std::int64_t live_nodes() const;
+    std::int64_t live_triangles() const;
+    // Error of the current TIN over every swallowed node (see EraseStats).
+    EraseStats measure() const;
+    // Bytes held by the eraser beside the mesh: per-node state, records, rings, free lists.
+    std::size_t history_bytes() const;
+
+    struct Impl; // the state, opaque (decimate.cpp)
+
+  private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// One-off: erases nodes of `mesh` in place from `view` (null for SpModel::vertical), then removes
+// the deleted elements (garbage collection; the origin property keeps each node's provenance).
+EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options);
+
+} // namespace tinlod

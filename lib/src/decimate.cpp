@@ -1,0 +1,1021 @@
+// Node erase with local hole re-triangulation and exact recovery (decimate.hpp).
+//
+// Paper steps 3-5 of "Dynamic Data Retrieval and Distance Decay of TIN in Three Dimensional
+// Visualizations": order the erased node's neighbours into a ring, find its orientation, clip ears
+// that contain no other ring node. The erase is inverted as a vertex split in the manner of Hoppe's
+// view-dependent progressive meshes, its dependencies following De Floriani and Puppo's
+// multi-triangulation: an erase's triangles are present exactly when all of its ring is live.
+//
+// The half-edge structure is rewired in place through OpenMesh's inline kernel setters: a node of
+// valence n frees 3 edges and 2 faces (a boundary node 2 and 1) and the remaining n-3 spoke edges
+// and n-2 faces become the new diagonals and triangles. Freed elements are kept on free lists and
+// re-used by recover, so no library-side OpenMesh call (and no garbage collection) runs per erase.
+#include "tinlod/decimate.hpp"
+
+#include "tinlod/focal.hpp"
+#include "tinlod/util.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <numeric>
+
+namespace tinlod {
+
+using VH = Mesh::VertexHandle;
+using HH = Mesh::HalfedgeHandle;
+using EH = Mesh::EdgeHandle;
+using FH = Mesh::FaceHandle;
+
+namespace {
+
+// ---- 2-D predicates ----------------------------------------------------------------------------
+
+double orient(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c) {
+    return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+}
+
+bool in_closed_triangle(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c,
+                        const glm::dvec2 &p) {
+    return orient(a, b, p) >= 0.0 && orient(b, c, p) >= 0.0 && orient(c, a, p) >= 0.0;
+}
+
+// Positive when d lies strictly inside the circumcircle of the counter-clockwise triangle abc.
+double in_circle(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c,
+                 const glm::dvec2 &d) {
+    const double adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y;
+    const double cdx = c.x - d.x, cdy = c.y - d.y;
+    return (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) -
+           (bdx * bdx + bdy * bdy) * (adx * cdy - cdx * ady) +
+           (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+}
+
+// Ear score: -1 when the ear (a, b, c) is not erasable, else 1 for a Delaunay ear plus its shape
+// quality in (0, 1]. `next` links the remaining polygon.
+double ear_score(const glm::dvec2 *q, const std::uint8_t *next, int a, int b, int c) {
+    const double area2 = orient(q[a], q[b], q[c]);
+    if (area2 <= 0.0)
+        return -1.0;
+    bool delaunay = true;
+    for (int j = next[c]; j != a; j = next[j]) {
+        if (in_closed_triangle(q[a], q[b], q[c], q[j]))
+            return -1.0;
+        if (delaunay && in_circle(q[a], q[b], q[c], q[j]) > 0.0)
+            delaunay = false;
+    }
+    const auto sq = [](const glm::dvec2 &v) { return v.x * v.x + v.y * v.y; };
+    const double edges = sq(q[b] - q[a]) + sq(q[c] - q[b]) + sq(q[a] - q[c]);
+    return (delaunay ? 1.0 : 0.0) + 2.0 * std::sqrt(3.0) * area2 / edges;
+}
+
+// Ear clipping of the counter-clockwise polygon q[0..n); writes n-2 triangles to `out` and returns
+// their count, or -1 when no erasable ear is left before the end.
+int clip_ears(const glm::dvec2 *q, int n, RingTriangle *out) {
+    if (n < 3 || n > k_max_ring)
+        return -1;
+    std::array<std::uint8_t, k_max_ring> prev, next;
+    std::array<double, k_max_ring> score;
+    for (int i = 0; i < n; ++i) {
+        prev[i] = std::uint8_t((i + n - 1) % n);
+        next[i] = std::uint8_t((i + 1) % n);
+    }
+    for (int i = 0; i < n; ++i)
+        score[i] = ear_score(q, next.data(), prev[i], i, next[i]);
+    int first = 0, count = 0;
+    for (int remaining = n; remaining > 3; --remaining) {
+        int best = -1;
+        double best_score = -1.0;
+        int i = first;
+        do {
+            if (score[i] > best_score) {
+                best_score = score[i];
+                best = i;
+            }
+            i = next[i];
+        } while (i != first);
+        if (best < 0)
+            return -1; // no erasable ear: the ring is not a simple ccw polygon in this plane
+        const int a = prev[best], c = next[best];
+        out[count++] = {std::uint8_t(a), std::uint8_t(best), std::uint8_t(c)};
+        next[a] = std::uint8_t(c);
+        prev[c] = std::uint8_t(a);
+        if (first == best)
+            first = c;
+        score[a] = ear_score(q, next.data(), prev[a], a, c);
+        score[c] = ear_score(q, next.data(), a, c, next[c]);
+    }
+    const int a = first, b = next[a], c = next[b];
+    if (orient(q[a], q[b], q[c]) <= 0.0)
+        return -1;
+    out[count++] = {std::uint8_t(a), std::uint8_t(b), std::uint8_t(c)};
+    return count;
+}
+
+glm::dvec3 to_glm(const Mesh::Point &p) { return {p[0], p[1], p[2]}; }
+
+// Indexed binary min-heap of nodes by key.
+class NodeHeap {
+  public:
+    void reset(std::size_t nodes) {
+        key_.assign(nodes, 0.0f);
+        pos_.assign(nodes, -1);
+        heap_.clear();
+    }
+    bool empty() const { return heap_.empty(); }
+    bool contains(std::uint32_t v) const { return pos_[v] >= 0; }
+    std::uint32_t top() const { return heap_.front(); }
+    // Smallest key below the top (+inf when the top is alone).
+    float second_key() const {
+        float k = INFINITY;
+        for (std::size_t c = 1; c < std::min<std::size_t>(3, heap_.size()); ++c)
+            k = std::min(k, key_[heap_[c]]);
+        return k;
+    }
+    // Builds the heap at once from the nodes whose key was stored with store_key.
+    void build(std::vector<std::uint32_t> nodes) {
+        heap_ = std::move(nodes);
+        for (std::size_t i = 0; i < heap_.size(); ++i)
+            pos_[heap_[i]] = std::int32_t(i);
+        for (std::size_t i = heap_.size() / 2; i-- > 0;)
+            down(std::int32_t(i));
+    }
+    float key(std::uint32_t v) const { return key_[v]; }
+    void store_key(std::uint32_t v, float key) { key_[v] = key; } // for a node outside the heap
+    void set(std::uint32_t v, float key) {
+        if (pos_[v] < 0) {
+            key_[v] = key;
+            pos_[v] = std::int32_t(heap_.size());
+            heap_.push_back(v);
+            up(pos_[v]);
+            return;
+        }
+        const float old = key_[v];
+        key_[v] = key;
+        if (key < old)
+            up(pos_[v]);
+        else
+            down(pos_[v]);
+    }
+    void pop() {
+        const std::uint32_t v = heap_.front();
+        pos_[v] = -1;
+        const std::uint32_t last = heap_.back();
+        heap_.pop_back();
+        if (heap_.empty())
+            return;
+        heap_[0] = last;
+        pos_[last] = 0;
+        down(0);
+    }
+    std::size_t bytes() const {
+        return key_.capacity() * 4 + pos_.capacity() * 4 + heap_.capacity() * 4;
+    }
+
+  private:
+    void up(std::int32_t i) {
+        const std::uint32_t v = heap_[i];
+        while (i > 0) {
+            const std::int32_t p = (i - 1) / 2;
+            if (!(key_[v] < key_[heap_[p]]))
+                break;
+            heap_[i] = heap_[p];
+            pos_[heap_[i]] = i;
+            i = p;
+        }
+        heap_[i] = v;
+        pos_[v] = i;
+    }
+    void down(std::int32_t i) {
+        const std::uint32_t v = heap_[i];
+        const std::int32_t n = std::int32_t(heap_.size());
+        for (;;) {
+            std::int32_t c = 2 * i + 1;
+            if (c >= n)
+                break;
+            if (c + 1 < n && key_[heap_[c + 1]] < key_[heap_[c]])
+                ++c;
+            if (!(key_[heap_[c]] < key_[v]))
+                break;
+            heap_[i] = heap_[c];
+            pos_[heap_[i]] = i;
+            i = c;
+        }
+        heap_[i] = v;
+        pos_[v] = i;
+    }
+    std::vector<float> key_;
+    std::vector<std::int32_t> pos_;
+    std::vector<std::uint32_t> heap_;
+};
+
+// A new triangle's barycentric weights and height as affine functions of the projected point.
+struct TriangleFrame {
+    glm::dvec3 w0, w1;  // weight of corners a and b: dot(w, (x, y, 1)); c gets the rest
+    glm::dvec3 height;  // xy: z = dot(height, (x, y, 1)); else: the unit normal
+    double slope = 0.0; // xy: |grad z|
+};
+
+// The hole a node leaves, projected and re-triangulated (scratch of one evaluation).
+struct Hole {
+    VH v;
+    int n = 0; // ring nodes
+    bool boundary = false;
+    std::array<VH, k_max_ring> r;
+    std::array<HH, k_max_ring> h; // spokes v -> r_i
+    std::array<glm::dvec3, k_max_ring> p;
+    std::array<glm::dvec2, k_max_ring> q; // projected ring
+    std::array<RingTriangle, k_max_ring> tri;
+    std::array<TriangleFrame, k_max_ring> frame;
+    int ntri = 0;
+    glm::dvec3 origin{0.0}, ex{1, 0, 0}, ey{0, 1, 0}; // projection frame (xy: the world frame)
+    double delta = 0.0; // the node's own deviation from the new triangles
+    double cost = 0.0;  // max weighted deviation over the node and the fan's swallowed nodes
+};
+
+constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
+constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
+
+} // namespace
+
+struct NodeEraser::Impl {
+    Mesh *mesh = nullptr; // borrowed from the caller
+    EraseOptions options;
+    bool has_view = false;
+    View view;
+    bool xy = true;
+    double focal_distance = 1.0;
+    std::vector<float> weight;                // per vertex: pixels per unit deviation (1: vertical)
+    std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
+    std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
+    std::vector<std::int32_t> record_of;      // per vertex: its erase record, -1 when live
+    std::vector<std::uint8_t> flags;          // per vertex: k_locked, k_dirty
+    NodeHeap heap;
+    std::vector<EraseRecord> records;
+    std::vector<std::uint32_t> ring_pool;
+    std::vector<EH> free_edges;
+    std::vector<FH> free_faces;
+    std::int64_t live = 0, live_faces = 0;
+    std::int64_t evaluations = 0;
+    Hole hole;
+    std::vector<std::pair<std::uint32_t, std::uint8_t>> assign; // swallowed node -> new triangle
+    std::vector<std::uint32_t> swallowed_scratch;
+};
+
+// ---- Geometry of a hole ------------------------------------------------------------------------
+
+static glm::dvec2 project(const Hole &h, const glm::dvec3 &p) {
+    const glm::dvec3 d = p - h.origin;
+    return {glm::dot(d, h.ex), glm::dot(d, h.ey)};
+}
+
+// Fills the affine frames of the hole's new triangles.
+static void frame_triangles(const NodeEraser::Impl &s, Hole &h) {
+    for (int t = 0; t < h.ntri; ++t) {
+        const RingTriangle &tri = h.tri[t];
+        const glm::dvec2 &qa = h.q[tri.a], &qb = h.q[tri.b], &qc = h.q[tri.c];
+        const double inv = 1.0 / orient(qa, qb, qc);
+        TriangleFrame &f = h.frame[t];
+        // w0 = orient(qb, qc, x) / area, w1 = orient(qc, qa, x) / area
+        f.w0 = glm::dvec3(qb.y - qc.y, qc.x - qb.x, qb.x * qc.y - qc.x * qb.y) * inv;
+        f.w1 = glm::dvec3(qc.y - qa.y, qa.x - qc.x, qc.x * qa.y - qa.x * qc.y) * inv;
+        const glm::dvec3 w2 = glm::dvec3(0.0, 0.0, 1.0) - f.w0 - f.w1;
+        if (s.xy) {
+            f.height = f.w0 * h.p[tri.a].z + f.w1 * h.p[tri.b].z + w2 * h.p[tri.c].z;
+            f.slope = std::sqrt(f.height.x * f.height.x + f.height.y * f.height.y);
+        } else {
+            const glm::dvec3 n = glm::cross(h.p[tri.b] - h.p[tri.a], h.p[tri.c] - h.p[tri.a]);
+            const double len = glm::length(n);
+            f.height = len > 0.0 ? n / len : glm::dvec3(0.0);
+        }
+    }
+}
+
+// The new triangle covering p (the one where p's smallest weight is largest), and p's deviation
+// from it: vertical for a TIN, from its plane otherwise.
+static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::dvec3 &p,
+                           double &dev) {
+    const glm::dvec2 x2 = project(h, p);
+    const glm::dvec3 x(x2.x, x2.y, 1.0);
+    int best = 0;
+    double best_min = -INFINITY;
+    for (int t = 0; t < h.ntri; ++t) {
+        const double b0 = glm::dot(h.frame[t].w0, x), b1 = glm::dot(h.frame[t].w1, x);
+        const double lowest = std::min({b0, b1, 1.0 - b0 - b1});
+        if (lowest > best_min) {
+            best_min = lowest;
+            best = t;
+        }
+        if (lowest >= 0.0)
+            break; // inside (or on the edge of) this triangle
+    }
+    const TriangleFrame &f = h.frame[best];
+    if (s.xy) {
+        // The mesh holds float coordinates of exact grid positions: widen the deviation by what a
+        // rounding of every corner (a few ulp of the coordinates) can move the interpolant.
+        const double ulp = 1.2e-7 * std::max({std::abs(x.x), std::abs(x.y), 1.0});
+        dev = std::abs(p.z - glm::dot(f.height, x)) + 4.0 * ulp * f.slope;
+    } else {
+        dev = std::abs(glm::dot(p - h.p[h.tri[best].a], f.height));
+    }
+    return std::uint8_t(best);
+}
+
+static HH find_halfedge(const Mesh &m, VH a, VH b) {
+    const HH start = m.halfedge_handle(a);
+    if (!start.is_valid())
+        return HH();
+    HH he = start;
+    for (int guard = 0; guard < 4 * k_max_ring; ++guard) {
+        if (m.to_vertex_handle(he) == b)
+            return he;
+        he = m.next_halfedge_handle(m.opposite_halfedge_handle(he));
+        if (he == start)
+            break;
+    }
+    return HH();
+}
+
+// Spokes of v counter-clockwise; false for an isolated, complex or too-high-valence node.
+static bool gather_ring(const Mesh &m, VH v, Hole &h, int max_valence) {
+    const HH start = m.halfedge_handle(v);
+    if (!start.is_valid())
+        return false;
+    h.v = v;
+    h.boundary = m.is_boundary(start);
+    const HH h0 = h.boundary ? m.opposite_halfedge_handle(m.prev_halfedge_handle(start)) : start;
+    const int limit = std::min(max_valence + 1, k_max_ring);
+    int n = 0;
+    HH he = h0;
+    do {
+        if (n == limit)
+            return false;
+        h.h[n] = he;
+        h.r[n] = m.to_vertex_handle(he);
+        ++n;
+        if (h.boundary && m.is_boundary(he))
+            break;
+        he = m.opposite_halfedge_handle(m.prev_halfedge_handle(he));
+    } while (he != h0);
+    h.n = n;
+    if (h.boundary && he != start)
+        return false; // a second boundary fan: a complex vertex
+    return n >= 3;
+}
+
+static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
+    return dev > 0.0 ? dev * s.weight[node] : 0.0;
+}
+
+// ---- Stages ------------------------------------------------------------------------------------
+
+// classify: which nodes may ever be erased, and each node's weight.
+static void classify_nodes(NodeEraser::Impl &s) {
+    const Mesh &m = *s.mesh;
+    s.flags.assign(m.n_vertices(), 0);
+    for (auto v : m.vertices()) {
+        const HH he = m.halfedge_handle(v);
+        if (!he.is_valid() || (m.is_boundary(he) && (!s.xy || !s.options.erase_boundary)))
+            s.flags[v.idx()] |= k_locked;
+    }
+    s.weight = node_weights(m, s.has_view ? &s.view : nullptr, s.options.significance);
+}
+
+// Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
+// it only as some value > limit); false when v cannot be erased without a fold-over, a
+// non-manifold edge or a moved outline.
+static bool evaluate(NodeEraser::Impl &s, VH v, double limit) {
+    ++s.evaluations;
+    Hole &h = s.hole;
+    const Mesh &m = *s.mesh;
+    if (!gather_ring(m, v, h, s.options.max_valence))
+        return false;
+    const int n = h.n;
+    const glm::dvec3 pv = to_glm(m.point(v));
+    for (int i = 0; i < n; ++i)
+        h.p[i] = to_glm(m.point(h.r[i]));
+    const int fans = h.boundary ? n - 1 : n;
+    if (s.xy) {
+        h.origin = glm::dvec3(0.0);
+        h.ex = {1, 0, 0};
+        h.ey = {0, 1, 0};
+        for (int i = 0; i < n; ++i)
+            h.q[i] = {h.p[i].x, h.p[i].y};
+        if (h.boundary) {
+            const glm::dvec2 c(pv.x, pv.y);
+            if (orient(h.q[0], c, h.q[n - 1]) != 0.0 || glm::dot(h.q[0] - c, h.q[n - 1] - c) >= 0.0)
+                return false; // erasing it would move the outline
+        }
+    } else {
+        glm::dvec3 normal(0.0);
+        for (int i = 0; i < fans; ++i)
+            normal += glm::cross(h.p[i] - pv, h.p[(i + 1) % n] - pv);
+        const double len = glm::length(normal);
+        if (!(len > 0.0))
+            return false;
+        const glm::dvec3 ez = normal / len;
+        const glm::dvec3 helper = std::abs(ez.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        h.origin = pv;
+        h.ex = glm::normalize(glm::cross(helper, ez));
+        h.ey = glm::cross(ez, h.ex);
+        for (int i = 0; i < n; ++i)
+            h.q[i] = project(h, h.p[i]);
+        for (int i = 0; i < fans; ++i)
+            if (orient(glm::dvec2(0.0), h.q[i], h.q[(i + 1) % n]) <= 0.0)
+                return false; // the fan is not star-shaped in its mean plane
+    }
+    h.ntri = clip_ears(h.q.data(), n, h.tri.data());
+    if (h.ntri != n - 2)
+        return false;
+    frame_triangles(s, h);
+    if (!s.xy)
+        for (int t = 0; t < h.ntri; ++t) {
+            const std::uint8_t c[3] = {h.tri[t].a, h.tri[t].b, h.tri[t].c};
+            for (int k = 0; k < 3; ++k) {
+                const int a = c[k], b = c[(k + 1) % 3];
+                if (b == (a + 1) % n)
+                    continue; // a ring edge
+                if (find_halfedge(m, h.r[a], h.r[b]).is_valid())
+                    return false; // the diagonal exists outside the hole: non-manifold
+            }
+        }
+    s.assign.clear();
+    double dev = 0.0;
+    s.assign.emplace_back(std::uint32_t(v.idx()), locate(s, h, pv, dev));
+    h.delta = dev;
+    h.cost = weighted(s, std::uint32_t(v.idx()), dev);
+    for (int i = 0; i < fans && h.cost <= limit; ++i)
+        for (std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()]; u >= 0;
+             u = s.next_swallowed[u]) {
+            s.assign.emplace_back(std::uint32_t(u), locate(s, h, to_glm(m.point(VH(u))), dev));
+            h.cost = std::max(h.cost, weighted(s, std::uint32_t(u), dev));
+            if (h.cost > limit)
+                break; // over the bound: the exact excess does not matter
+        }
+    return true;
+}
+
+// The queue key of the evaluated hole: its cost, or the paper's SP in the paper model.
+static float key_of(const NodeEraser::Impl &s, const Hole &h) {
+    if (s.options.significance.model != SpModel::paper || !s.has_view)
+        return float(h.cost);
+    const glm::dvec3 p = to_glm(s.mesh->point(h.v));
+    NodeTerms terms;
+    terms.od = glm::length(p - s.view.eye);
+    terms.oa = observation_angle(s.view, p);
+    terms.delta = h.delta;
+    double ring_length = 0.0;
+    for (int i = 0; i < h.n; ++i)
+        ring_length += glm::length(h.p[i] - p);
+    terms.ration = ring_length > 0.0 ? h.delta * h.n / ring_length : 0.0;
+    return float(significance(terms, &s.view, s.options.significance, s.focal_distance));
+}
+
+// rank: every erasable node enters the queue keyed by the cost of its erase.
+static void rank_nodes(NodeEraser::Impl &s) {
+    s.heap.reset(s.mesh->n_vertices());
+    std::vector<std::uint32_t> ranked;
+    ranked.reserve(std::size_t(s.live));
+    for (auto v : s.mesh->vertices()) {
+        if (s.flags[v.idx()] & k_locked)
+            continue;
+        s.flags[v.idx()] &= std::uint8_t(~k_dirty);
+        const bool erasable = evaluate(s, v, s.options.tolerance);
+        s.heap.store_key(std::uint32_t(v.idx()), erasable ? key_of(s, s.hole) : INFINITY);
+        if (erasable)
+            ranked.push_back(std::uint32_t(v.idx()));
+    }
+    s.heap.build(std::move(ranked));
+}
+
+// retriangulate: replaces the fan of the evaluated hole by its new triangles in place, moves the
+// swallowed nodes to the triangles that now cover them and records the erase.
+static void retriangulate(NodeEraser::Impl &s) {
+    Hole &h = s.hole;
+    Mesh &m = *s.mesh;
+    const int n = h.n;
+    const int fans = h.boundary ? n - 1 : n;
+    std::array<FH, k_max_ring> face;
+    std::array<HH, k_max_ring> ring_he; // r_i -> r_i+1
+    std::array<bool, k_max_ring> fix_out;
+    for (int i = 0; i < fans; ++i) {
+        face[i] = m.face_handle(h.h[i]);
+        ring_he[i] = m.next_halfedge_handle(h.h[i]);
+    }
+    for (int i = 0; i < n; ++i)
+        fix_out[i] = m.halfedge_handle(h.r[i]) == m.opposite_halfedge_handle(h.h[i]);
+    HH boundary_prev, boundary_next;
+    if (h.boundary) {
+        boundary_prev = m.prev_halfedge_handle(m.opposite_halfedge_handle(h.h[0]));
+        boundary_next = m.next_halfedge_handle(h.h[n - 1]);
+    }
+
+    // New edges re-use the spoke edges in order; a diagonal is met twice, once per side.
+    struct Diagonal {
+        std::uint8_t a, b;
+        HH he; // a -> b
+    };
+    std::array<Diagonal, 2 * k_max_ring> diagonals;
+    int n_diagonals = 0, next_spoke = 0;
+    HH closing; // boundary: r_m -> r_0 inside the new triangle
+    auto halfedge = [&](int a, int b) -> HH {
+        if (b == a + 1 || (!h.boundary && a == n - 1 && b == 0))
+            return ring_he[a];
+        for (int k = 0; k < n_diagonals; ++k)
+            if (diagonals[k].a == b && diagonals[k].b == a)
+                return m.opposite_halfedge_handle(diagonals[k].he);
+        const HH he = m.halfedge_handle(m.edge_handle(h.h[next_spoke++]), 0);
+        m.set_vertex_handle(he, h.r[b]);
+        m.set_vertex_handle(m.opposite_halfedge_handle(he), h.r[a]);
+        diagonals[n_diagonals++] = {std::uint8_t(a), std::uint8_t(b), he};
+        if (h.boundary && a == n - 1 && b == 0)
+            closing = he;
+        return he;
+    };
+    for (int t = 0; t < h.ntri; ++t) {
+        const RingTriangle &tri = h.tri[t];
+        const HH e0 = halfedge(tri.a, tri.b), e1 = halfedge(tri.b, tri.c),
+                 e2 = halfedge(tri.c, tri.a);
+        m.set_next_halfedge_handle(e0, e1);
+        m.set_next_halfedge_handle(e1, e2);
+        m.set_next_halfedge_handle(e2, e0);
+        m.set_face_handle(e0, face[t]);
+        m.set_face_handle(e1, face[t]);
+        m.set_face_handle(e2, face[t]);
+        m.set_halfedge_handle(face[t], e0);
+    }
+    HH new_boundary;
+    if (h.boundary) {
+        new_boundary = m.opposite_halfedge_handle(closing); // r_0 -> r_m
+        m.set_face_handle(new_boundary, FH());
+        m.set_next_halfedge_handle(boundary_prev, new_boundary);
+        m.set_next_halfedge_handle(new_boundary, boundary_next);
+    }
+    for (int i = 0; i < n; ++i) {
+        if (!fix_out[i])
+            continue;
+        if (h.boundary && i == 0)
+            m.set_halfedge_handle(h.r[i], new_boundary);
+        else if (h.boundary && i == n - 1)
+            m.set_halfedge_handle(h.r[i], boundary_next);
+        else
+            m.set_halfedge_handle(h.r[i], ring_he[i]);
+    }
+
+    m.status(h.v).set_deleted(true);
+    for (int i = next_spoke; i < n; ++i) {
+        const EH e = m.edge_handle(h.h[i]);
+        m.status(e).set_deleted(true);
+        s.free_edges.push_back(e);
+    }
+    for (int t = 0; t < fans; ++t)
+        s.face_head[face[t].idx()] = -1;
+    for (int t = h.ntri; t < fans; ++t) {
+        m.status(face[t]).set_deleted(true);
+        s.free_faces.push_back(face[t]);
+    }
+    for (const auto &[u, t] : s.assign) {
+        s.next_swallowed[u] = s.face_head[face[t].idx()];
+        s.face_head[face[t].idx()] = std::int32_t(u);
+    }
+
+    EraseRecord record;
+    record.node = std::uint32_t(h.v.idx());
+    record.ring_begin = std::uint32_t(s.ring_pool.size());
+    record.ring_size = std::uint8_t(n);
+    record.boundary = h.boundary;
+    for (int i = 0; i < n; ++i)
+        s.ring_pool.push_back(std::uint32_t(h.r[i].idx()));
+    s.record_of[h.v.idx()] = std::int32_t(s.records.size());
+    s.records.push_back(record);
+    --s.live;
+    s.live_faces -= fans - h.ntri;
+}
+
+// After an erase its ring nodes' keys are stale: they are marked dirty (re-evaluated when they
+// reach the top of the queue) and re-enter the queue if a failed evaluation had dropped them.
+static void touch_ring(NodeEraser::Impl &s) {
+    const Hole &h = s.hole;
+    for (int i = 0; i < h.n; ++i) {
+        const std::uint32_t u = std::uint32_t(h.r[i].idx());
+        if (s.flags[u] & k_locked)
+            continue;
+        s.flags[u] |= k_dirty;
+        if (!s.heap.contains(u))
+            s.heap.set(u, float(std::min<double>(s.heap.key(u), s.options.tolerance)));
+    }
+}
+
+// erase: pops the least significant node while its erase stays within the tolerance.
+static std::int64_t erase_loop(NodeEraser::Impl &s) {
+    const double tau = s.options.tolerance * (1.0 - 1e-6); // keeps float rounding inside the bound
+    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
+    std::int64_t erased = 0;
+    while (!s.heap.empty() && s.live > budget) {
+        const std::uint32_t v = s.heap.top();
+        const float key = s.heap.key(v);
+        if (double(key) > tau && s.options.significance.model != SpModel::paper)
+            break; // every remaining key exceeds the bound (dirty keys are re-checked below)
+        const bool dirty = s.flags[v] & k_dirty;
+        s.flags[v] &= std::uint8_t(~k_dirty);
+        const bool erasable = evaluate(s, VH(int(v)), tau);
+        if (!erasable || !(s.hole.cost <= tau)) {
+            s.heap.pop(); // cannot be erased now; touch_ring brings it back when its ring changes
+            s.heap.store_key(v, erasable ? float(s.hole.cost) : INFINITY);
+            continue;
+        }
+        const float fresh = key_of(s, s.hole);
+        if (dirty && fresh > key && fresh > s.heap.second_key()) {
+            s.heap.set(v, fresh); // its cost rose past another node's since it was ranked
+            continue;
+        }
+        s.heap.pop();
+        retriangulate(s);
+        touch_ring(s);
+        ++erased;
+    }
+    return erased;
+}
+
+// ---- Recovery ----------------------------------------------------------------------------------
+
+// Re-inserts erased node x, whose ring nodes are all live: the faces inside its ring become its
+// fan again, the diagonals and two free edges its spokes.
+static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
+    Mesh &m = *s.mesh;
+    const EraseRecord record = s.records[s.record_of[x]];
+    const int n = record.ring_size;
+    const bool boundary = record.boundary;
+    const std::uint32_t *ring = s.ring_pool.data() + record.ring_begin;
+    const VH v{int(x)};
+    auto ring_index = [&](VH u) {
+        for (int i = 0; i < n; ++i)
+            if (ring[i] == std::uint32_t(u.idx()))
+                return i;
+        return -1;
+    };
+
+    // The hole's faces, found by a walk across diagonals from the ring edge r_0 -> r_1.
+    std::array<FH, k_max_ring> face;
+    std::array<HH, k_max_ring> ring_he;
+    std::array<EH, k_max_ring> spoke_edge;
+    int n_faces = 0, n_edges = 0;
+    HH closing;
+    face[n_faces++] = m.face_handle(find_halfedge(m, VH(int(ring[0])), VH(int(ring[1]))));
+    for (int k = 0; k < n_faces; ++k) {
+        HH he = m.halfedge_handle(face[k]);
+        for (int c = 0; c < 3; ++c, he = m.next_halfedge_handle(he)) {
+            const int a = ring_index(m.from_vertex_handle(he)),
+                      b = ring_index(m.to_vertex_handle(he));
+            assert(a >= 0 && b >= 0);
+            if (b == a + 1 || (!boundary && a == n - 1 && b == 0)) {
+                ring_he[a] = he;
+                continue;
+            }
+            if (boundary && a == n - 1 && b == 0) {
+                closing = he;
+                spoke_edge[n_edges++] = m.edge_handle(he);
+                continue;
+            }
+            if (a < b)
+                spoke_edge[n_edges++] = m.edge_handle(he); // a diagonal, counted from one side
+            const FH across = m.opposite_face_handle(he);
+            if (std::find(face.begin(), face.begin() + n_faces, across) == face.begin() + n_faces)
+                face[n_faces++] = across;
+        }
+    }
+    assert(n_faces == n - 2);
+
+    std::vector<std::uint32_t> &swallowed = s.swallowed_scratch;
+    const std::size_t swallowed_begin = swallowed.size();
+    for (int k = 0; k < n_faces; ++k) {
+        for (std::int32_t u = s.face_head[face[k].idx()]; u >= 0; u = s.next_swallowed[u])
+            if (std::uint32_t(u) != x)
+                swallowed.push_back(std::uint32_t(u));
+        s.face_head[face[k].idx()] = -1;
+    }
+
+    HH boundary_prev, boundary_next, old_boundary;
+    if (boundary) {
+        old_boundary = m.opposite_halfedge_handle(closing); // r_0 -> r_m
+        boundary_prev = m.prev_halfedge_handle(old_boundary);
+        boundary_next = m.next_halfedge_handle(old_boundary);
+    }
+    std::array<bool, k_max_ring> fix_out;
+    for (int i = 0; i < n; ++i) {
+        const EH out = m.edge_handle(m.halfedge_handle(VH(int(ring[i]))));
+        fix_out[i] = false;
+        for (int k = 0; k < n_edges; ++k)
+            fix_out[i] |= spoke_edge[k] == out;
+    }
+    while (n_edges < n) {
+        spoke_edge[n_edges++] = s.free_edges.back();
+        s.free_edges.pop_back();
+    }
+    const int fans = boundary ? n - 1 : n;
+    while (n_faces < fans) {
+        face[n_faces++] = s.free_faces.back();
+        s.free_faces.pop_back();
+    }
+
+    std::array<HH, k_max_ring> spoke; // x -> r_i
+    for (int i = 0; i < n; ++i) {
+        spoke[i] = m.halfedge_handle(spoke_edge[i], 0);
+        m.set_vertex_handle(spoke[i], VH(int(ring[i])));
+        m.set_vertex_handle(m.opposite_halfedge_handle(spoke[i]), v);
+        m.status(spoke_edge[i]).set_deleted(false);
+    }
+    for (int i = 0; i < fans; ++i) {
+        const HH back = m.opposite_halfedge_handle(spoke[(i + 1) % n]);
+        m.set_next_halfedge_handle(spoke[i], ring_he[i]);
+        m.set_next_halfedge_handle(ring_he[i], back);
+        m.set_next_halfedge_handle(back, spoke[i]);
+        m.set_face_handle(spoke[i], face[i]);
+        m.set_face_handle(ring_he[i], face[i]);
+        m.set_face_handle(back, face[i]);
+        m.set_halfedge_handle(face[i], spoke[i]);
+        m.status(face[i]).set_deleted(false);
+    }
+    if (boundary) {
+        const HH in = m.opposite_halfedge_handle(spoke[0]); // r_0 -> x
+        m.set_face_handle(in, FH());
+        m.set_face_handle(spoke[n - 1], FH());
+        m.set_next_halfedge_handle(boundary_prev, in);
+        m.set_next_halfedge_handle(in, spoke[n - 1]);
+        m.set_next_halfedge_handle(spoke[n - 1], boundary_next);
+        m.set_halfedge_handle(v, spoke[n - 1]);
+    } else {
+        m.set_halfedge_handle(v, spoke[0]);
+    }
+    for (int i = 0; i < n; ++i) {
+        if (!fix_out[i])
+            continue;
+        if (boundary && i == 0)
+            m.set_halfedge_handle(VH(int(ring[i])), m.opposite_halfedge_handle(spoke[0]));
+        else if (boundary && i == n - 1)
+            m.set_halfedge_handle(VH(int(ring[i])), boundary_next);
+        else
+            m.set_halfedge_handle(VH(int(ring[i])), ring_he[i]);
+    }
+    m.status(v).set_deleted(false);
+
+    // Swallowed nodes go back to the fan face that covers them.
+    Hole &h = s.hole;
+    h.v = v;
+    h.n = n + 1;
+    h.boundary = boundary;
+    const glm::dvec3 pv = to_glm(m.point(v));
+    for (int i = 0; i < n; ++i)
+        h.p[i] = to_glm(m.point(VH(int(ring[i]))));
+    h.p[n] = pv;
+    if (s.xy) {
+        h.origin = glm::dvec3(0.0);
+        h.ex = {1, 0, 0};
+        h.ey = {0, 1, 0};
+    } else {
+        glm::dvec3 normal(0.0);
+        for (int i = 0; i < fans; ++i)
+            normal += glm::cross(h.p[i] - pv, h.p[(i + 1) % n] - pv);
+        const glm::dvec3 ez = glm::normalize(normal);
+        const glm::dvec3 helper = std::abs(ez.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        h.origin = pv;
+        h.ex = glm::normalize(glm::cross(helper, ez));
+        h.ey = glm::cross(ez, h.ex);
+    }
+    for (int i = 0; i <= n; ++i)
+        h.q[i] = project(h, h.p[i]);
+    h.ntri = fans;
+    for (int i = 0; i < fans; ++i)
+        h.tri[i] = {std::uint8_t(n), std::uint8_t(i), std::uint8_t((i + 1) % n)};
+    frame_triangles(s, h);
+    for (std::size_t k = swallowed_begin; k < swallowed.size(); ++k) {
+        const std::uint32_t u = swallowed[k];
+        double dev = 0.0;
+        const FH f = face[locate(s, h, to_glm(m.point(VH(int(u)))), dev)];
+        s.next_swallowed[u] = s.face_head[f.idx()];
+        s.face_head[f.idx()] = std::int32_t(u);
+    }
+    swallowed.resize(swallowed_begin);
+    s.record_of[x] = -1;
+    ++s.live;
+    s.live_faces += fans - (n - 2);
+}
+
+// ---- NodeEraser --------------------------------------------------------------------------------
+
+NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
+    : impl_(std::make_unique<Impl>()) {
+    Impl &s = *impl_;
+    s.mesh = &mesh;
+    assert(s.mesh->is_trimesh());
+    s.live = std::int64_t(s.mesh->n_vertices());
+    s.live_faces = std::int64_t(s.mesh->n_faces());
+    bool all_ccw = true;
+    for (auto f : s.mesh->faces()) {
+        auto he = s.mesh->halfedge_handle(f);
+        const auto &a = s.mesh->point(s.mesh->from_vertex_handle(he));
+        const auto &b = s.mesh->point(s.mesh->to_vertex_handle(he));
+        const auto &c = s.mesh->point(s.mesh->to_vertex_handle(s.mesh->next_halfedge_handle(he)));
+        if (orient({a[0], a[1]}, {b[0], b[1]}, {c[0], c[1]}) <= 0.0) {
+            all_ccw = false;
+            break;
+        }
+    }
+    s.xy = options.projection == Projection::xy ||
+           (options.projection == Projection::automatic && all_ccw);
+    s.next_swallowed.assign(s.mesh->n_vertices(), -1);
+    s.face_head.assign(s.mesh->n_faces(), -1);
+    s.record_of.assign(s.mesh->n_vertices(), -1);
+    set_view(view, options);
+}
+
+NodeEraser::~NodeEraser() = default;
+NodeEraser::NodeEraser(NodeEraser &&) noexcept = default;
+NodeEraser &NodeEraser::operator=(NodeEraser &&) noexcept = default;
+
+void NodeEraser::set_view(const View *view, const EraseOptions &options) {
+    Impl &s = *impl_;
+    assert(view || options.significance.model == SpModel::vertical);
+    s.options = options;
+    s.has_view = view != nullptr;
+    if (view) {
+        s.view = *view;
+        if (options.significance.model == SpModel::paper)
+            s.focal_distance = std::max(focal_point(*s.mesh, *view).distance, 1e-9);
+    }
+    classify_nodes(s);
+}
+
+EraseStats NodeEraser::erase() {
+    Impl &s = *impl_;
+    Stopwatch clock;
+    EraseStats stats;
+    stats.input_nodes = s.live;
+    stats.input_triangles = s.live_faces;
+    const std::int64_t evaluations = s.evaluations;
+    rank_nodes(s);
+    stats.erased = erase_loop(s);
+    const EraseStats now = measure();
+    stats.output_nodes = s.live;
+    stats.output_triangles = s.live_faces;
+    stats.evaluations = s.evaluations - evaluations;
+    stats.max_weighted = now.max_weighted;
+    stats.max_screen_px = now.max_screen_px;
+    stats.max_vertical = now.max_vertical;
+    stats.ms = clock.ms();
+    return stats;
+}
+
+std::int64_t NodeEraser::recover(Mesh::VertexHandle v) {
+    Impl &s = *impl_;
+    std::int64_t recovered = 0;
+    std::vector<std::uint32_t> stack{std::uint32_t(v.idx())};
+    while (!stack.empty()) {
+        const std::uint32_t x = stack.back();
+        if (s.record_of[x] < 0) {
+            stack.pop_back();
+            continue;
+        }
+        const EraseRecord &record = s.records[s.record_of[x]];
+        bool ready = true;
+        for (int i = 0; i < record.ring_size; ++i) {
+            const std::uint32_t u = s.ring_pool[record.ring_begin + i];
+            if (s.record_of[u] >= 0) {
+                stack.push_back(u); // erased after x and over x's triangles: undo it first
+                ready = false;
+            }
+        }
+        if (!ready)
+            continue;
+        reinsert(s, x);
+        stack.pop_back();
+        ++recovered;
+    }
+    return recovered;
+}
+
+std::int64_t NodeEraser::recover_all() {
+    Impl &s = *impl_;
+    std::int64_t recovered = 0;
+    for (std::size_t k = s.records.size(); k-- > 0;)
+        if (s.record_of[s.records[k].node] == std::int32_t(k))
+            recovered += recover(VH(int(s.records[k].node)));
+    return recovered;
+}
+
+bool NodeEraser::is_erased(Mesh::VertexHandle v) const { return impl_->record_of[v.idx()] >= 0; }
+
+EraseRecord NodeEraser::record(Mesh::VertexHandle v) const {
+    assert(is_erased(v));
+    return impl_->records[impl_->record_of[v.idx()]];
+}
+
+std::span<const std::uint32_t> NodeEraser::ring(const EraseRecord &record) const {
+    return {impl_->ring_pool.data() + record.ring_begin, record.ring_size};
+}
+
+const Mesh &NodeEraser::mesh() const { return *impl_->mesh; }
+std::int64_t NodeEraser::live_nodes() const { return impl_->live; }
+std::int64_t NodeEraser::live_triangles() const { return impl_->live_faces; }
+
+EraseStats NodeEraser::measure() const {
+    const Impl &s = *impl_;
+    const Mesh &m = *s.mesh;
+    EraseStats stats;
+    stats.output_nodes = s.live;
+    stats.output_triangles = s.live_faces;
+    const double k = s.has_view ? s.view.k() : 0.0;
+    for (auto f : m.faces()) {
+        std::int32_t u = s.face_head[f.idx()];
+        if (u < 0)
+            continue;
+        HH he = m.halfedge_handle(f);
+        const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he)));
+        const glm::dvec3 b = to_glm(m.point(m.to_vertex_handle(he)));
+        const glm::dvec3 c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
+        const glm::dvec3 normal = glm::cross(b - a, c - a);
+        const double area = normal.z;
+        for (; u >= 0; u = s.next_swallowed[u]) {
+            const glm::dvec3 p = to_glm(m.point(VH(u)));
+            double dev;
+            if (s.xy) {
+                const glm::dvec2 x(p.x, p.y);
+                const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / area;
+                const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / area;
+                dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z));
+            } else {
+                dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
+            }
+            stats.max_vertical = std::max(stats.max_vertical, dev);
+            stats.max_weighted = std::max(stats.max_weighted, weighted(s, std::uint32_t(u), dev));
+            if (s.has_view && s.view.in_frustum(p))
+                stats.max_screen_px =
+                    std::max(stats.max_screen_px, dev * k / glm::length(p - s.view.eye));
+        }
+    }
+    return stats;
+}
+
+std::size_t NodeEraser::history_bytes() const {
+    const Impl &s = *impl_;
+    return s.weight.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
+           s.record_of.capacity() * 4 + s.flags.capacity() + s.heap.bytes() +
+           s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
+           s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
+}
+
+EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options) {
+    EraseStats stats;
+    {
+        NodeEraser eraser(mesh, view, options);
+        stats = eraser.erase();
+    }
+    Stopwatch clock;
+    mesh.garbage_collection();
+    stats.ms += clock.ms();
+    return stats;
+}
+
+// ---- Public ring geometry ----------------------------------------------------------------------
+
+RingOrientation ring_orientation(std::span<const glm::dvec2> ring) {
+    double area2 = 0.0;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+        const glm::dvec2 &a = ring[i];
+        const glm::dvec2 &b = ring[(i + 1) % ring.size()];
+        area2 += a.x * b.y - b.x * a.y;
+    }
+    return area2 > 0.0   ? RingOrientation::ccw
+           : area2 < 0.0 ? RingOrientation::cw
+                         : RingOrientation::degenerate;
+}
+
+std::vector<int> order_ring(const glm::dvec2 &centre, std::span<const glm::dvec2> neighbours) {
+    std::vector<int> order(neighbours.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<double> angle(neighbours.size());
+    for (std::size_t i = 0; i < neighbours.size(); ++i)
+        angle[i] = std::atan2(neighbours[i].y - centre.y, neighbours[i].x - centre.x);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
+    return order;
+}
+
+bool is_erasable_ear(std::span<const glm::dvec2> ring, int i) {
+    const int n = int(ring.size());
+    if (n < 3 || n > k_max_ring)
+        return false;
+    std::array<std::uint8_t, k_max_ring> next;
+    for (int j = 0; j < n; ++j)
+        next[j] = std::uint8_t((j + 1) % n);
+    return ear_score(ring.data(), next.data(), (i + n - 1) % n, i, (i + 1) % n) >= 0.0;
+}
+
+std::vector<RingTriangle> triangulate_ring(std::span<const glm::dvec2> ring) {
+    std::array<RingTriangle, k_max_ring> out;
+    const int count = clip_ears(ring.data(), int(ring.size()), out.data());
+    if (count < 0)
+        return {};
+    return {out.begin(), out.begin() + count};
+}
+
+} // namespace tinlod

@@ -1,0 +1,393 @@
+// Node erase (lib/decimate): ring geometry on hand-built rings, then every asset in meshes/ through
+// the invariants (manifold, no fold-over, outline and Euler characteristic unchanged, measured
+// error <= bound, recover(erase(m)) == m).
+#include "assets.hpp"
+
+#include "tinlod/decimate.hpp"
+#include "tinlod/mesh_io.hpp"
+#include "tinlod/metrics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <random>
+
+namespace tinlod {
+namespace {
+
+using test::asset;
+
+double tri_area2(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c) {
+    return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+}
+
+// ---- Tier 1: hand-built rings
+// --------------------------------------------------------------------
+
+TEST(Ring, OrderAndOrientation) {
+    const std::vector<glm::dvec2> shuffled = {{1, 1}, {-1, -1}, {1, -1}, {-1, 1}, {0, -2}};
+    const std::vector<int> order = order_ring({0, 0}, shuffled);
+    std::vector<glm::dvec2> ring;
+    for (int i : order)
+        ring.push_back(shuffled[i]);
+    EXPECT_EQ(ring_orientation(ring), RingOrientation::ccw);
+    std::reverse(ring.begin(), ring.end());
+    EXPECT_EQ(ring_orientation(ring), RingOrientation::cw);
+    const std::vector<glm::dvec2> line = {{0, 0}, {1, 0}, {2, 0}};
+    EXPECT_EQ(ring_orientation(line), RingOrientation::degenerate);
+}
+
+TEST(Ring, ConcaveRingFirstEarNotErasable) {
+    // The dent at node 3 reaches into the convex corner at node 0.
+    const std::vector<glm::dvec2> ring = {{0, 0}, {4, 0}, {4, 4}, {1, 1}, {0, 4}};
+    ASSERT_EQ(ring_orientation(ring), RingOrientation::ccw);
+    EXPECT_FALSE(is_erasable_ear(ring, 0)); // convex, but node 3 lies inside the ear
+    EXPECT_FALSE(is_erasable_ear(ring, 3)); // reflex
+    EXPECT_FALSE(is_erasable_ear(ring, 1)); // node 3 lies on its edge 0-2
+    EXPECT_TRUE(is_erasable_ear(ring, 2));
+    const auto tris = triangulate_ring(ring);
+    ASSERT_EQ(tris.size(), ring.size() - 2);
+    double area = 0.0;
+    for (const auto &t : tris) {
+        const double a2 = tri_area2(ring[t.a], ring[t.b], ring[t.c]);
+        EXPECT_GT(a2, 0.0);
+        area += a2 / 2;
+        for (int j = 0; j < int(ring.size()); ++j) {
+            if (j == t.a || j == t.b || j == t.c)
+                continue;
+            const bool inside = tri_area2(ring[t.a], ring[t.b], ring[j]) >= 0 &&
+                                tri_area2(ring[t.b], ring[t.c], ring[j]) >= 0 &&
+                                tri_area2(ring[t.c], ring[t.a], ring[j]) >= 0;
+            EXPECT_FALSE(inside) << "ring node " << j << " inside a new triangle";
+        }
+    }
+    EXPECT_DOUBLE_EQ(area, 10.0); // the polygon's shoelace area
+}
+
+TEST(Ring, ClockwiseRingIsRefused) {
+    std::vector<glm::dvec2> ring = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::reverse(ring.begin(), ring.end());
+    EXPECT_TRUE(triangulate_ring(ring).empty());
+}
+
+TEST(Ring, PrefersDelaunayDiagonal) {
+    // A flat rhombus: the short diagonal (1-3) is the Delaunay one.
+    const std::vector<glm::dvec2> ring = {{0, 0}, {2, -0.5}, {4, 0}, {2, 0.5}};
+    const auto tris = triangulate_ring(ring);
+    ASSERT_EQ(tris.size(), 2u);
+    for (const auto &t : tris) {
+        const bool has1 = t.a == 1 || t.b == 1 || t.c == 1, has3 = t.a == 3 || t.b == 3 || t.c == 3;
+        EXPECT_TRUE(has1 && has3);
+    }
+}
+
+// ---- Helpers over meshes
+// ---------------------------------------------------------------------------
+
+using Triangle = std::array<std::int64_t, 3>;
+
+// Live triangles as origin-id triples rotated to start at the smallest id, sorted.
+std::vector<Triangle> triangle_set(Mesh &mesh) {
+    auto origin = get_origin_property(mesh);
+    std::vector<Triangle> out;
+    for (auto f : mesh.faces()) {
+        Triangle t;
+        int i = 0;
+        for (auto v : f.vertices())
+            t[i++] = mesh.property(origin, v);
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+struct Invariants {
+    std::int64_t euler = 0;
+    std::int64_t non_manifold = 0;
+    std::int64_t boundary_edges = 0;
+    double boundary_length = 0.0; // xy length of the outline
+};
+
+Invariants invariants(const Mesh &mesh) {
+    Invariants inv;
+    std::int64_t v = 0, e = 0, f = 0;
+    for (auto vh : mesh.vertices()) {
+        ++v;
+        inv.non_manifold += !mesh.is_manifold(vh);
+    }
+    for (auto eh : mesh.edges()) {
+        ++e;
+        if (mesh.is_boundary(eh)) {
+            ++inv.boundary_edges;
+            const auto d = mesh.calc_edge_vector(eh);
+            inv.boundary_length += std::hypot(double(d[0]), double(d[1]));
+        }
+    }
+    for (auto fh : mesh.faces()) {
+        ++f;
+        (void)fh;
+    }
+    inv.euler = v - e + f;
+    return inv;
+}
+
+struct DemAsset {
+    const char *file;
+    bool terrain_rgb;
+    int crop; // 0: whole raster
+};
+
+Heightfield load_cropped(const DemAsset &a) {
+    LoadOptions lo;
+    lo.terrain_rgb = a.terrain_rgb;
+    Heightfield hf = load_heightfield(asset(a.file), lo);
+    if (a.crop == 0 || (a.crop >= hf.width && a.crop >= hf.height))
+        return hf;
+    Heightfield c = hf;
+    c.width = std::min(a.crop, hf.width);
+    c.height = std::min(a.crop, hf.height);
+    c.z.resize(std::size_t(c.width) * c.height);
+    for (int r = 0; r < c.height; ++r)
+        for (int col = 0; col < c.width; ++col)
+            c.at(col, r) = hf.at(col, r);
+    c.void_mask.clear();
+    return c;
+}
+
+// A view from above the south-west corner looking north-east across the terrain.
+View corner_view(const Heightfield &hf) {
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    View view;
+    view.eye = {-0.05 * w, -0.05 * h, hf.max_z() + 0.15 * std::max(w, h)};
+    view.at = {0.6 * w, 0.6 * h, hf.min_z()};
+    return view;
+}
+
+const DemAsset k_dems[] = {
+    {"dem_squared.tif", false, 0}, {"dem_srtm30.tif", false, 0}, {"crater_u16.png", false, 0},
+    {"fuji.png", true, 0},         {"N42E001.hgt", false, 401},
+};
+
+class DemErase : public ::testing::TestWithParam<DemAsset> {};
+
+// ---- Tier 2: every asset through the invariants ------------------------------------------------
+
+TEST_P(DemErase, ScreenBoundInvariantsAndExactRecovery) {
+    const Heightfield hf = load_cropped(GetParam());
+    const View view = corner_view(hf);
+    Mesh input = grid_tin(hf);
+    const Invariants before = invariants(input);
+    const auto input_triangles = triangle_set(input);
+    const double input_area = test::xy_area(input);
+
+    EraseOptions options;
+    options.tolerance = 1.0;
+    Mesh work = input;
+    NodeEraser eraser(work, &view, options);
+    const EraseStats stats = eraser.erase();
+    EXPECT_GT(stats.erased, 0);
+    EXPECT_LT(stats.output_nodes, stats.input_nodes);
+    EXPECT_LE(stats.max_screen_px, options.tolerance);
+
+    Mesh out = eraser.mesh();
+    out.garbage_collection();
+    const Invariants after = invariants(out);
+    EXPECT_EQ(after.euler, before.euler);
+    EXPECT_EQ(after.non_manifold, 0);
+    EXPECT_NEAR(after.boundary_length, before.boundary_length, 1e-6 * before.boundary_length);
+    EXPECT_EQ(test::count_folded_faces(out), 0);
+    EXPECT_NEAR(test::xy_area(out), input_area, 1e-9 * input_area);
+
+    ErrorOptions eo;
+    eo.view = &view;
+    const TinError measured = measure_error(hf, out, eo);
+    EXPECT_EQ(measured.uncovered, 0);
+    EXPECT_LE(measured.max_screen_px, options.tolerance)
+        << "worst sample " << measured.worst_sample;
+
+    EXPECT_EQ(eraser.recover_all(), stats.erased);
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(back.n_vertices(), input.n_vertices());
+    EXPECT_EQ(triangle_set(back), input_triangles);
+    auto origin = get_origin_property(back);
+    std::int64_t moved = 0;
+    for (auto v : back.vertices())
+        moved += back.point(v) != input.point(Mesh::VertexHandle(int(back.property(origin, v))));
+    EXPECT_EQ(moved, 0);
+    EXPECT_EQ(invariants(back).euler, before.euler);
+}
+
+TEST_P(DemErase, VerticalBoundHoldsAndNodesFallAsBoundGrows) {
+    const Heightfield hf = load_cropped(GetParam());
+    const double relief = hf.max_z() - hf.min_z();
+    std::int64_t previous = INT64_MAX;
+    for (double fraction : {0.002, 0.01, 0.05}) {
+        EraseOptions options;
+        options.significance.model = SpModel::vertical;
+        options.tolerance = fraction * relief;
+        Mesh tin = grid_tin(hf);
+        const EraseStats stats = erase_nodes(tin, nullptr, options);
+        const TinError measured = measure_error(hf, tin);
+        EXPECT_EQ(measured.uncovered, 0);
+        EXPECT_LE(measured.max_vertical, options.tolerance) << "bound " << options.tolerance;
+        EXPECT_LE(stats.max_vertical, options.tolerance);
+        EXPECT_EQ(stats.output_nodes, std::int64_t(tin.n_vertices()));
+        EXPECT_LT(std::int64_t(tin.n_vertices()), previous);
+        EXPECT_EQ(test::count_folded_faces(tin), 0);
+        previous = std::int64_t(tin.n_vertices());
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Assets, DemErase, ::testing::ValuesIn(k_dems), [](const auto &info) {
+    std::string name = info.param.file;
+    name = name.substr(0, name.find('.'));
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+});
+
+TEST(Erase, InvariantsHoldAfterEveryStage) {
+    const Heightfield hf = load_cropped({"dem_srtm30.tif", false, 0});
+    const View view = corner_view(hf);
+    Mesh input = grid_tin(hf);
+    const Invariants before = invariants(input);
+    EraseOptions options;
+    options.tolerance = INFINITY;
+    Mesh work = input;
+    NodeEraser eraser(work, &view, options);
+    for (std::int64_t budget = eraser.live_nodes() * 3 / 4; budget > 200; budget /= 2) {
+        options.max_nodes = budget;
+        eraser.set_view(&view, options);
+        eraser.erase();
+        EXPECT_LE(eraser.live_nodes(), budget);
+        Mesh out = eraser.mesh();
+        out.garbage_collection();
+        const Invariants now = invariants(out);
+        EXPECT_EQ(now.euler, before.euler);
+        EXPECT_EQ(now.non_manifold, 0);
+        EXPECT_NEAR(now.boundary_length, before.boundary_length, 1e-6 * before.boundary_length);
+        EXPECT_EQ(test::count_folded_faces(out), 0);
+    }
+}
+
+TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
+    const Heightfield hf = load_cropped({"dem_srtm30.tif", false, 0});
+    const View view = corner_view(hf);
+    Mesh work = grid_tin(hf);
+    EraseOptions options;
+    NodeEraser eraser(work, &view, options);
+    const EraseStats first = eraser.erase();
+    options.tolerance = 3.0;
+    eraser.set_view(&view, options);
+    const EraseStats second = eraser.erase();
+    EXPECT_GT(second.erased, 0);
+    EXPECT_LT(second.output_nodes, first.output_nodes);
+    EXPECT_LE(second.max_screen_px, options.tolerance);
+    Mesh out = eraser.mesh();
+    out.garbage_collection();
+    ErrorOptions eo;
+    eo.view = &view;
+    EXPECT_LE(measure_error(hf, out, eo).max_screen_px, options.tolerance);
+}
+
+TEST(Erase, RecoverInRandomOrderStaysValid) {
+    const Heightfield hf = load_cropped({"dem_squared.tif", false, 0});
+    Mesh input = grid_tin(hf);
+    const auto input_triangles = triangle_set(input);
+    EraseOptions options;
+    options.significance.model = SpModel::vertical;
+    options.tolerance = 0.02 * (hf.max_z() - hf.min_z());
+    Mesh work = input;
+    NodeEraser eraser(work, nullptr, options);
+    eraser.erase();
+    std::vector<int> erased;
+    for (auto v : input.vertices())
+        if (eraser.is_erased(v))
+            erased.push_back(v.idx());
+    ASSERT_GT(erased.size(), 100u);
+    std::mt19937 rng(7);
+    std::shuffle(erased.begin(), erased.end(), rng);
+    for (std::size_t k = 0; k < erased.size() / 3; ++k) {
+        const Mesh::VertexHandle v(erased[k]);
+        if (eraser.is_erased(v)) {
+            // Every ring node of v's record becomes live, and v itself.
+            const EraseRecord record = eraser.record(v);
+            EXPECT_GE(eraser.recover(v), 1);
+            for (std::uint32_t u : eraser.ring(record))
+                EXPECT_FALSE(eraser.is_erased(Mesh::VertexHandle(int(u))));
+        }
+        EXPECT_FALSE(eraser.is_erased(v));
+    }
+    Mesh partial = eraser.mesh();
+    partial.garbage_collection();
+    EXPECT_EQ(test::count_folded_faces(partial), 0);
+    EXPECT_EQ(invariants(partial).non_manifold, 0);
+    EXPECT_LE(measure_error(hf, partial).max_vertical, options.tolerance);
+    eraser.recover_all();
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(triangle_set(back), input_triangles);
+}
+
+TEST(Erase, FlatRegionIsErasedFirst) {
+    Heightfield hf;
+    hf.width = hf.height = 33;
+    hf.z.assign(std::size_t(hf.width) * hf.height, 0.0f);
+    for (int r = 0; r < hf.height; ++r)
+        for (int c = 0; c < hf.width; ++c) {
+            const double d2 = (c - 24) * (c - 24) + (r - 24) * (r - 24);
+            hf.at(c, r) = float(5.0 * std::exp(-d2 / 20.0));
+        }
+    // The bump's tail reaches everywhere; flatten what is below a millimetre.
+    for (float &z : hf.z)
+        if (z < 1e-3f)
+            z = 0.0f;
+    const View view{{16, -40, 30}, {16, 16, 0}};
+    Mesh input = grid_tin(hf);
+    EraseOptions options;
+    options.tolerance = INFINITY;
+    options.max_nodes = std::int64_t(input.n_vertices()) - 200;
+    Mesh work = input;
+    NodeEraser eraser(work, &view, options);
+    eraser.erase();
+    std::int64_t erased = 0, erased_raised = 0;
+    for (auto v : input.vertices()) {
+        if (!eraser.is_erased(v))
+            continue;
+        ++erased;
+        erased_raised += input.point(v)[2] != 0.0f;
+    }
+    EXPECT_EQ(erased, 200);
+    EXPECT_EQ(erased_raised, 0);
+}
+
+TEST(Erase, BunnyKeepsTopologyAndRecoversExactly) {
+    Mesh input = read_mesh(asset("bun_zipper_res4.ply"));
+    const Invariants before = invariants(input);
+    const auto input_triangles = triangle_set(input);
+    View view;
+    view.eye = {0.0, 0.1, 0.6};
+    view.at = {-0.02, 0.1, 0.0};
+    EraseOptions options;
+    options.tolerance = 4.0;
+    Mesh work = input;
+    NodeEraser eraser(work, &view, options);
+    const EraseStats stats = eraser.erase();
+    EXPECT_GT(stats.erased, std::int64_t(input.n_vertices() / 10));
+    EXPECT_LE(stats.max_weighted, options.tolerance);
+    Mesh out = eraser.mesh();
+    out.garbage_collection();
+    const Invariants after = invariants(out);
+    EXPECT_EQ(after.euler, before.euler);
+    EXPECT_LE(after.non_manifold, before.non_manifold);     // the file's own complex vertices stay
+    EXPECT_EQ(after.boundary_edges, before.boundary_edges); // boundary locked on general meshes
+    eraser.recover_all();
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(triangle_set(back), input_triangles);
+}
+
+} // namespace
+} // namespace tinlod
