@@ -6,7 +6,9 @@
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
+#include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
 
 #include <cmath>
@@ -24,6 +26,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         double tol = 1.0;
         double max_error = 0.0;
         std::int64_t max_nodes = 0;
+        double retrieve_share = 0.0;
         CameraOptions camera;
         RasterOptions raster;
     };
@@ -44,6 +47,11 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
     auto *max_error =
         cmd.add_option("--max-error", args->max_error,
                        "view-independent: vertical error bound, world units (no camera)");
+    cmd.add_option("--retrieve-share", args->retrieve_share,
+                   "DEM input: retrieve at share * tau first, erase at the rest (faster; the bound "
+                   "then holds at the retrieved nodes only, see the measured error)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     args->camera.add(cmd, false);
     args->raster.add(cmd);
     return [args, tol, max_error] {
@@ -75,12 +83,35 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             lo.cell = args->raster.cell;
             lo.zscale = args->raster.zscale;
             lo.terrain_rgb = args->raster.terrain_rgb;
-            hf = load_heightfield(args->input, lo);
-            mesh = grid_tin(*hf);
+            hf = is_store_file(args->input) ? TileStore(args->input).heightfield()
+                                            : load_heightfield(args->input, lo);
         }
         const double ms_load = clock.ms();
-        const std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
-        const std::int64_t input_triangles = std::int64_t(mesh.n_faces());
+        std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
+        std::int64_t input_triangles = std::int64_t(mesh.n_faces());
+        // A DEM is erased from its full grid, so every sample is a node and the erase bound is
+        // exact. With --retrieve-share it is first retrieved (method 1) at share * tau and the
+        // retrieved TIN erased (method 2) at the rest: faster, but the erase then bounds only the
+        // retrieved nodes, not the samples between them, so the sum is not a guarantee (the stats
+        // report the measured error).
+        double ms_retrieve = 0.0;
+        std::int64_t retrieved_nodes = 0;
+        const double share = view ? args->retrieve_share : 0.0;
+        if (hf) {
+            input_nodes = hf->size();
+            input_triangles = 2 * std::int64_t(hf->width - 1) * (hf->height - 1);
+            clock.reset();
+            if (view && share > 0.0) {
+                const QuadTree tree(*hf);
+                RetrieveOptions ro;
+                ro.tol_px = args->tol * share;
+                mesh = to_mesh(retrieve(tree, *view, ro), tree.frame());
+            } else {
+                mesh = grid_tin(*hf);
+            }
+            retrieved_nodes = std::int64_t(mesh.n_vertices());
+            ms_retrieve = clock.ms();
+        }
 
         EraseOptions options;
         options.max_nodes = args->max_nodes;
@@ -89,7 +120,8 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             options.tolerance = args->max_error;
         } else {
             options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
-            options.tolerance = args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol;
+            options.tolerance =
+                args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol * (1.0 - share);
         }
         clock.reset();
         const EraseStats erased = erase_nodes(mesh, view ? &*view : nullptr, options);
@@ -114,7 +146,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
              {{"file", args->input}, {"nodes", input_nodes}, {"triangles", input_triangles}}},
             {"output",
              {{"file", args->output}, {"nodes", mesh.n_vertices()}, {"triangles", mesh.n_faces()}}},
-            {"time_ms", {{"load", ms_load}, {"simplify", ms_simplify}, {"write", ms_write}}},
+            {"time_ms", {{"load", ms_load}, {"retrieve", ms_retrieve}, {"simplify", ms_simplify},
+                         {"write", ms_write}}},
+            {"retrieve", {{"tol_px", args->tol * share}, {"nodes", retrieved_nodes}}},
             {"error", {{"max_screen_px", max_screen}, {"max_vertical", max_vertical}}},
             {"simplify",
              {{"model", vertical ? "vertical" : args->model},

@@ -157,6 +157,12 @@ class NodeHeap {
         else
             down(pos_[v]);
     }
+    // Empties the heap, keeping every stored key.
+    void clear() {
+        for (std::uint32_t v : heap_)
+            pos_[v] = -1;
+        heap_.clear();
+    }
     void pop() {
         const std::uint32_t v = heap_.front();
         pos_[v] = -1;
@@ -246,6 +252,7 @@ struct NodeEraser::Impl {
     bool xy = true;
     double focal_distance = 1.0;
     std::vector<float> weight;                // per vertex: pixels per unit deviation (1: vertical)
+    std::vector<float> weight_prev;           // per vertex: the weight of the view before (update)
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
     std::vector<std::int32_t> record_of;      // per vertex: its erase record, -1 when live
@@ -592,6 +599,9 @@ static void retriangulate(NodeEraser::Impl &s) {
     s.live_faces -= fans - h.ntri;
 }
 
+// The cost an erase may reach: the tolerance less a hair that keeps float rounding inside it.
+static double erase_limit(const NodeEraser::Impl &s) { return s.options.tolerance * (1.0 - 1e-6); }
+
 // After an erase its ring nodes' keys are stale: they are marked dirty (re-evaluated when they
 // reach the top of the queue) and re-enter the queue if a failed evaluation had dropped them.
 static void touch_ring(NodeEraser::Impl &s) {
@@ -602,13 +612,13 @@ static void touch_ring(NodeEraser::Impl &s) {
             continue;
         s.flags[u] |= k_dirty;
         if (!s.heap.contains(u))
-            s.heap.set(u, float(std::min<double>(s.heap.key(u), s.options.tolerance)));
+            s.heap.set(u, float(std::min<double>(s.heap.key(u), erase_limit(s))));
     }
 }
 
 // erase: pops the least significant node while its erase stays within the tolerance.
 static std::int64_t erase_loop(NodeEraser::Impl &s) {
-    const double tau = s.options.tolerance * (1.0 - 1e-6); // keeps float rounding inside the bound
+    const double tau = erase_limit(s);
     const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
     std::int64_t erased = 0;
     while (!s.heap.empty() && s.live > budget) {
@@ -866,10 +876,11 @@ EraseStats NodeEraser::erase() {
     return stats;
 }
 
-std::int64_t NodeEraser::recover(Mesh::VertexHandle v) {
-    Impl &s = *impl_;
+// Recovers x and the erases it depends on; appends every node re-inserted to `done`.
+static std::int64_t recover_closure(NodeEraser::Impl &s, std::uint32_t v,
+                                    std::vector<std::uint32_t> *done) {
     std::int64_t recovered = 0;
-    std::vector<std::uint32_t> stack{std::uint32_t(v.idx())};
+    std::vector<std::uint32_t> stack{v};
     while (!stack.empty()) {
         const std::uint32_t x = stack.back();
         if (s.record_of[x] < 0) {
@@ -888,10 +899,16 @@ std::int64_t NodeEraser::recover(Mesh::VertexHandle v) {
         if (!ready)
             continue;
         reinsert(s, x);
+        if (done)
+            done->push_back(x);
         stack.pop_back();
         ++recovered;
     }
     return recovered;
+}
+
+std::int64_t NodeEraser::recover(Mesh::VertexHandle v) {
+    return recover_closure(*impl_, std::uint32_t(v.idx()), nullptr);
 }
 
 std::int64_t NodeEraser::recover_all() {
@@ -917,6 +934,121 @@ std::span<const std::uint32_t> NodeEraser::ring(const EraseRecord &record) const
 const Mesh &NodeEraser::mesh() const { return *impl_->mesh; }
 std::int64_t NodeEraser::live_nodes() const { return impl_->live; }
 std::int64_t NodeEraser::live_triangles() const { return impl_->live_faces; }
+
+// The worst swallowed node of face f and its weighted deviation (-1 and 0 when f swallowed none).
+static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s, FH f) {
+    const Mesh &m = *s.mesh;
+    std::int32_t u = s.face_head[f.idx()];
+    if (u < 0)
+        return {-1, 0.0};
+    HH he = m.halfedge_handle(f);
+    const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he)));
+    const glm::dvec3 b = to_glm(m.point(m.to_vertex_handle(he)));
+    const glm::dvec3 c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
+    const glm::dvec3 normal = glm::cross(b - a, c - a);
+    const double slope = s.xy ? glm::length(glm::dvec2(normal.x, normal.y)) / std::abs(normal.z) : 0.0;
+    std::pair<std::int32_t, double> worst{-1, -1.0};
+    for (; u >= 0; u = s.next_swallowed[u]) {
+        const glm::dvec3 p = to_glm(m.point(VH(u)));
+        double dev;
+        if (s.xy) {
+            const glm::dvec2 x(p.x, p.y);
+            const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / normal.z;
+            const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / normal.z;
+            // The same float-rounding widening as locate(): the bound is never overstated.
+            const double ulp = 1.2e-7 * std::max({std::abs(x.x), std::abs(x.y), 1.0});
+            dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z)) + 4.0 * ulp * slope;
+        } else {
+            dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
+        }
+        const double w = weighted(s, std::uint32_t(u), dev);
+        if (w > worst.second)
+            worst = {u, w};
+    }
+    return worst;
+}
+
+UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
+    Impl &s = *impl_;
+    assert(s.options.significance.model != SpModel::vertical && erase_below <= recover_above);
+    Mesh &m = *s.mesh;
+    UpdateStats stats;
+
+    // New weights; the old ones tell how far each node's significance fell.
+    Stopwatch clock;
+    s.view = view;
+    s.has_view = true;
+    if (s.options.significance.model == SpModel::paper)
+        s.focal_distance = std::max(focal_point(m, view).distance, 1e-9);
+    s.weight_prev.swap(s.weight);
+    s.weight = node_weights(m, &s.view, s.options.significance);
+    stats.ms_weights = clock.ms();
+
+    // recover: a worklist of faces, seeded with every face that swallowed a node; a face that gets
+    // its worst node back is replaced by the fans of the nodes re-inserted.
+    clock.reset();
+    std::vector<FH> work;
+    for (auto f : m.faces())
+        if (s.face_head[f.idx()] >= 0)
+            work.push_back(f);
+    std::vector<std::uint32_t> done;
+    while (!work.empty()) {
+        const FH f = work.back();
+        work.pop_back();
+        if (m.status(f).deleted())
+            continue;
+        ++stats.faces_checked;
+        const auto [u, cost] = worst_swallowed(s, f);
+        if (u < 0 || cost <= recover_above)
+            continue;
+        done.clear();
+        stats.recovered += recover_closure(s, std::uint32_t(u), &done);
+        for (std::uint32_t x : done) {
+            s.flags[x] &= std::uint8_t(~k_dirty);
+            s.heap.store_key(x, float(recover_above)); // significant now: re-evaluated once it falls
+            for (auto g : m.vf_range(VH(int(x))))
+                work.push_back(g);
+        }
+    }
+    stats.ms_recover = clock.ms();
+
+    // erase: only nodes whose cost may have fallen to the bound are re-evaluated.
+    clock.reset();
+    s.heap.clear();
+    std::vector<std::uint32_t> ranked;
+    auto ratio = [&](std::uint32_t v) {
+        const float before = s.weight_prev[v];
+        return before > 0.0f ? s.weight[v] / before : 1.0f;
+    };
+    for (auto v : m.vertices()) {
+        const std::uint32_t x = std::uint32_t(v.idx());
+        if (s.flags[x] & k_locked)
+            continue;
+        const float key = s.heap.key(x);
+        if (!std::isfinite(key))
+            continue; // its hole cannot be re-triangulated: only a change of its ring can help
+        float fall = ratio(x);
+        if (!(s.flags[x] & k_dirty) && double(key) * fall > erase_below) {
+            for (auto r : m.vv_range(v))
+                fall = std::min(fall, ratio(std::uint32_t(r.idx())));
+            if (double(key) * fall > erase_below)
+                continue;
+        }
+        ++stats.candidates;
+        s.flags[x] &= std::uint8_t(~k_dirty);
+        const bool erasable = evaluate(s, v, erase_below);
+        s.heap.store_key(x, erasable ? key_of(s, s.hole) : INFINITY);
+        if (erasable && s.hole.cost <= erase_below)
+            ranked.push_back(x);
+    }
+    s.heap.build(std::move(ranked));
+    const double tolerance = s.options.tolerance;
+    s.options.tolerance = erase_below;
+    stats.erased = erase_loop(s);
+    s.options.tolerance = tolerance;
+    stats.ms_erase = clock.ms();
+    return stats;
+}
 
 EraseStats NodeEraser::measure() const {
     const Impl &s = *impl_;

@@ -107,6 +107,17 @@ struct EraseRecord {
     bool boundary = false;
 };
 
+// What one NodeEraser::update did.
+struct UpdateStats {
+    std::int64_t recovered = 0;   // nodes re-inserted (dependency closures included)
+    std::int64_t erased = 0;      // nodes erased
+    std::int64_t candidates = 0;  // live nodes whose erase was re-evaluated
+    std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
+    double ms_weights = 0.0;      // new per-node weights
+    double ms_recover = 0.0;      // the recover pass
+    double ms_erase = 0.0;        // the erase pass
+};
+
 // The history of the erases made on a TIN (or surface mesh): erase by significance, recover any
 // erased node exactly. The eraser edits the caller's mesh in place (OpenMesh meshes cannot be
 // moved, only copied); the mesh must outlive it. Vertex handles stay valid for the eraser's whole
@@ -134,6 +145,18 @@ class NodeEraser {
 
     // A new view (and model/tolerance) for the next erase(); recomputes every node's weight.
     void set_view(const View *view, const EraseOptions &options);
+
+    // Follows the observer to `view` in both directions (the refiner's frame step):
+    //  1. recover: every face whose swallowed nodes exceed `recover_above` (weighted, the units of
+    //     the tolerance) under the new weights gets its worst node back, with its dependency
+    //     closure, until every face is within `recover_above`;
+    //  2. erase: live nodes whose last measured erase cost, scaled by how much the weights of the
+    //     node and its ring fell, may now be <= `erase_below` are re-evaluated and erased while
+    //     their cost stays <= `erase_below`.
+    // With erase_below < recover_above a node between the two keeps its state (hysteresis). After
+    // the call the whole-output bound holds at `recover_above`: every swallowed node's weighted
+    // deviation is <= recover_above. Needs a view (not SpModel::vertical).
+    UpdateStats update(const View &view, double recover_above, double erase_below);
 
     bool is_erased(Mesh::VertexHandle v) const;
     // The record of an erased node's last erase; v must be erased.

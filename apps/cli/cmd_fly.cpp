@@ -1,0 +1,174 @@
+// `tinlod fly DEM|MESH --path PATH.csv [--tol 1] [--fps 4] [--check] [--frames DIR] [--stats
+// FRAMES.csv]`: one TIN follows the observer along a camera path, frame after frame (lib/refine).
+#include "commands.hpp"
+
+#include "tinlod/camera_path.hpp"
+#include "tinlod/error.hpp"
+#include "tinlod/mesh_io.hpp"
+#include "tinlod/metrics.hpp"
+#include "tinlod/raster.hpp"
+#include "tinlod/refine.hpp"
+#include "tinlod/render.hpp"
+#include "tinlod/util.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+namespace tinlod::cli {
+
+namespace fs = std::filesystem;
+
+static const char* k_frame_header = "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
+                                    "ms_erase,ms_recover,ms_total,max_screen_px";
+
+static double percentile(std::vector<double> v, double q) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
+}
+
+static Register fly("fly", 50, [](CLI::App& cmd) {
+    cmd.description("Fly a camera path: one TIN follows the observer, erasing and recovering nodes "
+                    "frame by frame");
+    struct Args {
+        std::string input, path, frames_dir, stats, model = "screen";
+        double tol = 1.0, fps = 4.0, hysteresis = 0.25;
+        bool check = false;
+        std::string viewport = "1920x1080";
+        double fov = 60.0;
+        RasterOptions raster;
+    };
+    auto args = std::make_shared<Args>();
+    cmd.add_option("INPUT", args->input, "DEM (GeoTIFF, PNG, EXR, .hgt, ...) or mesh")->required();
+    cmd.add_option("--path", args->path, "camera path CSV: t,eye_x,eye_y,eye_z,at_x,at_y,at_z")
+        ->required();
+    cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")->capture_default_str();
+    cmd.add_option("--fps", args->fps, "frames per second of path time")->capture_default_str();
+    cmd.add_option("--hysteresis", args->hysteresis,
+                   "erase down to (1 - h) tau, recover above tau")
+        ->capture_default_str();
+    cmd.add_option("--model", args->model, "significance model: screen or paper")
+        ->check(CLI::IsMember({"screen", "paper"}))
+        ->capture_default_str();
+    cmd.add_flag("--check", args->check,
+                 "measure every frame's screen-space error exhaustively against every DEM sample");
+    cmd.add_option("--frames", args->frames_dir, "write one rendered PNG per frame into this folder");
+    cmd.add_option("--stats", args->stats, "write one line of statistics per frame (CSV)");
+    cmd.add_option("--fov", args->fov, "vertical field of view, degrees")->capture_default_str();
+    cmd.add_option("--viewport", args->viewport, "viewport WxH, pixels")->capture_default_str();
+    args->raster.add(cmd);
+    return [args] {
+        if (!(args->tol > 0.0) || !std::isfinite(args->tol))
+            throw Error("--tol", "must be a positive number of pixels");
+        if (!(args->fps > 0.0) || args->fps > 1000.0)
+            throw Error("--fps", "must be in (0, 1000]");
+        if (!(args->hysteresis >= 0.0 && args->hysteresis < 1.0))
+            throw Error("--hysteresis", "must be in [0, 1)");
+        if (!args->frames_dir.empty() && !fs::is_directory(args->frames_dir))
+            throw Error(args->frames_dir, "frames folder does not exist");
+        const CameraPath path = read_camera_path(args->path);
+        View base;
+        base.fov_deg = args->fov;
+        parse_viewport(args->viewport, base.viewport_w, base.viewport_h);
+        const int frames = std::max(1, int(std::floor(path.duration() * args->fps + 1e-9)) + 1);
+        std::vector<View> views = path.sample(frames, base);
+        for (const View& v : views)
+            validate(v, args->path);
+
+        Stopwatch clock;
+        std::optional<Heightfield> hf;
+        std::optional<Refiner> refiner;
+        RefineOptions options;
+        options.tol_px = args->tol;
+        options.hysteresis = args->hysteresis;
+        options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
+        if (is_mesh_path(args->input)) {
+            if (args->check)
+                throw Error("--check", "measures against DEM samples: give a DEM, not a mesh");
+            refiner.emplace(read_mesh(args->input), views.front(), options);
+        } else {
+            LoadOptions lo;
+            lo.cell = args->raster.cell;
+            lo.zscale = args->raster.zscale;
+            lo.terrain_rgb = args->raster.terrain_rgb;
+            hf = load_heightfield(args->input, lo);
+            for (const View& v : views) {
+                const double gx = v.eye.x / hf->dx, gy = v.eye.y / hf->dy;
+                if (gx >= 0 && gy >= 0 && gx <= hf->width - 1 && gy <= hf->height - 1 &&
+                    v.eye.z <= hf->at(int(std::lround(gx)), int(std::lround(gy))))
+                    throw Error(args->path, "a camera of the path is inside the terrain (eye at " +
+                                                std::to_string(v.eye.x) + "," + std::to_string(v.eye.y) +
+                                                "," + std::to_string(v.eye.z) + ")");
+            }
+            refiner.emplace(*hf, views.front(), options);
+        }
+        const double ms_start = clock.ms();
+
+        std::unique_ptr<Renderer> renderer;
+        if (!args->frames_dir.empty())
+            renderer = std::make_unique<Renderer>();
+
+        std::ostringstream csv;
+        csv << k_frame_header << '\n';
+        std::vector<double> totals;
+        double worst = 0.0;
+        std::int64_t recovered_all = 0, erased_all = 0;
+        Progress progress("fly", frames);
+        for (int i = 0; i < frames; ++i) {
+            FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
+            if (i > 0)
+                totals.push_back(f.ms_total);
+            recovered_all += f.recovered;
+            erased_all += f.erased;
+            double max_px = -1.0; // not measured
+            if (args->check) {
+                ErrorOptions eo;
+                eo.view = &views[i];
+                const TinError e = measure_error(*hf, refiner->mesh(), eo);
+                max_px = e.max_screen_px;
+                worst = std::max(worst, max_px);
+            }
+            if (renderer) {
+                char name[32];
+                std::snprintf(name, sizeof name, "/frame_%05d.png", i);
+                RenderOptions ro;
+                ro.wire = true;
+                write_image(args->frames_dir + name, renderer->render(refiner->mesh(), views[i], ro));
+            }
+            const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
+            char line[256];
+            std::snprintf(line, sizeof line, "%.3f,%lld,%lld,%lld,%lld,0,0,%.3f,%.3f,%.3f,%s", t,
+                          (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
+                          (long long)f.recovered, f.ms_erase + f.ms_weights, f.ms_recover,
+                          f.ms_total, max_px < 0 ? "" : std::to_string(max_px).c_str());
+            csv << line << '\n';
+            progress.update(i + 1);
+        }
+        progress.finish();
+        if (!args->stats.empty())
+            write_atomically(args->stats, [&](const std::string& tmp) {
+                std::ofstream out(tmp);
+                out << csv.str();
+                if (!out.flush())
+                    throw Error(args->stats, "cannot write: " + std::string(std::strerror(errno)));
+            });
+        const auto& m = refiner->mesh();
+        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + erase), then per frame p50 "
+                    "%.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all; %.0f bytes per node "
+                    "(TIN + history)%s\n",
+                    frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
+                    (long long)erased_all, (long long)recovered_all,
+                    double(refiner->bytes()) / double(m.n_vertices()),
+                    args->check ? (", measured max " + std::to_string(worst) + " px").c_str() : "");
+    };
+});
+
+} // namespace tinlod::cli

@@ -1,0 +1,72 @@
+// The refiner: one TIN that follows a moving observer both ways, frame after frame. Where the
+// paper re-reads and rebuilds when the observer approaches (erased nodes "can not be accurately
+// replaced"), the refiner keeps the record of every erase and brings nodes back exactly (Hoppe's
+// view-dependent progressive meshes; De Floriani and Puppo's multi-triangulation), so each frame
+// costs what changed, with the screen-space bound checked on every frame.
+#pragma once
+
+#include "tinlod/decimate.hpp"
+#include "tinlod/raster.hpp"
+#include "tinlod/significance.hpp"
+#include "tinlod/tin.hpp"
+#include "tinlod/view.hpp"
+
+#include <cstdint>
+#include <memory>
+
+namespace tinlod {
+
+struct RefineOptions {
+    double tol_px = 1.0;     // tau: screen-space error every frame may show, pixels
+    double hysteresis = 0.25; // erase only down to (1 - hysteresis) * tau, recover above tau, so a
+                              // node near the threshold does not flicker; in [0, 1)
+    SignificanceOptions significance; // SP model (screen or paper) and its parameters
+    int max_valence = 24;    // nodes with more neighbours stay (bounds a hole's size)
+};
+
+struct FrameStats {
+    std::int64_t nodes = 0;      // live nodes after the update
+    std::int64_t triangles = 0;  // live triangles after the update
+    std::int64_t erased = 0;     // nodes erased by this update
+    std::int64_t recovered = 0;  // nodes recovered by this update
+    std::int64_t candidates = 0; // live nodes re-evaluated for erase
+    double ms_weights = 0.0;     // per-node weights for the new view
+    double ms_recover = 0.0;
+    double ms_erase = 0.0;
+    double ms_total = 0.0;
+    double bound_px = 0.0;       // the refiner's bound: max weighted deviation of every erased node
+                                 // (pixels inside the frustum, relaxed outside), <= tol_px
+};
+
+// Holds the current TIN and its erase history between frames.
+class Refiner {
+  public:
+    // Starts from the full-resolution grid TIN of `hf` seen from `first` (the first frame's
+    // erase). `hf` must outlive the refiner.
+    Refiner(const Heightfield& hf, const View& first, const RefineOptions& options = {});
+    // Starts from a mesh (a TIN or a surface mesh).
+    Refiner(Mesh mesh, const View& first, const RefineOptions& options = {});
+    ~Refiner();
+    Refiner(const Refiner&) = delete;
+    Refiner& operator=(const Refiner&) = delete;
+
+    // The first frame's statistics (the initial erase).
+    const FrameStats& first_frame() const;
+    // Moves to `view`: recovers where the bound would break, erases where SP fell below
+    // (1 - hysteresis) tau. Afterwards every frame-visible deviation is <= tau pixels.
+    FrameStats update(const View& view);
+
+    // The current TIN: erased nodes and their faces are marked deleted, not removed; vertex idx =
+    // input vertex (grid sample id for a heightfield).
+    const Mesh& mesh() const;
+    bool is_erased(Mesh::VertexHandle v) const;
+    // Bytes of the whole structure: the mesh's arrays and the erase history.
+    std::size_t bytes() const;
+
+    struct Impl; // the state, opaque (refine.cpp)
+
+  private:
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace tinlod

@@ -1,0 +1,91 @@
+// The refiner (refine.hpp): a NodeEraser kept alive between frames, moved view to view.
+#include "tinlod/refine.hpp"
+#include "tinlod/util.hpp"
+
+#include <cassert>
+
+namespace tinlod {
+
+struct Refiner::Impl {
+    Mesh mesh;
+    RefineOptions options;
+    std::unique_ptr<NodeEraser> eraser;
+    FrameStats first;
+};
+
+static EraseOptions erase_options(const RefineOptions& options) {
+    EraseOptions eo;
+    eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
+    eo.significance = options.significance;
+    eo.max_valence = options.max_valence;
+    return eo;
+}
+
+static void start(Refiner::Impl& s, const View& first) {
+    assert(s.options.tol_px > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
+    assert(s.options.significance.model != SpModel::vertical);
+    Stopwatch clock;
+    s.eraser = std::make_unique<NodeEraser>(s.mesh, &first, erase_options(s.options));
+    s.first.ms_weights = clock.ms();
+    clock.reset();
+    const EraseStats e = s.eraser->erase();
+    s.first.ms_erase = clock.ms();
+    s.first.erased = e.erased;
+    s.first.candidates = e.evaluations;
+    s.first.nodes = s.eraser->live_nodes();
+    s.first.triangles = s.eraser->live_triangles();
+    s.first.bound_px = e.max_weighted;
+    s.first.ms_total = s.first.ms_weights + s.first.ms_erase;
+}
+
+Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->mesh = grid_tin(hf);
+    impl_->options = options;
+    start(*impl_, first);
+}
+
+Refiner::Refiner(Mesh mesh, const View& first, const RefineOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->mesh = std::move(mesh);
+    impl_->options = options;
+    start(*impl_, first);
+}
+
+Refiner::~Refiner() = default;
+
+const FrameStats& Refiner::first_frame() const { return impl_->first; }
+
+FrameStats Refiner::update(const View& view) {
+    Impl& s = *impl_;
+    Stopwatch clock;
+    const UpdateStats u =
+        s.eraser->update(view, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
+    FrameStats f;
+    f.erased = u.erased;
+    f.recovered = u.recovered;
+    f.candidates = u.candidates;
+    f.ms_weights = u.ms_weights;
+    f.ms_recover = u.ms_recover;
+    f.ms_erase = u.ms_erase;
+    f.nodes = s.eraser->live_nodes();
+    f.triangles = s.eraser->live_triangles();
+    f.ms_total = clock.ms();
+    return f;
+}
+
+const Mesh& Refiner::mesh() const { return impl_->mesh; }
+
+bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_erased(v); }
+
+std::size_t Refiner::bytes() const {
+    const Mesh& m = impl_->mesh;
+    // OpenMesh's arrays: per vertex a point, an outgoing halfedge, a status byte and the origin
+    // property; per halfedge its vertex, next, prev and face; per edge and face a status byte, per
+    // face a halfedge.
+    const std::size_t mesh_bytes = m.n_vertices() * (sizeof(Mesh::Point) + 4 + 1 + 8) +
+                                   m.n_halfedges() * 16 + m.n_edges() * 1 + m.n_faces() * (4 + 1);
+    return mesh_bytes + impl_->eraser->history_bytes();
+}
+
+} // namespace tinlod

@@ -1,0 +1,145 @@
+// The refiner: one TIN follows the observer both ways; every frame's exhaustively measured
+// screen-space error stays within tau, nodes come back where the observer approaches and go where
+// it recedes, and a round trip returns to where it started.
+#include "assets.hpp"
+
+#include "tinlod/camera_path.hpp"
+#include "tinlod/metrics.hpp"
+#include "tinlod/raster.hpp"
+#include "tinlod/refine.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <sstream>
+
+using namespace tinlod;
+using tinlod::test::asset;
+
+namespace {
+
+View look(const glm::dvec3& eye, const glm::dvec3& at) {
+    View v;
+    v.eye = eye;
+    v.at = at;
+    return v;
+}
+
+// Live nodes whose sample lies in the west (x < split) and east halves.
+std::pair<std::int64_t, std::int64_t> nodes_by_half(const Refiner& r, double split) {
+    std::int64_t west = 0, east = 0;
+    for (auto v : r.mesh().vertices())
+        (r.mesh().point(v)[0] < split ? west : east) += 1;
+    return {west, east};
+}
+
+} // namespace
+
+TEST(Refiner, EveryFrameWithinTauWhileFlyingAcrossARealDem) {
+    const Heightfield hf = load_heightfield(asset("dem_srtm30.tif"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    // A low pass from the south-west corner to the north-east, then back up high.
+    CameraPath path;
+    const double z = hf.max_z() + 500.0;
+    path.keys = {{0, {0.1 * w, -0.05 * h, z}, {0.5 * w, 0.5 * h, 0}},
+                 {1, {0.5 * w, 0.4 * h, z}, {0.9 * w, 0.9 * h, 0}},
+                 {2, {0.8 * w, 0.8 * h, z + 20000}, {0.9 * w, 1.0 * h, 0}},
+                 {3, {0.5 * w, 0.5 * h, z + 200000}, {0.5 * w, 0.51 * h, 0}}};
+    for (double tau : {0.5, 2.0}) {
+        SCOPED_TRACE(tau);
+        RefineOptions options;
+        options.tol_px = tau;
+        const auto views = path.sample(13, View{});
+        Refiner refiner(hf, views[0], options);
+        std::int64_t recovered = 0, erased = 0;
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            if (i > 0) {
+                const FrameStats f = refiner.update(views[i]);
+                recovered += f.recovered;
+                erased += f.erased;
+            }
+            ErrorOptions eo;
+            eo.view = &views[i];
+            const TinError e = measure_error(hf, refiner.mesh(), eo);
+            EXPECT_LE(e.max_screen_px, tau) << "frame " << i;
+            EXPECT_EQ(e.uncovered, 0) << "frame " << i;
+            EXPECT_EQ(tinlod::test::count_folded_faces(refiner.mesh()), 0) << "frame " << i;
+        }
+        EXPECT_GT(recovered, 0);
+        EXPECT_GT(erased, 0);
+    }
+}
+
+TEST(Refiner, ApproachingRecoversThereRecedingErasesThere) {
+    const Heightfield hf = load_heightfield(asset("crater_u16.png"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    const double split = w / 2;
+    const double z = hf.max_z() + 60.0;
+    // Far in the west looking east, then close over the east half looking at it.
+    const View far = look({-3 * w, h / 2, z + 400}, {w, h / 2, hf.min_z()});
+    const View near_east = look({0.6 * w, h / 2, z}, {0.9 * w, h / 2, hf.min_z()});
+    RefineOptions options;
+    Refiner refiner(hf, far, options);
+    const auto before = nodes_by_half(refiner, split);
+    const FrameStats in = refiner.update(near_east);
+    const auto close = nodes_by_half(refiner, split);
+    EXPECT_GT(in.recovered, 0);
+    EXPECT_GT(close.second, before.second) << "the east half, now close, must gain nodes";
+    const FrameStats out = refiner.update(far);
+    const auto after = nodes_by_half(refiner, split);
+    EXPECT_GT(out.erased, 0);
+    EXPECT_LT(after.second, close.second) << "the east half, far again, must lose nodes";
+    ErrorOptions eo;
+    eo.view = &far;
+    EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px);
+}
+
+TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
+    const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    const View start = look({-0.5 * w, -0.5 * h, hf.max_z() + 800}, {w / 2, h / 2, hf.min_z()});
+    const View close = look({0.4 * w, 0.4 * h, hf.max_z() + 100}, {0.6 * w, 0.6 * h, hf.min_z()});
+    RefineOptions options;
+    Refiner refiner(hf, start, options);
+    const std::int64_t first = refiner.first_frame().nodes;
+    refiner.update(close);
+    refiner.update(start);
+    const FrameStats back = refiner.update(start);
+    // Standing still changes nothing: the hysteresis band keeps every node where it is.
+    EXPECT_EQ(back.erased, 0);
+    EXPECT_EQ(back.recovered, 0);
+    // Back at the first view the TIN is as coarse as the first frame, within a tenth.
+    EXPECT_NEAR(double(back.nodes), double(first), 0.1 * double(first));
+    ErrorOptions eo;
+    eo.view = &start;
+    EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px);
+}
+
+TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
+    const std::string dir = tinlod::test::temp_dir();
+    const auto r = tinlod::test::run_cli("fly '" + asset("N42E001.hgt") + "' --path '" +
+                                         asset("paths/n42_descent.csv") +
+                                         "' --fps 0.5 --tol 1 --check --stats " + dir + "/frames.csv");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(dir + "/frames.csv");
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,ms_erase,ms_recover,"
+                    "ms_total,max_screen_px");
+    int frames = 0;
+    std::int64_t first_nodes = 0, last_nodes = 0;
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string cell; std::getline(ss, cell, ',');)
+            f.push_back(cell);
+        ASSERT_EQ(f.size(), 11u) << line;
+        EXPECT_LE(std::stod(f[10]), 1.0) << line;
+        last_nodes = std::stoll(f[1]);
+        if (frames++ == 0)
+            first_nodes = last_nodes;
+    }
+    EXPECT_EQ(frames, 11); // 20 s of path at 0.5 frames per second, both ends included
+    EXPECT_GT(last_nodes, first_nodes) << "a descent to the ground ends with more nodes";
+}
