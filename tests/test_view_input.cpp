@@ -6,6 +6,7 @@
 #include "lod_worker.hpp"
 
 #include "tinlod/camera_path.hpp"
+#include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
 
 #include <gtest/gtest.h>
@@ -388,4 +389,28 @@ TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTau) {
     }
     EXPECT_GT(erased->scalar_max, 0.0f);
     EXPECT_LE(above, erased->vertex_scalar.size() / 20 + 1);
+}
+
+TEST(ViewWorker, RefineStageKeepsOneTinThatFollowsTheEye) {
+    SceneInfo info;
+    auto engine = open_scene(test::asset("dem_squared.tif"), info);
+    const Heightfield hf = load_heightfield(test::asset("dem_squared.tif"));
+    View high;
+    high.viewport_w = 800;
+    high.viewport_h = 600;
+    high.eye = {0.5 * info.hi.x, -0.5 * info.hi.y, info.hi.z + 2.0 * info.hi.x};
+    high.at = 0.5 * (info.lo + info.hi);
+    View low = high;
+    low.eye = {0.5 * info.hi.x, 0.2 * info.hi.y, info.hi.z + 50.0};
+    LodSettings s;
+    s.stages = LodStages::refine;
+    const auto far = engine->compute(high, s);
+    const auto near = engine->compute(low, s);
+    EXPECT_GT(near->nodes, far->nodes) << "descending recovers nodes";
+    for (const auto& [r, v] : {std::pair{far.get(), &high}, std::pair{near.get(), &low}}) {
+        ErrorOptions eo;
+        eo.view = v;
+        EXPECT_LE(measure_error(hf, r->mesh, eo).max_screen_px, s.tol_px);
+        EXPECT_EQ(r->triangles, std::int64_t(r->mesh.n_faces()));
+    }
 }

@@ -28,10 +28,7 @@ static Register build("build", 20, [](CLI::App& cmd) {
         if (is_mesh_path(args->output))
             throw Error(args->output, "a store is not a mesh file; name it .tlq");
         Stopwatch clock;
-        LoadOptions lo;
-        lo.cell = args->raster.cell;
-        lo.zscale = args->raster.zscale;
-        lo.terrain_rgb = args->raster.terrain_rgb;
+        const LoadOptions lo = args->raster.load_options();
         const Heightfield hf = load_heightfield(args->input, lo);
         const double ms_load = clock.ms();
         clock.reset();

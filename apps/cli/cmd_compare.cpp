@@ -59,10 +59,7 @@ static Register compare("compare", 70, [](CLI::App& cmd) {
         if (args->dem_normals && is_mesh_path(args->reference))
             throw Error("--dem-normals", "needs a DEM as REFERENCE");
         Renderer renderer; // before the long work, so a machine without OpenGL says so at once
-        LoadOptions lo;
-        lo.cell = args->raster.cell;
-        lo.zscale = args->raster.zscale;
-        lo.terrain_rgb = args->raster.terrain_rgb;
+        const LoadOptions lo = args->raster.load_options();
         const Mesh mesh = is_mesh_path(args->input) ? read_mesh(args->input)
                                                     : grid_tin(load_heightfield(args->input, lo));
         std::optional<Heightfield> dem;

@@ -95,10 +95,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                 throw Error("--check", "measures against DEM samples: give a DEM, not a mesh");
             refiner.emplace(read_mesh(args->input), views.front(), options);
         } else {
-            LoadOptions lo;
-            lo.cell = args->raster.cell;
-            lo.zscale = args->raster.zscale;
-            lo.terrain_rgb = args->raster.terrain_rgb;
+            const LoadOptions lo = args->raster.load_options();
             hf = load_heightfield(args->input, lo);
             for (const View& v : views) {
                 const double gx = v.eye.x / hf->dx, gy = v.eye.y / hf->dy;

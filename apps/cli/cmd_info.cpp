@@ -12,10 +12,7 @@
 namespace tinlod::cli {
 
 static nlohmann::json raster_info(const std::string& path, const RasterOptions& ro) {
-    LoadOptions lo;
-    lo.cell = ro.cell;
-    lo.zscale = ro.zscale;
-    lo.terrain_rgb = ro.terrain_rgb;
+    const LoadOptions lo = ro.load_options();
     const Heightfield hf = load_heightfield(path, lo);
     const float lo_z = hf.min_z(), hi_z = hf.max_z();
     return {{"file", path},

@@ -159,10 +159,7 @@ static Register render("render", 60, [](CLI::App& cmd) {
         if (args->dem_normals && !has_dem)
             throw Error("--dem-normals", "needs the DEM: give a DEM or --reference DEM");
         Renderer renderer; // before the long work, so a machine without OpenGL says so at once
-        LoadOptions lo;
-        lo.cell = args->raster.cell;
-        lo.zscale = args->raster.zscale;
-        lo.terrain_rgb = args->raster.terrain_rgb;
+        const LoadOptions lo = args->raster.load_options();
         std::optional<Heightfield> dem;
         Mesh mesh;
         if (is_mesh_path(args->input)) {

@@ -106,10 +106,7 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
                 lod = std::make_unique<QuadTreeLod>(std::move(owned));
             times["load"] = clock.ms();
         } else {
-            LoadOptions lo;
-            lo.cell = args->raster.cell;
-            lo.zscale = args->raster.zscale;
-            lo.terrain_rgb = args->raster.terrain_rgb;
+            const LoadOptions lo = args->raster.load_options();
             hf = load_heightfield(args->input, lo);
             times["load"] = clock.ms();
             if (!args->full) {

@@ -79,10 +79,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         if (is_mesh_path(args->input)) {
             mesh = read_mesh(args->input);
         } else {
-            LoadOptions lo;
-            lo.cell = args->raster.cell;
-            lo.zscale = args->raster.zscale;
-            lo.terrain_rgb = args->raster.terrain_rgb;
+            const LoadOptions lo = args->raster.load_options();
             hf = is_store_file(args->input) ? TileStore(args->input).heightfield()
                                             : load_heightfield(args->input, lo);
         }

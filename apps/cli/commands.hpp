@@ -2,6 +2,7 @@
 // live in their own files.
 #pragma once
 
+#include "tinlod/raster.hpp"
 #include "tinlod/view.hpp"
 
 #include <CLI/CLI.hpp>
@@ -44,6 +45,7 @@ struct RasterOptions {
     double zscale = 1.0;
     bool terrain_rgb = false;
     void add(CLI::App& cmd);
+    LoadOptions load_options() const;
 };
 
 } // namespace tinlod::cli

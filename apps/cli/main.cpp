@@ -44,6 +44,14 @@ void RasterOptions::add(CLI::App& cmd) {
                  "decode an RGB image as Mapbox Terrain-RGB: (R*65536+G*256+B)/10-10000");
 }
 
+LoadOptions RasterOptions::load_options() const {
+    LoadOptions lo;
+    lo.cell = cell;
+    lo.zscale = zscale;
+    lo.terrain_rgb = terrain_rgb;
+    return lo;
+}
+
 } // namespace tinlod::cli
 
 int main(int argc, char** argv) {

@@ -5,6 +5,7 @@
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/quadtree.hpp"
+#include "tinlod/refine.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
@@ -150,13 +151,37 @@ class EngineBase : public LodEngine {
     }
 };
 
-// DEM (in memory) or store (read partially): retrieval with a QuadTreeLod.
+// The live part of the refiner's TIN as a compact mesh (origin property kept).
+Mesh live_copy(const Mesh& tin) {
+    Mesh out;
+    const auto from = find_origin_property(tin);
+    const auto to = get_origin_property(out);
+    std::vector<Mesh::VertexHandle> map(tin.n_vertices());
+    for (auto v : tin.vertices()) {
+        map[v.idx()] = out.add_vertex(tin.point(v));
+        out.property(to, map[v.idx()]) = from.is_valid() ? tin.property(from, v) : v.idx();
+    }
+    for (auto f : tin.faces()) {
+        Mesh::VertexHandle c[3];
+        int i = 0;
+        for (auto v : f.vertices())
+            c[i++] = map[v.idx()];
+        out.add_face(c[0], c[1], c[2]);
+    }
+    return out;
+}
+
+// DEM (in memory) or store (read partially): retrieval with a QuadTreeLod, or the refiner over
+// the full grid (a store is then read whole, once).
 class GridEngine final : public EngineBase {
   public:
-    explicit GridEngine(const Heightfield& hf) : tree_(std::in_place, hf), lod_(*tree_) {}
-    explicit GridEngine(std::unique_ptr<TileStore> store) : lod_(std::move(store)) {}
+    explicit GridEngine(const Heightfield& hf) : hf_(hf), tree_(std::in_place, hf), lod_(*tree_) {}
+    explicit GridEngine(std::unique_ptr<TileStore> store)
+        : store_(store.get()), lod_(std::move(store)) {}
 
     std::unique_ptr<LodResult> compute(const View& view, const LodSettings& settings) override {
+        if (settings.stages == LodStages::refine)
+            return refine(view, settings);
         Stopwatch total;
         auto result = std::make_unique<LodResult>();
         RetrieveOptions ro;
@@ -174,12 +199,45 @@ class GridEngine final : public EngineBase {
     }
 
   private:
+    std::unique_ptr<LodResult> refine(const View& view, const LodSettings& settings) {
+        Stopwatch total;
+        auto result = std::make_unique<LodResult>();
+        if (!refiner_ || refined_tol_ != settings.tol_px ||
+            refined_model_ != settings.significance.model) {
+            if (!hf_)
+                hf_ = store_->heightfield();
+            RefineOptions options;
+            options.tol_px = settings.tol_px;
+            options.significance = settings.significance;
+            refiner_.reset();
+            refiner_ = std::make_unique<Refiner>(*hf_, view, options);
+            refined_tol_ = settings.tol_px;
+            refined_model_ = settings.significance.model;
+            result->erase_ms = refiner_->first_frame().ms_total;
+        } else {
+            const FrameStats f = refiner_->update(view);
+            result->erase_ms = f.ms_total;
+        }
+        result->mesh = live_copy(refiner_->mesh());
+        LodSettings shown = settings;
+        shown.stages = LodStages::retrieve; // the erase is done: colour and index only
+        const GridFrame& g = lod_.frame();
+        finish(*result, view, shown, std::max((g.width - 1) * g.dx, (g.height - 1) * g.dy), true);
+        result->total_ms = total.ms();
+        return result;
+    }
+
     std::vector<float> errors(const Mesh& mesh, const View& view) override {
         return tree_ ? face_errors(mesh, *tree_, view) : EngineBase::errors(mesh, view);
     }
 
+    std::optional<Heightfield> hf_;
+    TileStore* store_ = nullptr;
     std::optional<QuadTree> tree_;
     QuadTreeLod lod_;
+    std::unique_ptr<Refiner> refiner_;
+    double refined_tol_ = 0.0;
+    SpModel refined_model_ = SpModel::screen;
 };
 
 // A mesh file: shown whole, or decimated by node erase from the view.

@@ -25,6 +25,7 @@ namespace tinlod::viewer {
 enum class LodStages {
     retrieve,       // the quad-tree retrieval only (DEM, store); a mesh input is shown whole
     retrieve_erase, // then distance decay by node erase (erase_nodes) from the same view
+    refine,         // one TIN kept between views: erased and recovered incrementally (Refiner)
 };
 
 enum class ColorBy { shade, height, sp, level, error };

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     CLI::App app{"tinlod-view: fly over a terrain and watch its level of detail follow you"};
     ViewerOptions options;
     std::string size = "1280x720", color = "height";
-    bool erase = false, no_cull = false;
+    bool erase = false, refine = false, no_cull = false;
     app.add_option("INPUT", options.input,
                    "DEM, quad-tree store (.tlq) or mesh (.ply .obj .off .stl)");
     app.add_option("--script", options.script,
@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
     app.add_option("--tol", options.lod.tol_px, "screen-space error bound tau, pixels")
         ->capture_default_str();
     app.add_flag("--erase", erase, "erase nodes by significance after retrieval");
+    app.add_flag("--refine", refine,
+                 "DEM/store: keep one TIN between frames, erasing and recovering nodes");
     app.add_flag("--no-cull", no_cull, "keep the bound outside the view frustum too");
     app.add_option("--color", color, "shade, height, sp, level or error")->capture_default_str();
     app.add_flag("--wire", options.wire, "wireframe overlay");
@@ -57,7 +59,9 @@ int main(int argc, char** argv) {
         if (c == colors.end())
             throw Error("--color", "unknown colouring '" + color + "'");
         options.lod.color = c->second;
-        options.lod.stages = erase ? LodStages::retrieve_erase : LodStages::retrieve;
+        options.lod.stages = refine ? LodStages::refine
+                             : erase ? LodStages::retrieve_erase
+                                     : LodStages::retrieve;
         options.lod.cull = !no_cull;
         if (!options.script.empty()) {
             if (options.input.empty())

@@ -431,6 +431,8 @@ void Viewer::panel(double frame_ms) {
             ImGui::Text("worker %.1f ms  upload %.1f ms", current_->total_ms, upload_ms_);
             if (current_->settings.stages == LodStages::retrieve_erase)
                 ImGui::Text("erase bound reached %.2f px", current_->erase_max_px);
+            else if (current_->settings.stages == LodStages::refine)
+                ImGui::Text("refiner: every deviation <= %.2f px", current_->settings.tol_px);
             else if (scene_.kind != "mesh")
                 ImGui::Text("retrieval bound %.2f px", current_->bound_px);
         }
@@ -489,20 +491,20 @@ void Viewer::panel(double frame_ms) {
         if (ImGui::SliderFloat("tau (px)", &tol, 0.25f, 64.0f, "%.2f",
                                ImGuiSliderFlags_Logarithmic))
             settings_.tol_px = tol;
-        int stages = settings_.stages == LodStages::retrieve ? 0 : 1;
+        int stages = int(settings_.stages);
         const bool grid = scene_.kind != "mesh";
         if (ImGui::RadioButton(grid ? "retrieval" : "whole mesh", &stages, 0))
             settings_.stages = LodStages::retrieve;
         ImGui::SameLine();
         if (ImGui::RadioButton("+ erase", &stages, 1))
             settings_.stages = LodStages::retrieve_erase;
-        ImGui::SameLine();
-        ImGui::BeginDisabled();
-        int none = -1;
-        ImGui::RadioButton("+ recovery", &none, 2);
-        ImGui::EndDisabled();
-        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-            ImGui::SetTooltip("needs the incremental refiner (lib/refine)");
+        if (grid) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton("+ recovery", &stages, 2))
+                settings_.stages = LodStages::refine;
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("one TIN kept between frames: nodes erased and recovered");
+        }
         if (grid)
             ImGui::Checkbox("cull outside the frustum", &settings_.cull);
         int model = settings_.significance.model == SpModel::paper ? 1 : 0;
