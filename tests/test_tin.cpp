@@ -101,3 +101,21 @@ TEST(MeshIo, UnwritablePathsThrowAndLeaveNothing) {
     EXPECT_THROW(write_mesh(mesh, dir + "/out.xyz"), Error);
     EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
+
+TEST(GridTin, SurfaceHeightMatchesTheTinAndRefusesEyesInside) {
+    const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
+    // At every sample the surface is the sample; between them it interpolates the grid TIN, so it
+    // agrees with measure_error's rasterisation: a TIN is its own surface.
+    for (int r = 0; r < hf.height; r += 7)
+        for (int c = 0; c < hf.width; c += 5)
+            EXPECT_NEAR(*grid_surface_height(hf, c * hf.dx, r * hf.dy), hf.at(c, r), 1e-3);
+    const double x = 40.25 * hf.dx, y = 70.6 * hf.dy;
+    const float corners[4] = {hf.at(40, 70), hf.at(41, 70), hf.at(40, 71), hf.at(41, 71)};
+    const double z = *grid_surface_height(hf, x, y);
+    EXPECT_GE(z, *std::min_element(corners, corners + 4));
+    EXPECT_LE(z, *std::max_element(corners, corners + 4));
+    EXPECT_FALSE(grid_surface_height(hf, -1.0, y).has_value());
+    EXPECT_THROW(check_eye_above(hf, {x, y, z - 1.0}, "--eye"), Error);
+    EXPECT_NO_THROW(check_eye_above(hf, {x, y, z + 1.0}, "--eye"));
+    EXPECT_NO_THROW(check_eye_above(hf, {-500.0, y, 0.0}, "--eye")); // outside, beside the terrain
+}

@@ -97,14 +97,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         } else {
             const LoadOptions lo = args->raster.load_options();
             hf = load_heightfield(args->input, lo);
-            for (const View& v : views) {
-                const double gx = v.eye.x / hf->dx, gy = v.eye.y / hf->dy;
-                if (gx >= 0 && gy >= 0 && gx <= hf->width - 1 && gy <= hf->height - 1 &&
-                    v.eye.z <= hf->at(int(std::lround(gx)), int(std::lround(gy))))
-                    throw Error(args->path, "a camera of the path is inside the terrain (eye at " +
-                                                std::to_string(v.eye.x) + "," + std::to_string(v.eye.y) +
-                                                "," + std::to_string(v.eye.z) + ")");
-            }
+            for (const View& v : views)
+                check_eye_above(*hf, v.eye, args->path);
             refiner.emplace(*hf, views.front(), options);
         }
         const double ms_start = clock.ms();

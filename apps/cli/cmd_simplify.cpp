@@ -83,6 +83,8 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             hf = is_store_file(args->input) ? TileStore(args->input).heightfield()
                                             : load_heightfield(args->input, lo);
         }
+        if (hf && view)
+            check_eye_above(*hf, view->eye, "--eye");
         const double ms_load = clock.ms();
         std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
         std::int64_t input_triangles = std::int64_t(mesh.n_faces());

@@ -1,6 +1,8 @@
 // The library's TIN type and the full-resolution grid TIN.
 #include "tinlod/tin.hpp"
+#include "tinlod/error.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <unordered_map>
 
@@ -48,6 +50,27 @@ Mesh grid_tin(const Heightfield& hf) {
             }
         }
     return mesh;
+}
+
+std::optional<double> grid_surface_height(const Heightfield& hf, double x, double y) {
+    const double u = x / hf.dx, v = y / hf.dy;
+    if (!(u >= 0 && v >= 0 && u <= hf.width - 1 && v <= hf.height - 1))
+        return std::nullopt;
+    const int c = std::min(int(u), hf.width - 2), r = std::min(int(v), hf.height - 2);
+    const double s = u - c, t = v - r;
+    const double a = hf.at(c, r), b = hf.at(c + 1, r), d = hf.at(c, r + 1), e = hf.at(c + 1, r + 1);
+    // The same diagonals as grid_tin: a-e on even cells, b-d on odd ones.
+    if ((r + c) % 2 == 0)
+        return s >= t ? a + s * (b - a) + t * (e - b) : a + t * (d - a) + s * (e - d);
+    return s + t <= 1 ? a + s * (b - a) + t * (d - a) : e + (1 - s) * (d - e) + (1 - t) * (b - e);
+}
+
+void check_eye_above(const Heightfield& hf, const glm::dvec3& eye, const std::string& subject) {
+    const auto ground = grid_surface_height(hf, eye.x, eye.y);
+    if (ground && eye.z <= *ground)
+        throw Error(subject, "the eye (" + std::to_string(eye.x) + ", " + std::to_string(eye.y) +
+                                 ", " + std::to_string(eye.z) + ") is inside the terrain (ground at " +
+                                 std::to_string(*ground) + ")");
 }
 
 Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& triangles) {

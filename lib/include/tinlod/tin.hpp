@@ -6,7 +6,11 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <glm/glm.hpp>
+
 #include <cstdint>
+#include <optional>
+#include <string>
 
 namespace tinlod {
 
@@ -30,6 +34,13 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh);
 // Full-resolution grid TIN: W*H nodes, 2(W-1)(H-1) triangles, every triangle counter-clockwise
 // seen from above, node i = grid sample i (origin property set).
 Mesh grid_tin(const Heightfield& hf);
+
+// Height of grid_tin(hf)'s surface at local (x, y) (its triangles, diagonals included), or
+// nothing outside the terrain. For "is this eye under the ground?" checks.
+std::optional<double> grid_surface_height(const Heightfield& hf, double x, double y);
+
+// Throws Error(subject, ...) when `eye` stands under grid_tin(hf)'s surface.
+void check_eye_above(const Heightfield& hf, const glm::dvec3& eye, const std::string& subject);
 
 // Triangles from a compact index list (3 node ids per triangle) over the heightfield samples;
 // only the referenced samples become nodes (origin property = sample id).
