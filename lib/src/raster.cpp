@@ -18,7 +18,6 @@
 #include <fstream>
 #include <limits>
 #include <optional>
-#include <regex>
 
 namespace tinlod {
 
@@ -74,12 +73,19 @@ RawGrid read_hgt(const std::string& path, Georef& geo) {
                               " bytes is not an SRTM tile (1201x1201 or 3601x3601 int16 = " +
                               std::to_string(1201 * 1201 * 2) + " or " + std::to_string(3601 * 3601 * 2) +
                               " bytes)");
-    static const std::regex name(R"(^([NSns])(\d{2})([EWew])(\d{3}))");
-    std::smatch m;
+    // SRTM names the tile by its south-west corner: [NS]dd[EW]ddd, e.g. N42E001.
     const std::string stem = fs::path(path).filename().string();
-    if (std::regex_search(stem, m, name)) {
-        const double lat = std::stod(m[2]) * (std::toupper(m[1].str()[0]) == 'S' ? -1 : 1);
-        const double lon = std::stod(m[4]) * (std::toupper(m[3].str()[0]) == 'W' ? -1 : 1);
+    auto digits = [&](std::size_t from, std::size_t count) {
+        for (std::size_t i = from; i < from + count; ++i)
+            if (i >= stem.size() || !std::isdigit(static_cast<unsigned char>(stem[i])))
+                return false;
+        return true;
+    };
+    const char ns = stem.empty() ? 0 : char(std::toupper(static_cast<unsigned char>(stem[0])));
+    const char ew = stem.size() < 4 ? 0 : char(std::toupper(static_cast<unsigned char>(stem[3])));
+    if ((ns == 'N' || ns == 'S') && (ew == 'E' || ew == 'W') && digits(1, 2) && digits(4, 3)) {
+        const double lat = std::stod(stem.substr(1, 2)) * (ns == 'S' ? -1 : 1);
+        const double lon = std::stod(stem.substr(4, 3)) * (ew == 'W' ? -1 : 1);
         geo.present = true;
         geo.geographic = true;
         geo.epsg = 4326;
