@@ -239,6 +239,72 @@ struct Hole {
     double cost = 0.0;  // max weighted deviation over the node and the fan's swallowed nodes
 };
 
+// Pixels per unit of deviation at a point for one view: k / OD * peripheral(OA), the
+// significance.hpp screen_weight with the view's frame computed once; 1 without a view.
+class Weigher {
+  public:
+    Weigher() = default;
+    Weigher(const View *view, const SignificanceOptions &options) {
+        if (!view || options.model == SpModel::vertical)
+            return;
+        unit_ = false;
+        eye_ = view->eye;
+        f_ = view->axis();
+        const glm::dvec3 up = std::abs(f_.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+        r_ = glm::normalize(glm::cross(f_, up));
+        u_ = glm::cross(r_, f_);
+        k_ = view->k();
+        half_w_ = view->viewport_w / 2.0 + options.cone_margin_px;
+        half_h_ = view->viewport_h / 2.0 + options.cone_margin_px;
+        cone_ = std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
+        falloff_ = std::max(options.falloff_deg, 1e-6) * M_PI / 180.0;
+        floor_ = options.floor;
+    }
+    double operator()(const glm::dvec3 &p) const {
+        if (unit_)
+            return 1.0;
+        const glm::dvec3 d = p - eye_;
+        const double od = glm::length(d);
+        if (!(od > 0.0))
+            return INFINITY;
+        const double depth = glm::dot(d, f_);
+        if (depth > 0.0 && std::abs(glm::dot(d, r_)) * k_ <= half_w_ * depth &&
+            std::abs(glm::dot(d, u_)) * k_ <= half_h_ * depth)
+            return k_ / od; // inside the frustum
+        const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
+        return beyond <= 0.0 ? k_ / od : k_ / od * std::max(floor_, std::exp(-beyond / falloff_));
+    }
+    // An upper bound of the weight anywhere in the box [lo, hi]: k over the box's distance to the
+    // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the axis.
+    double bound(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
+        if (unit_)
+            return 1.0;
+        const double dist = glm::length(glm::clamp(eye_, lo, hi) - eye_);
+        if (!(dist > 0.0))
+            return INFINITY;
+        const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
+        const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
+        if (dc <= radius)
+            return k_ / dist;
+        const double angle = std::acos(std::clamp(glm::dot(c, f_) / dc, -1.0, 1.0)) -
+                             std::asin(radius / dc);
+        const double beyond = angle - cone_;
+        return beyond <= 0.0 ? k_ / dist : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
+    }
+
+  private:
+    bool unit_ = true;
+    glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
+    double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
+};
+
+// A swallowed node's place in a re-triangulated hole: its new triangle and its deviation there.
+struct Assignment {
+    std::uint32_t node;
+    std::uint8_t triangle;
+    float dev;
+};
+
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
 
@@ -251,8 +317,9 @@ struct NodeEraser::Impl {
     View view;
     bool xy = true;
     double focal_distance = 1.0;
-    std::vector<float> weight;                // per vertex: pixels per unit deviation (1: vertical)
-    std::vector<float> weight_prev;           // per vertex: the weight of the view before (update)
+    Weigher weigher;                          // pixels per unit deviation for the current view
+    Weigher weigher_prev;                     // the same for the view before (update)
+    std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
     std::vector<std::int32_t> record_of;      // per vertex: its erase record, -1 when live
@@ -265,7 +332,7 @@ struct NodeEraser::Impl {
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
     Hole hole;
-    std::vector<std::pair<std::uint32_t, std::uint8_t>> assign; // swallowed node -> new triangle
+    std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
 };
 
@@ -371,7 +438,7 @@ static bool gather_ring(const Mesh &m, VH v, Hole &h, int max_valence) {
 }
 
 static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
-    return dev > 0.0 ? dev * s.weight[node] : 0.0;
+    return dev > 0.0 ? dev * s.weigher(to_glm(s.mesh->point(VH(int(node))))) : 0.0;
 }
 
 // ---- Stages ------------------------------------------------------------------------------------
@@ -385,7 +452,7 @@ static void classify_nodes(NodeEraser::Impl &s) {
         if (!he.is_valid() || (m.is_boundary(he) && (!s.xy || !s.options.erase_boundary)))
             s.flags[v.idx()] |= k_locked;
     }
-    s.weight = node_weights(m, s.has_view ? &s.view : nullptr, s.options.significance);
+    s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
 }
 
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
@@ -448,13 +515,15 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit) {
         }
     s.assign.clear();
     double dev = 0.0;
-    s.assign.emplace_back(std::uint32_t(v.idx()), locate(s, h, pv, dev));
+    const std::uint8_t own = locate(s, h, pv, dev);
+    s.assign.push_back({std::uint32_t(v.idx()), own, float(dev)});
     h.delta = dev;
     h.cost = weighted(s, std::uint32_t(v.idx()), dev);
     for (int i = 0; i < fans && h.cost <= limit; ++i)
         for (std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()]; u >= 0;
              u = s.next_swallowed[u]) {
-            s.assign.emplace_back(std::uint32_t(u), locate(s, h, to_glm(m.point(VH(u))), dev));
+            const std::uint8_t t = locate(s, h, to_glm(m.point(VH(u))), dev);
+            s.assign.push_back({std::uint32_t(u), t, float(dev)});
             h.cost = std::max(h.cost, weighted(s, std::uint32_t(u), dev));
             if (h.cost > limit)
                 break; // over the bound: the exact excess does not matter
@@ -575,15 +644,19 @@ static void retriangulate(NodeEraser::Impl &s) {
         m.status(e).set_deleted(true);
         s.free_edges.push_back(e);
     }
-    for (int t = 0; t < fans; ++t)
+    for (int t = 0; t < fans; ++t) {
         s.face_head[face[t].idx()] = -1;
+        s.face_maxdev[face[t].idx()] = 0.0f;
+    }
     for (int t = h.ntri; t < fans; ++t) {
         m.status(face[t]).set_deleted(true);
         s.free_faces.push_back(face[t]);
     }
-    for (const auto &[u, t] : s.assign) {
-        s.next_swallowed[u] = s.face_head[face[t].idx()];
-        s.face_head[face[t].idx()] = std::int32_t(u);
+    for (const Assignment &a : s.assign) {
+        const int f = face[a.triangle].idx();
+        s.next_swallowed[a.node] = s.face_head[f];
+        s.face_head[f] = std::int32_t(a.node);
+        s.face_maxdev[f] = std::max(s.face_maxdev[f], a.dev);
     }
 
     EraseRecord record;
@@ -703,6 +776,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
             if (std::uint32_t(u) != x)
                 swallowed.push_back(std::uint32_t(u));
         s.face_head[face[k].idx()] = -1;
+        s.face_maxdev[face[k].idx()] = 0.0f;
     }
 
     HH boundary_prev, boundary_next, old_boundary;
@@ -804,6 +878,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         const FH f = face[locate(s, h, to_glm(m.point(VH(int(u)))), dev)];
         s.next_swallowed[u] = s.face_head[f.idx()];
         s.face_head[f.idx()] = std::int32_t(u);
+        s.face_maxdev[f.idx()] = std::max(s.face_maxdev[f.idx()], float(dev));
     }
     swallowed.resize(swallowed_begin);
     s.record_of[x] = -1;
@@ -835,6 +910,7 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
            (options.projection == Projection::automatic && all_ccw);
     s.next_swallowed.assign(s.mesh->n_vertices(), -1);
     s.face_head.assign(s.mesh->n_faces(), -1);
+    s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
     s.record_of.assign(s.mesh->n_vertices(), -1);
     set_view(view, options);
 }
@@ -980,17 +1056,31 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     s.has_view = true;
     if (s.options.significance.model == SpModel::paper)
         s.focal_distance = std::max(focal_point(m, view).distance, 1e-9);
-    s.weight_prev.swap(s.weight);
-    s.weight = node_weights(m, &s.view, s.options.significance);
+    s.weigher_prev = s.weigher;
+    s.weigher = Weigher(&s.view, s.options.significance);
     stats.ms_weights = clock.ms();
 
-    // recover: a worklist of faces, seeded with every face that swallowed a node; a face that gets
-    // its worst node back is replaced by the fans of the nodes re-inserted.
+    // recover: a worklist of faces, seeded with every face whose swallowed nodes may exceed the
+    // bound (their largest deviation over the distance to the box they lie in says so, without
+    // visiting them); a face that gets its worst node back is replaced by the fans of the nodes
+    // re-inserted.
     clock.reset();
     std::vector<FH> work;
-    for (auto f : m.faces())
-        if (s.face_head[f.idx()] >= 0)
+    for (auto f : m.faces()) {
+        const float dev = s.face_maxdev[f.idx()];
+        if (s.face_head[f.idx()] < 0 || dev <= 0.0f)
+            continue;
+        glm::dvec3 lo(INFINITY), hi(-INFINITY);
+        for (auto v : f.vertices()) {
+            lo = glm::min(lo, to_glm(m.point(v)));
+            hi = glm::max(hi, to_glm(m.point(v)));
+        }
+        // Swallowed nodes stand inside the face in xy and within their deviation of it in z.
+        lo.z -= dev;
+        hi.z += dev;
+        if (double(dev) * s.weigher.bound(lo, hi) > recover_above)
             work.push_back(f);
+    }
     std::vector<std::uint32_t> done;
     while (!work.empty()) {
         const FH f = work.back();
@@ -1017,8 +1107,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     s.heap.clear();
     std::vector<std::uint32_t> ranked;
     auto ratio = [&](std::uint32_t v) {
-        const float before = s.weight_prev[v];
-        return before > 0.0f ? s.weight[v] / before : 1.0f;
+        const glm::dvec3 p = to_glm(m.point(VH(int(v))));
+        const double before = s.weigher_prev(p);
+        return before > 0.0 ? float(s.weigher(p) / before) : 1.0f;
     };
     for (auto v : m.vertices()) {
         const std::uint32_t x = std::uint32_t(v.idx());
@@ -1028,6 +1119,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         if (!std::isfinite(key))
             continue; // its hole cannot be re-triangulated: only a change of its ring can help
         float fall = ratio(x);
+        // Weights vary smoothly: a node whose own weight kept it at twice the bound stays.
+        if (!(s.flags[x] & k_dirty) && double(key) * fall > 2.0 * erase_below)
+            continue;
         if (!(s.flags[x] & k_dirty) && double(key) * fall > erase_below) {
             for (auto r : m.vv_range(v))
                 fall = std::min(fall, ratio(std::uint32_t(r.idx())));
@@ -1090,7 +1184,7 @@ EraseStats NodeEraser::measure() const {
 
 std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
-    return s.weight.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
+    return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
            s.record_of.capacity() * 4 + s.flags.capacity() + s.heap.bytes() +
            s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
