@@ -7,10 +7,12 @@
 #include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/refine.hpp"
+#include "tinlod/render.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -142,4 +144,28 @@ TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     }
     EXPECT_EQ(frames, 11); // 20 s of path at 0.5 frames per second, both ends included
     EXPECT_GT(last_nodes, first_nodes) << "a descent to the ground ends with more nodes";
+}
+
+TEST(Refiner, FlyWritesOneRenderedFramePerStep) {
+    std::string why;
+    if (!render_available(&why))
+        GTEST_SKIP() << "no OpenGL context: " << why;
+    const std::string dir = tinlod::test::temp_dir();
+    const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    CameraPath path;
+    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
+                 {1, {w / 2, 0, hf.max_z() + 300}, {w / 2, h, hf.min_z()}}};
+    write_camera_path(path, dir + "/path.csv");
+    const auto r = tinlod::test::run_cli("fly '" + asset("dem_squared.tif") + "' --path " + dir +
+                                         "/path.csv --fps 3 --viewport 320x180 --frames " + dir);
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (int i = 0; i < 4; ++i) { // one second at 3 frames per second, both ends included
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%05d.png", i);
+        const Image frame = read_image(dir + name);
+        EXPECT_EQ(frame.width, 320);
+        EXPECT_EQ(frame.height, 180);
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir + "/frame_00004.png"));
 }
