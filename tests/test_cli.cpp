@@ -72,7 +72,26 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         std::string bytes((std::istreambuf_iterator<char>(src)), {});
         return write("truncated.tif", bytes.substr(0, bytes.size() / 3));
     }();
+    // A TIFF header declaring a 46000 x 46000 float raster, with no samples behind it.
+    const std::string huge_tif = [&] {
+        std::string b = "II*";
+        b += '\0';
+        auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
+        auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
+        u32(8);
+        const unsigned entries[][3] = {{256, 4, 46000}, {257, 4, 46000}, {258, 3, 32}, {259, 3, 1},
+                                       {262, 3, 1},     {273, 4, 8},     {277, 3, 1},  {278, 4, 46000},
+                                       {279, 4, 4000000000u}, {339, 3, 3}};
+        u16(10);
+        for (const auto& e : entries) {
+            u16(e[0]), u16(e[1]), u32(1);
+            e[1] == 3 ? (u16(e[2]), u16(0)) : u32(e[2]);
+        }
+        u32(0);
+        return write("huge.tif", b);
+    }();
     const std::vector<BadCase> cases = {
+        {"absurd raster size", "info " + huge_tif, huge_tif},
         {"missing", "retrieve --full " + (in / "nope.tif").string() + " -o {out}/a.ply", "no such file"},
         {"empty", "retrieve --full " + write("empty.tif", "") + " -o {out}/a.ply", "file is empty"},
         {"garbage", "retrieve --full " + write("garbage.png", "not a png") + " -o {out}/a.ply",

@@ -11,6 +11,8 @@
 #include <glm/glm.hpp>
 #include <proj.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -49,6 +51,24 @@ std::string lower_extension(const std::string& path) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     return ext;
+}
+
+// Bytes the loader will hold for a w x h raster of `channels` samples of `sample_bytes` each:
+// the samples as read, the float grid, the void mask and the heightfield.
+double load_bytes(std::int64_t w, std::int64_t h, int channels, int sample_bytes) {
+    return double(w) * double(h) * (double(channels) * sample_bytes + 4.0 + 1.0 + 4.0 + 1.0);
+}
+
+// Refuses a raster whose load would need more than half of this machine's memory, before any
+// allocation: a header can declare any size.
+void check_memory(const std::string& path, std::int64_t w, std::int64_t h, int channels,
+                  int sample_bytes) {
+    const double need = load_bytes(w, h, channels, sample_bytes);
+    const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    if (have > 0 && need > have / 2)
+        throw Error(path, "raster is " + std::to_string(w) + "x" + std::to_string(h) + ": loading it needs " +
+                              std::to_string(int(need / (1 << 20))) + " MiB, more than half of this machine's " +
+                              std::to_string(int(have / (1 << 20))) + " MiB");
 }
 
 void check_size(const std::string& path, std::int64_t w, std::int64_t h) {
@@ -180,6 +200,7 @@ RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
     }
     const OIIO::ImageSpec& spec = in->spec();
     check_size(path, spec.width, spec.height);
+    check_memory(path, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
     if (spec.depth > 1)
         throw Error(path, "volume images are not elevation rasters");
     RawGrid g;
