@@ -11,6 +11,8 @@
 #include "tinlod/raster.hpp"
 #include "tinlod/util.hpp"
 
+#include "common.hpp"
+
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
@@ -31,32 +33,6 @@ struct Row {
     double max_screen_px = 0.0;
 };
 
-std::int64_t folded_faces(const Mesh &mesh) {
-    std::int64_t n = 0;
-    for (auto f : mesh.faces()) {
-        Mesh::Point p[3];
-        int i = 0;
-        for (auto v : f.vertices())
-            p[i++] = mesh.point(v);
-        n += double(p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
-                 double(p[2][0] - p[0][0]) * (p[1][1] - p[0][1]) <=
-             0.0;
-    }
-    return n;
-}
-
-Heightfield crop(const Heightfield &hf, int size) {
-    Heightfield c = hf;
-    c.width = std::min(size, hf.width);
-    c.height = std::min(size, hf.height);
-    c.z.resize(std::size_t(c.width) * c.height);
-    for (int r = 0; r < c.height; ++r)
-        for (int col = 0; col < c.width; ++col)
-            c.at(col, r) = hf.at(col, r);
-    c.void_mask.clear();
-    return c;
-}
-
 View bench_view(const Heightfield &hf) {
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
     View view;
@@ -72,7 +48,7 @@ Row measure(const std::string &name, const Heightfield &hf, const View &view, co
             input_triangles,
             std::int64_t(out.n_vertices()),
             std::int64_t(out.n_faces()),
-            folded_faces(out),
+            bench::folded_faces(out),
             0.0};
     ErrorOptions eo;
     eo.view = &view;
@@ -167,7 +143,7 @@ int main(int argc, char **argv) {
     whole.push_back(run_meshopt(hf, view, target));
     print("Whole tile, same node count as tinlod at tau = 1 px (ratios to tinlod):", whole);
 
-    const Heightfield small = crop(hf, 513);
+    const Heightfield small = bench::crop(hf, 513, 513);
     const View small_view = bench_view(small);
     std::vector<Row> cropped;
     cropped.push_back(run_tinlod(small, small_view, 1.0, 0));

@@ -1,15 +1,15 @@
 // Quad-tree retrieval speed (traversal + compact output per view), the OpenMesh conversion timed
 // apart, and the build of the tree and its store, at tau = 1 px, 1920x1080, 60 degrees.
 //
-// Terrains: the real SRTM tile N42E001 (1201^2, meshes/), and a larger one made from it: bicubic
-// (Catmull-Rom) enlargement to (1200*s+1)^2 samples over the same ground (cells s times smaller),
-// plus fractal detail of the new scale: 4 octaves of value noise, the finest with amplitude
-// 0.5 m at the new cell size, each coarser octave twice as wide and 1.6x as strong. The scale s is
+// Terrains: the real SRTM tile N42E001 (1201^2, meshes/), and a larger one made from it by
+// bench::enlarge (common.hpp) to (1200*s+1)^2 samples over the same ground. The scale s is
 // TINLOD_BENCH_SCALE (default 3.41, i.e. 4097^2; 13.65 gives 16385^2 and needs ~12 GB).
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
+
+#include "common.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -25,59 +25,6 @@ using namespace tinlod;
 
 namespace {
 
-float catmull_rom(float p0, float p1, float p2, float p3, float t) {
-    return p1 + 0.5f * t * (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
-}
-
-float hash01(std::uint32_t x, std::uint32_t y, std::uint32_t seed) {
-    std::uint32_t h = x * 374761393u + y * 668265263u + seed * 2246822519u;
-    h = (h ^ (h >> 13)) * 1274126177u;
-    return float((h ^ (h >> 16)) & 0xFFFFFF) / float(0xFFFFFF) - 0.5f;
-}
-
-float value_noise(double u, double v, std::uint32_t seed) {
-    const auto x = std::uint32_t(u), y = std::uint32_t(v);
-    const float fx = float(u - x), fy = float(v - y);
-    const float sx = fx * fx * (3 - 2 * fx), sy = fy * fy * (3 - 2 * fy);
-    const float a = hash01(x, y, seed), b = hash01(x + 1, y, seed), c = hash01(x, y + 1, seed),
-                d = hash01(x + 1, y + 1, seed);
-    return a + (b - a) * sx + (c - a) * sy + (a - b - c + d) * sx * sy;
-}
-
-Heightfield enlarge(const Heightfield& src, double scale) {
-    Heightfield out;
-    const int cells = int(std::lround((src.width - 1) * scale));
-    out.width = out.height = cells + 1;
-    out.dx = src.dx * (src.width - 1) / cells;
-    out.dy = src.dy * (src.height - 1) / cells;
-    out.crs = src.crs;
-    out.z.resize(std::size_t(out.width) * out.height);
-    auto at = [&](int c, int r) {
-        return src.at(std::clamp(c, 0, src.width - 1), std::clamp(r, 0, src.height - 1));
-    };
-    for (int r = 0; r < out.height; ++r) {
-        const double v = double(r) * (src.height - 1) / cells;
-        const int r0 = std::min(int(v), src.height - 2);
-        const float tv = float(v - r0);
-        for (int c = 0; c < out.width; ++c) {
-            const double u = double(c) * (src.width - 1) / cells;
-            const int c0 = std::min(int(u), src.width - 2);
-            const float tu = float(u - c0);
-            float rows[4];
-            for (int k = 0; k < 4; ++k)
-                rows[k] = catmull_rom(at(c0 - 1, r0 - 1 + k), at(c0, r0 - 1 + k),
-                                      at(c0 + 1, r0 - 1 + k), at(c0 + 2, r0 - 1 + k), tu);
-            float detail = 0.0f, amp = 0.5f;
-            double period = 4.0;
-            for (int o = 0; o < 4; ++o, amp *= 1.6f, period *= 2)
-                detail += amp * value_noise(c / period, r / period, std::uint32_t(o));
-            out.z[std::size_t(r) * out.width + c] =
-                catmull_rom(rows[0], rows[1], rows[2], rows[3], tv) + detail;
-        }
-    }
-    return out;
-}
-
 struct Terrain {
     Heightfield hf;
     std::unique_ptr<QuadTree> tree;
@@ -91,7 +38,7 @@ Terrain& terrain(const std::string& name) {
         const auto meshes = std::filesystem::path(__FILE__).parent_path().parent_path() / "meshes";
         const Heightfield n42 = load_heightfield((meshes / "N42E001.hgt").string());
         const char* env = std::getenv("TINLOD_BENCH_SCALE");
-        slot->hf = name == "n42" ? n42 : enlarge(n42, env ? std::atof(env) : 3.41);
+        slot->hf = name == "n42" ? n42 : bench::enlarge(n42, env ? std::atof(env) : 3.41);
         slot->tree = std::make_unique<QuadTree>(slot->hf);
     }
     return *slot;

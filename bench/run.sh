@@ -1,0 +1,50 @@
+#!/bin/sh
+# The benchmark suite end to end (`make bench`, `make bench ARGS=--quick`): set-up (gnuplot, the
+# npm peers), the side-by-side suite (bench_suite), the Google Benchmark micro-benchmarks
+# (bench_micro), the plots; everything lands in bench/results/.
+#
+# usage: bench/run.sh BIN_DIR [--quick]
+set -eu
+BIN=$(cd "$1" && pwd)
+shift
+QUICK=""
+for a in "$@"; do
+    case "$a" in
+    --quick) QUICK=--quick ;;
+    *) echo "run.sh: unknown argument $a (only --quick)" >&2; exit 2 ;;
+    esac
+done
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+DATA=${TINLOD_DATA:-$ROOT/../shared/data}
+OUT=$ROOT/bench/results
+START=$(date +%s)
+
+"$ROOT/scripts/setup.sh" gnuplot-nox
+command -v node >/dev/null || "$ROOT/scripts/setup.sh" nodejs npm
+(cd "$ROOT/bench/peers" && npm ci --no-audit --no-fund --loglevel=error) ||
+    { [ -d "$ROOT/bench/peers/node_modules/delatin" ] && echo "run.sh: npm ci failed; using the installed peers" >&2; } ||
+    exit 1
+
+TMP=$(mktemp -d /tmp/tinlod-bench.XXXXXX)
+trap 'rm -rf "$TMP"' EXIT
+unzip -q -o "$DATA/dem/N48W125.hgt.zip" -d "$TMP"
+mkdir -p "$OUT"
+
+COMMAND="make bench${QUICK:+ ARGS=--quick}"
+"$BIN/bench_suite" $QUICK --data "$DATA" --peers "$ROOT/bench/peers" --out "$OUT" --tmp "$TMP" \
+    --command "$COMMAND"
+
+MIN_TIME=0.5
+[ -n "$QUICK" ] && MIN_TIME=0.1
+"$BIN/bench_micro" --benchmark_min_time="$MIN_TIME" --benchmark_out="$OUT/micro.json" \
+    --benchmark_out_format=json | tee "$OUT/micro.txt"
+{
+    printf '\n## Micro-benchmarks (bench_micro, Google Benchmark; micro.json, micro.txt)\n\n```\n'
+    grep -v '^\*\*\*' "$OUT/micro.txt"
+    printf '```\n'
+} >>"$OUT/RESULTS.md"
+
+gnuplot -e "tmp='$TMP'; out='$OUT'" "$ROOT/bench/plot.gp"
+END=$(date +%s)
+printf '\nWhole suite: %d s wall time.\n' $((END - START)) >>"$OUT/RESULTS.md"
+echo "bench: results in $OUT (RESULTS.md, *.csv, *.png) after $((END - START)) s"
