@@ -85,12 +85,9 @@ std::vector<float> face_vertical_error(const Mesh& mesh, const Heightfield& hf) 
     for (auto f : mesh.faces()) {
         if (mesh.status(f).deleted())
             continue;
-        glm::dvec3 p[3];
-        int i = 0;
-        for (auto v : f.vertices()) {
-            const auto& q = mesh.point(v);
-            p[i++] = glm::dvec3(q[0] / hf.dx, q[1] / hf.dy, q[2]);
-        }
+        auto p = face_corners(mesh, f);
+        for (auto& q : p)
+            q = glm::dvec3(q.x / hf.dx, q.y / hf.dy, q.z); // grid units
         const double area =
             (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
         if (area == 0.0)

@@ -28,12 +28,7 @@ std::vector<Triangle> live_triangles(const Mesh& mesh) {
     for (auto f : mesh.faces()) {
         if (mesh.status(f).deleted())
             continue;
-        glm::dvec3 p[3];
-        int i = 0;
-        for (auto v : f.vertices()) {
-            const auto& q = mesh.point(v);
-            p[i++] = glm::dvec3(q[0], q[1], q[2]);
-        }
+        const auto p = face_corners(mesh, f);
         out.push_back({p[0], p[1], p[2]});
     }
     return out;

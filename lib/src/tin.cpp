@@ -52,6 +52,16 @@ Mesh grid_tin(const Heightfield& hf) {
     return mesh;
 }
 
+std::array<glm::dvec3, 3> face_corners(const Mesh& mesh, Mesh::FaceHandle f) {
+    std::array<glm::dvec3, 3> p;
+    int i = 0;
+    for (auto v : mesh.fv_range(f)) {
+        const auto& q = mesh.point(v);
+        p[i++] = glm::dvec3(q[0], q[1], q[2]);
+    }
+    return p;
+}
+
 std::optional<double> grid_surface_height(const Heightfield& hf, double x, double y) {
     const double u = x / hf.dx, v = y / hf.dy;
     if (!(u >= 0 && v >= 0 && u <= hf.width - 1 && v <= hf.height - 1))

@@ -61,30 +61,23 @@ RunResult run_cli(const std::string& args) {
     return r;
 }
 
+// Twice the signed xy area of face f (positive: counter-clockwise seen from above).
+static double xy_area2(const Mesh& mesh, Mesh::FaceHandle f) {
+    const auto p = face_corners(mesh, f);
+    return (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+}
+
 std::int64_t count_folded_faces(const Mesh& mesh) {
     std::int64_t folded = 0;
-    for (auto f : mesh.faces()) {
-        Mesh::Point p[3];
-        int i = 0;
-        for (auto v : f.vertices())
-            p[i++] = mesh.point(v);
-        const double area2 = double(p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
-                             double(p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
-        folded += area2 <= 0.0;
-    }
+    for (auto f : mesh.faces())
+        folded += xy_area2(mesh, f) <= 0.0;
     return folded;
 }
 
 double xy_area(const Mesh& mesh) {
     double sum = 0;
-    for (auto f : mesh.faces()) {
-        Mesh::Point p[3];
-        int i = 0;
-        for (auto v : f.vertices())
-            p[i++] = mesh.point(v);
-        sum += 0.5 * (double(p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
-                      double(p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
-    }
+    for (auto f : mesh.faces())
+        sum += 0.5 * xy_area2(mesh, f);
     return sum;
 }
 

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -41,6 +42,9 @@ std::optional<double> grid_surface_height(const Heightfield& hf, double x, doubl
 
 // Throws Error(subject, ...) when `eye` stands under grid_tin(hf)'s surface.
 void check_eye_above(const Heightfield& hf, const glm::dvec3& eye, const std::string& subject);
+
+// The three corners of face f, in the face's order (counter-clockwise for a TIN seen from above).
+std::array<glm::dvec3, 3> face_corners(const Mesh& mesh, Mesh::FaceHandle f);
 
 // Triangles from a compact index list (3 node ids per triangle) over the heightfield samples;
 // only the referenced samples become nodes (origin property = sample id).
