@@ -50,8 +50,14 @@ static std::string slurp(const fs::path& p) {
 
 RunResult run_cli(const std::string& args) {
     const fs::path dir = temp_dir();
-    // A hang is a failure, not a stuck test run: give up after two minutes (exit status 124).
-    const std::string cmd = std::string("timeout 120 '") + TINLOD_CLI + "' " + args + " >'" +
+    // A hang is a failure, not a stuck test run: give up after two minutes (exit status 124),
+    // fifteen under the sanitizers, which run the CLI about ten times slower.
+#ifdef TINLOD_SANITIZED
+    const char* limit = "900";
+#else
+    const char* limit = "120";
+#endif
+    const std::string cmd = std::string("timeout ") + limit + " '" + TINLOD_CLI + "' " + args + " >'" +
                             (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
     const int raw = std::system(cmd.c_str());
     RunResult r;

@@ -18,7 +18,8 @@ struct RunResult {
     std::string out; // stdout
     std::string err; // stderr
 };
-// Runs the tinlod CLI with `args` (a shell-quoted string); status 124 when it hung (> 120 s).
+// Runs the tinlod CLI with `args` (a shell-quoted string); status 124 when it hung (> 120 s,
+// 900 s in a sanitizer build).
 RunResult run_cli(const std::string& args);
 
 // Invariants of a TIN: every edge manifold (<= 2 faces, OpenMesh guarantees it for a valid mesh),
