@@ -7,6 +7,7 @@ ifneq ($(SANITIZE),)
 BUILD := build-sanitize
 CMAKE_FLAGS += -DTINLOD_SANITIZE=$(SANITIZE)
 BUILD_TYPE ?= RelWithDebInfo
+export LSAN_OPTIONS = suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0
 endif
 BUILD_TYPE ?= Release
 
