@@ -110,6 +110,10 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "end_header\n"),
          "declares 3000000000"},
+        // Found by fuzz_mesh: OpenMesh's PLY reader spins forever on this format line.
+        {"malformed PLY format", "info " + write("spin.ply", "ply\nformat ascii \3311.0\nelement vertex 3\n"
+                                                             "property float x\nend_header\n0\n0\n0\n"),
+         "unknown format"},
         {"absurd OFF count", "info " + write("huge.off", "OFF\n300000000 1 0\n0 0 0\n"), "declares 300000000"},
         {"NaN camera", "retrieve " + asset("dem_squared.tif") + " --eye nan,0,0 --at 1,1,1 -o {out}/a.ply",
          "--eye: coordinates must be finite"},

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <sstream>
 #include <map>
+#include <set>
 
 namespace tinlod {
 
@@ -59,15 +60,44 @@ static void check_header(const std::string& path, const std::string& ext, std::u
         const auto end = head.find("end_header");
         if (end == std::string::npos)
             throw Error(path, "truncated or malformed PLY header (no end_header)");
+        // OpenMesh's PLY reader also loops forever on a malformed format line: accept only the
+        // header grammar of the PLY specification.
+        static const std::set<std::string> k_types = {
+            "char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+            "int16", "uint16", "int32", "uint32", "float32", "float64"};
         std::istringstream lines(head.substr(0, end));
-        std::string line, element;
+        std::string line;
+        int number = 0;
         while (std::getline(lines, line)) {
+            ++number;
+            if (!line.empty() && line.back() == '\r')
+                line.pop_back();
             std::istringstream words(line);
-            std::string key, name;
-            std::uintmax_t count = 0;
+            std::string key, a, b, c, extra;
             words >> key;
-            if (key == "element" && (words >> name >> count))
-                too_many(name == "face" ? "faces" : "elements", count, 1);
+            const std::string where = "PLY header line " + std::to_string(number) + ": ";
+            if (number == 1 ? key != "ply" : key.empty())
+                throw Error(path, where + "malformed '" + line + "'");
+            if (key == "ply" || key == "comment" || key == "obj_info")
+                continue;
+            if (key == "format") {
+                if (!(words >> a >> b) || (words >> extra) || b != "1.0" ||
+                    (a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian"))
+                    throw Error(path, where + "unknown format '" + line + "'");
+            } else if (key == "element") {
+                std::uintmax_t count = 0;
+                if (!(words >> a >> count) || (words >> extra))
+                    throw Error(path, where + "malformed element '" + line + "'");
+                too_many(a == "face" ? "faces" : "elements", count, 1);
+            } else if (key == "property") {
+                words >> a;
+                const bool ok = a == "list" ? (words >> b >> c) && k_types.count(b) && k_types.count(c)
+                                            : k_types.count(a) > 0;
+                if (!ok || !(words >> extra) || (words >> extra))
+                    throw Error(path, where + "malformed property '" + line + "'");
+            } else {
+                throw Error(path, where + "unknown keyword '" + key + "'");
+            }
         }
     } else if (ext == ".off") {
         std::istringstream words(head);
