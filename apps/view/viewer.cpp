@@ -121,17 +121,9 @@ bool same_view(const View& a, const View& b) {
            a.viewport_w == b.viewport_w && a.viewport_h == b.viewport_h;
 }
 
-// Near and far planes around the scene box (clip_range's rule, on the box known at load).
+// Near and far planes around the scene box known at load.
 glm::dvec2 clip_for(const SceneInfo& scene, const View& view) {
-    double far = 0.0;
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner(i & 1 ? scene.hi.x : scene.lo.x, i & 2 ? scene.hi.y : scene.lo.y,
-                                i & 4 ? scene.hi.z : scene.lo.z);
-        far = std::max(far, glm::length(corner - view.eye));
-    }
-    far = far * 1.01 + 1e-3;
-    const double inside = glm::length(glm::clamp(view.eye, scene.lo, scene.hi) - view.eye);
-    return {std::clamp(inside * 0.99, far * 1e-5, far * 0.5), far};
+    return clip_range(scene.lo, scene.hi, view);
 }
 
 // The start view: from above the south edge, looking north at the centre.

@@ -219,14 +219,17 @@ glm::dvec2 clip_range(const Mesh& mesh, const View& view) {
     const Bounds b = live_bounds(mesh);
     if (b.empty())
         return {1.0, 2.0};
+    return clip_range(b.lo, b.hi, view);
+}
+
+glm::dvec2 clip_range(const glm::dvec3& lo, const glm::dvec3& hi, const View& view) {
     double far = 0.0;
     for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y,
-                                i & 4 ? b.hi.z : b.lo.z);
+        const glm::dvec3 corner(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
         far = std::max(far, glm::length(corner - view.eye));
     }
     far = far * 1.01 + 1e-3;
-    const double inside = glm::length(glm::clamp(view.eye, b.lo, b.hi) - view.eye);
+    const double inside = glm::length(glm::clamp(view.eye, lo, hi) - view.eye);
     // A 32-bit float depth buffer keeps a far/near ratio of 1e5 well resolved.
     const double near = std::clamp(inside * 0.99, far * 1e-5, far * 0.5);
     return {near, far};

@@ -59,6 +59,8 @@ struct Image {
 // `view`: far just beyond the farthest bounding-box corner, near at the distance to the box (or a
 // small fraction of far when the eye is inside it).
 glm::dvec2 clip_range(const Mesh& mesh, const View& view);
+// The same for the box [lo, hi] (world units).
+glm::dvec2 clip_range(const glm::dvec3& lo, const glm::dvec3& hi, const View& view);
 
 // Draws meshes into the GL 3.3 core context current on this thread (GL objects live in it).
 // Construct, use and destroy it only while that context is current.
