@@ -51,59 +51,79 @@ double in_circle(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c,
            (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
 }
 
-// Ear score: -1 when the ear (a, b, c) is not erasable, else 1 for a Delaunay ear plus its shape
-// quality in (0, 1]. `next` links the remaining polygon.
-double ear_score(const glm::dvec2 *q, const std::uint8_t *next, int a, int b, int c) {
+// The paper's erasing-ability test of the ear (a, b, c) of the remaining polygon linked by `next`:
+// strictly convex at b and no other remaining node in the closed triangle. Returns the ear's shape
+// quality in (0, 1] (2*sqrt(3)*area2 / sum of squared edges), or -1 when it is not erasable.
+double ear_quality(const glm::dvec2 *q, const std::uint8_t *next, int a, int b, int c) {
     const double area2 = orient(q[a], q[b], q[c]);
     if (area2 <= 0.0)
         return -1.0;
-    bool delaunay = true;
-    for (int j = next[c]; j != a; j = next[j]) {
+    for (int j = next[c]; j != a; j = next[j])
         if (in_closed_triangle(q[a], q[b], q[c], q[j]))
             return -1.0;
-        if (delaunay && in_circle(q[a], q[b], q[c], q[j]) > 0.0)
-            delaunay = false;
-    }
     const auto sq = [](const glm::dvec2 &v) { return v.x * v.x + v.y * v.y; };
     const double edges = sq(q[b] - q[a]) + sq(q[c] - q[b]) + sq(q[a] - q[c]);
-    return (delaunay ? 1.0 : 0.0) + 2.0 * std::sqrt(3.0) * area2 / edges;
+    return 2.0 * std::sqrt(3.0) * area2 / edges;
+}
+
+// Whether the circumcircle of the ear (a, b, c) holds no other remaining node (a Delaunay ear).
+bool is_delaunay_ear(const glm::dvec2 *q, const std::uint8_t *next, int a, int b, int c) {
+    for (int j = next[c]; j != a; j = next[j])
+        if (in_circle(q[a], q[b], q[c], q[j]) > 0.0)
+            return false;
+    return true;
 }
 
 // Ear clipping of the counter-clockwise polygon q[0..n); writes n-2 triangles to `out` and returns
-// their count, or -1 when no erasable ear is left before the end.
+// their count, or -1 when no erasable ear is left before the end. Each step clips the best shaped
+// Delaunay ear, or the best shaped ear when none is Delaunay; the circumcircle test runs only on
+// ears in order of quality until one passes (a Delaunay ear stays Delaunay as nodes leave).
 int clip_ears(const glm::dvec2 *q, int n, RingTriangle *out) {
     if (n < 3 || n > k_max_ring)
         return -1;
     std::array<std::uint8_t, k_max_ring> prev, next;
-    std::array<double, k_max_ring> score;
+    std::array<double, k_max_ring> quality;
+    std::array<bool, k_max_ring> delaunay; // known to be a Delaunay ear
     for (int i = 0; i < n; ++i) {
         prev[i] = std::uint8_t((i + n - 1) % n);
         next[i] = std::uint8_t((i + 1) % n);
+        delaunay[i] = false;
     }
     for (int i = 0; i < n; ++i)
-        score[i] = ear_score(q, next.data(), prev[i], i, next[i]);
+        quality[i] = ear_quality(q, next.data(), prev[i], i, next[i]);
     int first = 0, count = 0;
+    std::array<std::uint8_t, k_max_ring> order;
     for (int remaining = n; remaining > 3; --remaining) {
-        int best = -1;
-        double best_score = -1.0;
+        int valid = 0;
         int i = first;
         do {
-            if (score[i] > best_score) {
-                best_score = score[i];
-                best = i;
-            }
+            if (quality[i] >= 0.0)
+                order[valid++] = std::uint8_t(i);
             i = next[i];
         } while (i != first);
-        if (best < 0)
+        if (valid == 0)
             return -1; // no erasable ear: the ring is not a simple ccw polygon in this plane
+        for (int k = 1; k < valid; ++k) // insertion sort by quality, best first: a handful of ears
+            for (int j = k; j > 0 && quality[order[j]] > quality[order[j - 1]]; --j)
+                std::swap(order[j], order[j - 1]);
+        int best = order[0];
+        for (int k = 0; k < valid; ++k) {
+            const int e = order[k];
+            if (delaunay[e] || is_delaunay_ear(q, next.data(), prev[e], e, next[e])) {
+                delaunay[e] = true;
+                best = e;
+                break;
+            }
+        }
         const int a = prev[best], c = next[best];
         out[count++] = {std::uint8_t(a), std::uint8_t(best), std::uint8_t(c)};
         next[a] = std::uint8_t(c);
         prev[c] = std::uint8_t(a);
         if (first == best)
             first = c;
-        score[a] = ear_score(q, next.data(), prev[a], a, c);
-        score[c] = ear_score(q, next.data(), a, c, next[c]);
+        quality[a] = ear_quality(q, next.data(), prev[a], a, c);
+        quality[c] = ear_quality(q, next.data(), a, c, next[c]);
+        delaunay[a] = delaunay[c] = false;
     }
     const int a = first, b = next[a], c = next[b];
     if (orient(q[a], q[b], q[c]) <= 0.0)
@@ -318,7 +338,8 @@ struct NodeEraser::Impl {
     bool xy = true;
     double focal_distance = 1.0;
     Weigher weigher;                          // pixels per unit deviation for the current view
-    Weigher weigher_prev;                     // the same for the view before (update)
+    std::vector<float> weight;      // per vertex: weigher at the node, rounded up (empty: all 1)
+    std::vector<float> weight_prev; // the same for the view before (update)
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
@@ -438,7 +459,23 @@ static bool gather_ring(const Mesh &m, VH v, Hole &h, int max_valence) {
 }
 
 static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
-    return dev > 0.0 ? dev * s.weigher(to_glm(s.mesh->point(VH(int(node))))) : 0.0;
+    return dev > 0.0 ? dev * (s.weight.empty() ? 1.0 : double(s.weight[node])) : 0.0;
+}
+
+// Every node's weight for the current view, once, so an evaluation multiplies instead of taking
+// an arc cosine per swallowed node. Rounded up to float: a bound is never understated.
+static void fill_weights(NodeEraser::Impl &s) {
+    if (!s.has_view || s.options.significance.model == SpModel::vertical) {
+        s.weight.clear();
+        return;
+    }
+    const Mesh &m = *s.mesh;
+    s.weight.resize(m.n_vertices());
+    for (std::size_t i = 0; i < s.weight.size(); ++i) {
+        const double w = s.weigher(to_glm(m.point(VH(int(i)))));
+        const float f = float(w);
+        s.weight[i] = double(f) < w ? std::nextafter(f, INFINITY) : f;
+    }
 }
 
 // ---- Stages ------------------------------------------------------------------------------------
@@ -453,6 +490,7 @@ static void classify_nodes(NodeEraser::Impl &s) {
             s.flags[v.idx()] |= k_locked;
     }
     s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
+    fill_weights(s);
 }
 
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
@@ -519,6 +557,18 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit) {
     s.assign.push_back({std::uint32_t(v.idx()), own, float(dev)});
     h.delta = dev;
     h.cost = weighted(s, std::uint32_t(v.idx()), dev);
+    if (s.xy)
+        for (int t = 0; t < h.ntri; ++t) {
+            // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
+            // triangle next to it must not read more than the bound there either.
+            const std::uint8_t c[3] = {h.tri[t].a, h.tri[t].b, h.tri[t].c};
+            for (const std::uint8_t k : c) {
+                const double ulp =
+                    1.2e-7 * std::max({std::abs(h.p[k].x), std::abs(h.p[k].y), 1.0});
+                h.cost = std::max(h.cost, weighted(s, std::uint32_t(h.r[k].idx()),
+                                                   4.0 * ulp * h.frame[t].slope));
+            }
+        }
     for (int i = 0; i < fans && h.cost <= limit; ++i)
         for (std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()]; u >= 0;
              u = s.next_swallowed[u]) {
@@ -718,6 +768,82 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
         ++erased;
     }
     return erased;
+}
+
+// The sweep: passes over the nodes in index order (spatially coherent, so the half-edge arrays and
+// the swallowed lists stay in cache, unlike a queue that jumps across the terrain), each erasing
+// every node whose cost is within the pass's limit. Cheap erases go first because the limits rise
+// in rungs. A node is re-evaluated only when its ring changed or its last cost (a lower bound of
+// the true one) is within the rung. Measured on N42E001 (1.44 M nodes) from the demo view:
+//  - tolerance only: rungs tau / 64, tau / 8, then passes at tau until one erases nothing; 3.5x
+//    faster than the queue alone and 8 % fewer nodes at tau = 1 px (the queue's strict order does
+//    not pay at a fixed bound);
+//  - node budget: the order decides the error there, so the sweep only erases while more than
+//    twice the budget remains (rungs doubling from the 5th percentile of the first costs) and the
+//    queue does the rest; 2x faster than the queue alone at the same or lower error (40 k nodes:
+//    1.20 px against 1.26; 100 k nodes: 0.56 px against 0.59).
+constexpr int k_tau_rungs = 2;
+constexpr double k_tau_rung_ratio = 8.0;
+constexpr double k_budget_rung_ratio = 2.0;
+constexpr std::int64_t k_queue_share = 2; // the queue erases from this many times the budget
+
+// One pass at `limit`, until `stop_at` live nodes remain. Returns the erases made.
+static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t stop_at) {
+    const std::uint32_t n = std::uint32_t(s.mesh->n_vertices());
+    std::int64_t erased = 0;
+    for (std::uint32_t x = 0; x < n && s.live > stop_at; ++x) {
+        if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
+            continue;
+        if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
+            continue;
+        s.flags[x] &= std::uint8_t(~k_dirty);
+        if (!evaluate(s, VH(int(x)), limit)) {
+            s.heap.store_key(x, INFINITY); // until its ring changes
+            continue;
+        }
+        if (!(s.hole.cost <= limit)) {
+            s.heap.store_key(x, float(s.hole.cost));
+            continue;
+        }
+        retriangulate(s);
+        for (int i = 0; i < s.hole.n; ++i)
+            s.flags[s.hole.r[i].idx()] |= k_dirty;
+        ++erased;
+    }
+    return erased;
+}
+
+// classify -> erase: SP models whose key is the cost (not `paper`), see the sweep above.
+static std::int64_t sweep_erase(NodeEraser::Impl &s) {
+    const double tau = erase_limit(s);
+    s.heap.reset(s.mesh->n_vertices()); // keys only: 0 until a node is first measured
+    for (auto v : s.mesh->vertices())
+        s.flags[v.idx()] &= std::uint8_t(~k_dirty);
+    std::int64_t erased = 0;
+    if (s.options.max_nodes <= 0) {
+        for (int rung = k_tau_rungs; rung > 0; --rung)
+            erased += sweep_pass(s, tau * std::pow(k_tau_rung_ratio, -rung), 0);
+        for (std::int64_t made = 1; made > 0;) {
+            made = sweep_pass(s, tau, 0);
+            erased += made;
+        }
+        return erased;
+    }
+    const std::int64_t far = k_queue_share * std::max<std::int64_t>(s.options.max_nodes, 3);
+    erased += sweep_pass(s, 0.0, far); // measures every node's cost from below
+    std::vector<float> keys;
+    for (auto v : s.mesh->vertices())
+        if (!(s.flags[v.idx()] & k_locked) && std::isfinite(s.heap.key(v.idx())))
+            keys.push_back(s.heap.key(v.idx()));
+    if (!keys.empty()) {
+        const auto nth = keys.begin() + std::ptrdiff_t(keys.size() / 20);
+        std::nth_element(keys.begin(), nth, keys.end());
+        for (double limit = std::max(double(*nth), 1e-30); s.live > far && limit < tau;
+             limit *= k_budget_rung_ratio)
+            erased += sweep_pass(s, limit, far);
+    }
+    rank_nodes(s);
+    return erased + erase_loop(s);
 }
 
 // ---- Recovery ----------------------------------------------------------------------------------
@@ -939,8 +1065,13 @@ EraseStats NodeEraser::erase() {
     stats.input_nodes = s.live;
     stats.input_triangles = s.live_faces;
     const std::int64_t evaluations = s.evaluations;
-    rank_nodes(s);
-    stats.erased = erase_loop(s);
+    if (s.options.significance.model != SpModel::paper &&
+        (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance))) {
+        stats.erased = sweep_erase(s);
+    } else {
+        rank_nodes(s);
+        stats.erased = erase_loop(s);
+    }
     const EraseStats now = measure();
     stats.output_nodes = s.live;
     stats.output_triangles = s.live_faces;
@@ -1056,8 +1187,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     s.has_view = true;
     if (s.options.significance.model == SpModel::paper)
         s.focal_distance = std::max(focal_point(m, view).distance, 1e-9);
-    s.weigher_prev = s.weigher;
     s.weigher = Weigher(&s.view, s.options.significance);
+    std::swap(s.weight, s.weight_prev);
+    fill_weights(s);
     stats.ms_weights = clock.ms();
 
     // recover: a worklist of faces, seeded with every face whose swallowed nodes may exceed the
@@ -1107,9 +1239,8 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     s.heap.clear();
     std::vector<std::uint32_t> ranked;
     auto ratio = [&](std::uint32_t v) {
-        const glm::dvec3 p = to_glm(m.point(VH(int(v))));
-        const double before = s.weigher_prev(p);
-        return before > 0.0 ? float(s.weigher(p) / before) : 1.0f;
+        const float before = s.weight_prev[v];
+        return before > 0.0f ? s.weight[v] / before : 1.0f;
     };
     for (auto v : m.vertices()) {
         const std::uint32_t x = std::uint32_t(v.idx());
@@ -1186,6 +1317,7 @@ std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
     return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
            s.record_of.capacity() * 4 + s.flags.capacity() + s.heap.bytes() +
+           (s.weight.capacity() + s.weight_prev.capacity()) * 4 +
            s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
 }
@@ -1233,7 +1365,7 @@ bool is_erasable_ear(std::span<const glm::dvec2> ring, int i) {
     std::array<std::uint8_t, k_max_ring> next;
     for (int j = 0; j < n; ++j)
         next[j] = std::uint8_t((j + 1) % n);
-    return ear_score(ring.data(), next.data(), (i + n - 1) % n, i, (i + 1) % n) >= 0.0;
+    return ear_quality(ring.data(), next.data(), (i + n - 1) % n, i, (i + 1) % n) >= 0.0;
 }
 
 std::vector<RingTriangle> triangulate_ring(std::span<const glm::dvec2> ring) {
