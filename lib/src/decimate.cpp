@@ -19,6 +19,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace tinlod {
@@ -257,6 +258,7 @@ struct Hole {
     glm::dvec3 origin{0.0}, ex{1, 0, 0}, ey{0, 1, 0}; // projection frame (xy: the world frame)
     double delta = 0.0; // the node's own deviation from the new triangles
     double cost = 0.0;  // max weighted deviation over the node and the fan's swallowed nodes
+    bool deferred = false; // the fan swallowed more nodes than the evaluation may visit
 };
 
 // Pixels per unit of deviation at a point for one view: k / OD * peripheral(OA), the
@@ -495,10 +497,13 @@ static void classify_nodes(NodeEraser::Impl &s) {
 
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
 // it only as some value > limit); false when v cannot be erased without a fold-over, a
-// non-manifold edge or a moved outline.
-static bool evaluate(NodeEraser::Impl &s, VH v, double limit) {
+// non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the fan it
+// stops and sets hole.deferred.
+static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
+                     std::size_t max_swallowed = std::numeric_limits<std::size_t>::max()) {
     ++s.evaluations;
     Hole &h = s.hole;
+    h.deferred = false;
     const Mesh &m = *s.mesh;
     if (!gather_ring(m, v, h, s.options.max_valence))
         return false;
@@ -572,6 +577,10 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit) {
     for (int i = 0; i < fans && h.cost <= limit; ++i)
         for (std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()]; u >= 0;
              u = s.next_swallowed[u]) {
+            if (s.assign.size() > max_swallowed) {
+                h.deferred = true;
+                return true;
+            }
             const std::uint8_t t = locate(s, h, to_glm(m.point(VH(u))), dev);
             s.assign.push_back({std::uint32_t(u), t, float(dev)});
             h.cost = std::max(h.cost, weighted(s, std::uint32_t(u), dev));
@@ -774,21 +783,25 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
 // the swallowed lists stay in cache, unlike a queue that jumps across the terrain), each erasing
 // every node whose cost is within the pass's limit. Cheap erases go first because the limits rise
 // in rungs. A node is re-evaluated only when its ring changed or its last cost (a lower bound of
-// the true one) is within the rung. Measured on N42E001 (1.44 M nodes) from the demo view:
-//  - tolerance only: rungs tau / 64, tau / 8, then passes at tau until one erases nothing; 3.5x
-//    faster than the queue alone and 8 % fewer nodes at tau = 1 px (the queue's strict order does
+// the true one) is within the rung. Measured on N42E001 (1.44 M nodes) from the demo view, against
+// the queue alone in the same run:
+//  - tolerance only: rungs tau / 64, tau / 8, then passes at tau until one erases nothing; 3.4-4x
+//    faster and 4 % fewer nodes at tau = 1 px (42,087 against 43,897: the queue's strict order does
 //    not pay at a fixed bound);
 //  - node budget: the order decides the error there, so the sweep only erases while more than
-//    twice the budget remains (rungs doubling from the 5th percentile of the first costs) and the
-//    queue does the rest; 2x faster than the queue alone at the same or lower error (40 k nodes:
-//    1.20 px against 1.26; 100 k nodes: 0.56 px against 0.59).
+//    twice the budget remains (rungs doubling from the 5th percentile of the first costs, each
+//    exhausted before the next) and the queue does the rest; 1.2-1.6x faster at a lower error
+//    (40 k nodes: 1.22 px against 1.26).
 constexpr int k_tau_rungs = 2;
 constexpr double k_tau_rung_ratio = 8.0;
 constexpr double k_budget_rung_ratio = 2.0;
 constexpr std::int64_t k_queue_share = 2; // the queue erases from this many times the budget
+constexpr std::size_t k_chain_swallowed = 32; // see sweep_pass
 
-// One pass at `limit`, until `stop_at` live nodes remain. Returns the erases made.
-static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t stop_at) {
+// One pass at `limit`, until `stop_at` live nodes remain. Returns the erases made. `stamp` holds,
+// per node, the pass (mod 256) in which its ring last changed.
+static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t stop_at,
+                               std::vector<std::uint8_t> &stamp, std::uint8_t pass) {
     const std::uint32_t n = std::uint32_t(s.mesh->n_vertices());
     std::int64_t erased = 0;
     for (std::uint32_t x = 0; x < n && s.live > stop_at; ++x) {
@@ -796,18 +809,28 @@ static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t s
             continue;
         if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
             continue;
-        s.flags[x] &= std::uint8_t(~k_dirty);
-        if (!evaluate(s, VH(int(x)), limit)) {
+        // A node whose ring this pass changed waits for the next pass when its fan swallowed many
+        // nodes: else a run of erases along a row (a flat sea: every cost is 0) drags one growing
+        // face's nodes from erase to erase, quadratic in the run's length.
+        const bool fresh = stamp[x] == pass;
+        if (!evaluate(s, VH(int(x)), limit,
+                      fresh ? k_chain_swallowed : std::numeric_limits<std::size_t>::max())) {
+            s.flags[x] &= std::uint8_t(~k_dirty);
             s.heap.store_key(x, INFINITY); // until its ring changes
             continue;
         }
+        if (s.hole.deferred)
+            continue; // still dirty
+        s.flags[x] &= std::uint8_t(~k_dirty);
         if (!(s.hole.cost <= limit)) {
             s.heap.store_key(x, float(s.hole.cost));
             continue;
         }
         retriangulate(s);
-        for (int i = 0; i < s.hole.n; ++i)
+        for (int i = 0; i < s.hole.n; ++i) {
             s.flags[s.hole.r[i].idx()] |= k_dirty;
+            stamp[s.hole.r[i].idx()] = pass;
+        }
         ++erased;
     }
     return erased;
@@ -819,18 +842,23 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     s.heap.reset(s.mesh->n_vertices()); // keys only: 0 until a node is first measured
     for (auto v : s.mesh->vertices())
         s.flags[v.idx()] &= std::uint8_t(~k_dirty);
+    std::vector<std::uint8_t> stamp(s.mesh->n_vertices(), 0);
+    std::uint8_t pass = 0;
+    auto sweep = [&](double limit, std::int64_t stop_at) {
+        return sweep_pass(s, limit, stop_at, stamp, ++pass);
+    };
     std::int64_t erased = 0;
     if (s.options.max_nodes <= 0) {
         for (int rung = k_tau_rungs; rung > 0; --rung)
-            erased += sweep_pass(s, tau * std::pow(k_tau_rung_ratio, -rung), 0);
+            erased += sweep(tau * std::pow(k_tau_rung_ratio, -rung), 0);
         for (std::int64_t made = 1; made > 0;) {
-            made = sweep_pass(s, tau, 0);
+            made = sweep(tau, 0);
             erased += made;
         }
         return erased;
     }
     const std::int64_t far = k_queue_share * std::max<std::int64_t>(s.options.max_nodes, 3);
-    erased += sweep_pass(s, 0.0, far); // measures every node's cost from below
+    erased += sweep(0.0, far); // measures every node's cost from below
     std::vector<float> keys;
     for (auto v : s.mesh->vertices())
         if (!(s.flags[v.idx()] & k_locked) && std::isfinite(s.heap.key(v.idx())))
@@ -838,9 +866,13 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     if (!keys.empty()) {
         const auto nth = keys.begin() + std::ptrdiff_t(keys.size() / 20);
         std::nth_element(keys.begin(), nth, keys.end());
-        for (double limit = std::max(double(*nth), 1e-30); s.live > far && limit < tau;
-             limit *= k_budget_rung_ratio)
-            erased += sweep_pass(s, limit, far);
+        const double highest = *std::max_element(keys.begin(), keys.end());
+        for (double limit = std::max(double(*nth), 1e-30);
+             s.live > far && limit < tau && limit <= 2.0 * highest; limit *= k_budget_rung_ratio)
+            for (std::int64_t made = 1; made > 0 && s.live > far;) {
+                made = sweep(limit, far); // until the rung is exhausted: the limit rises slowly
+                erased += made;
+            }
     }
     rank_nodes(s);
     return erased + erase_loop(s);
