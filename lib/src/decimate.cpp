@@ -798,8 +798,40 @@ constexpr double k_budget_rung_ratio = 2.0;
 constexpr std::int64_t k_queue_share = 2; // the queue erases from this many times the budget
 constexpr std::size_t k_chain_swallowed = 32; // see sweep_pass
 
-// One pass at `limit`, until `stop_at` live nodes remain. Returns the erases made. `stamp` holds,
-// per node, the pass (mod 256) in which its ring last changed.
+// One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
+// cost is within the limit. `stamp` holds, per node, the pass (mod 256) in which its ring last
+// changed. Returns true when x was erased; x stays dirty when it must wait for the next pass.
+static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
+                       std::vector<std::uint8_t> &stamp, std::uint8_t pass) {
+    // A node whose ring this pass changed waits for the next pass when its fan swallowed many
+    // nodes (else a run of erases along a row, as on a flat sea where every cost is 0, drags one
+    // growing face's nodes from erase to erase, quadratic in the run's length), and always with
+    // a shallow history.
+    const bool fresh = stamp[x] == pass;
+    if (fresh && s.options.shallow_history)
+        return false;
+    if (!evaluate(s, VH(int(x)), limit,
+                  fresh ? k_chain_swallowed : std::numeric_limits<std::size_t>::max())) {
+        s.flags[x] &= std::uint8_t(~k_dirty);
+        s.heap.store_key(x, INFINITY); // until its ring changes
+        return false;
+    }
+    if (s.hole.deferred)
+        return false;
+    s.flags[x] &= std::uint8_t(~k_dirty);
+    if (!(s.hole.cost <= limit)) {
+        s.heap.store_key(x, float(s.hole.cost));
+        return false;
+    }
+    retriangulate(s);
+    for (int i = 0; i < s.hole.n; ++i) {
+        s.flags[s.hole.r[i].idx()] |= k_dirty;
+        stamp[s.hole.r[i].idx()] = pass;
+    }
+    return true;
+}
+
+// One pass at `limit` over every node, until `stop_at` live nodes remain. Returns the erases made.
 static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t stop_at,
                                std::vector<std::uint8_t> &stamp, std::uint8_t pass) {
     const std::uint32_t n = std::uint32_t(s.mesh->n_vertices());
@@ -809,29 +841,45 @@ static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t s
             continue;
         if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
             continue;
-        // A node whose ring this pass changed waits for the next pass when its fan swallowed many
-        // nodes: else a run of erases along a row (a flat sea: every cost is 0) drags one growing
-        // face's nodes from erase to erase, quadratic in the run's length.
-        const bool fresh = stamp[x] == pass;
-        if (!evaluate(s, VH(int(x)), limit,
-                      fresh ? k_chain_swallowed : std::numeric_limits<std::size_t>::max())) {
-            s.flags[x] &= std::uint8_t(~k_dirty);
-            s.heap.store_key(x, INFINITY); // until its ring changes
-            continue;
+        erased += sweep_node(s, x, limit, stamp, pass);
+    }
+    return erased;
+}
+
+// The sweep over the nodes of `work` only (then over the rings their erases changed), with the
+// rungs of the full sweep rising to `limit`: its cost follows the nodes that changed. Returns the
+// erases made.
+static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<std::uint32_t> work) {
+    std::vector<std::uint8_t> stamp(s.mesh->n_vertices(), 0);
+    std::uint8_t pass = 0;
+    std::int64_t erased = 0;
+    for (int rung = k_tau_rungs; rung >= 0; --rung) {
+        const double rung_limit = limit * std::pow(k_tau_rung_ratio, -rung);
+        std::sort(work.begin(), work.end());
+        work.erase(std::unique(work.begin(), work.end()), work.end());
+        std::vector<std::uint32_t> list = work;
+        while (!list.empty()) {
+            ++pass;
+            std::vector<std::uint32_t> next;
+            for (const std::uint32_t x : list) {
+                if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
+                    continue;
+                if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > rung_limit)
+                    continue;
+                if (sweep_node(s, x, rung_limit, stamp, pass)) {
+                    ++erased;
+                    for (int i = 0; i < s.hole.n; ++i) {
+                        next.push_back(std::uint32_t(s.hole.r[i].idx()));
+                        work.push_back(std::uint32_t(s.hole.r[i].idx()));
+                    }
+                } else if (s.flags[x] & k_dirty) {
+                    next.push_back(x); // waits for the next pass
+                }
+            }
+            std::sort(next.begin(), next.end());
+            next.erase(std::unique(next.begin(), next.end()), next.end());
+            list = std::move(next);
         }
-        if (s.hole.deferred)
-            continue; // still dirty
-        s.flags[x] &= std::uint8_t(~k_dirty);
-        if (!(s.hole.cost <= limit)) {
-            s.heap.store_key(x, float(s.hole.cost));
-            continue;
-        }
-        retriangulate(s);
-        for (int i = 0; i < s.hole.n; ++i) {
-            s.flags[s.hole.r[i].idx()] |= k_dirty;
-            stamp[s.hole.r[i].idx()] = pass;
-        }
-        ++erased;
     }
     return erased;
 }
@@ -1258,8 +1306,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         done.clear();
         stats.recovered += recover_closure(s, std::uint32_t(u), &done);
         for (std::uint32_t x : done) {
-            s.flags[x] &= std::uint8_t(~k_dirty);
-            s.heap.store_key(x, float(recover_above)); // significant now: re-evaluated once it falls
+            // Re-evaluated by this update's erase: a node recovered only because a worse one
+            // depended on it may cost little, and a key of "significant" would keep it forever.
+            s.flags[x] |= k_dirty;
             for (auto g : m.vf_range(VH(int(x))))
                 work.push_back(g);
         }
@@ -1268,8 +1317,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
 
     // erase: only nodes whose cost may have fallen to the bound are re-evaluated.
     clock.reset();
-    s.heap.clear();
-    std::vector<std::uint32_t> ranked;
+    std::vector<std::uint32_t> candidates;
     auto ratio = [&](std::uint32_t v) {
         const float before = s.weight_prev[v];
         return before > 0.0f ? s.weight[v] / before : 1.0f;
@@ -1292,17 +1340,10 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
                 continue;
         }
         ++stats.candidates;
-        s.flags[x] &= std::uint8_t(~k_dirty);
-        const bool erasable = evaluate(s, v, erase_below);
-        s.heap.store_key(x, erasable ? key_of(s, s.hole) : INFINITY);
-        if (erasable && s.hole.cost <= erase_below)
-            ranked.push_back(x);
+        s.flags[x] |= k_dirty;
+        candidates.push_back(x);
     }
-    s.heap.build(std::move(ranked));
-    const double tolerance = s.options.tolerance;
-    s.options.tolerance = erase_below;
-    stats.erased = erase_loop(s);
-    s.options.tolerance = tolerance;
+    stats.erased = sweep_dirty(s, erase_below, std::move(candidates));
     stats.ms_erase = clock.ms();
     return stats;
 }

@@ -43,79 +43,372 @@ struct QuietOpenMesh {
     std::streambuf* cerr_;
 };
 
-// OpenMesh's readers loop forever on a PLY header without end_header and allocate whatever
-// count a header declares. Check the header and the declared counts against the file size first.
+// --- Checks before OpenMesh reads a file ---
+//
+// OpenMesh 9.0's readers trust their input. They loop forever on a PLY header without end_header
+// or with a malformed format line, allocate whatever count a header declares, and take a face's
+// vertex count as given: a 94-byte PLY or OFF whose face declares 4000000000 vertices makes them
+// allocate 32 GB. Once a value fails to parse, their ASCII readers go on looping over the declared
+// counts with the last face's vertex count (never set if the first face fails): hundreds of
+// milliseconds of spinning for a mangled bunny, or the 32 GB again. So the header and its counts
+// are checked against the file, and the body of a PLY or OFF file is walked here first, value by
+// value as OpenMesh will read it: a file is refused unless every value it will read is there and
+// parses, after which OpenMesh's loops run on good values only.
+
+[[noreturn]] static void refuse(const std::string& path, const std::string& why) {
+    throw Error(path, why);
+}
+
+static void check_count(const std::string& path, const char* what, std::uintmax_t count,
+                        std::uintmax_t bytes, std::uintmax_t min_bytes) {
+    if (count > bytes / min_bytes)
+        refuse(path, "header declares " + std::to_string(count) + " " + what +
+                         " but the file holds only " + std::to_string(bytes) + " bytes");
+}
+
+struct PlyProperty {
+    std::string name;
+    std::string type;       // the value's type, or the type of a list's entries
+    std::string count_type; // a list's count type; empty for a scalar
+};
+
+struct PlyElement {
+    std::string name;
+    std::uintmax_t count = 0;
+    std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader {
+    bool ascii = true;
+    bool big_endian = false;
+    std::vector<PlyElement> elements;
+    std::uintmax_t ascii_body = 0;  // where OpenMesh's ASCII reader goes on: after "end_header"
+    std::uintmax_t binary_body = 0; // where its binary reader seeks to, by its own arithmetic
+};
+
+// How OpenMesh's PLY reader reads a property (by element and property name, as its header parser).
+enum class PlyRead { coordinate, color, indices, other };
+
+static PlyRead ply_read(const PlyElement& e, const PlyProperty& p) {
+    static const std::set<std::string> k_coordinates = {"x",  "y", "z", "nx", "ny",
+                                                        "nz", "u", "s", "v",  "t"};
+    static const std::set<std::string> k_vertex_colors = {
+        "red", "green", "blue", "alpha", "diffuse_red", "diffuse_green", "diffuse_blue"};
+    static const std::set<std::string> k_face_colors = {"red", "green", "blue", "alpha"};
+    if (!p.count_type.empty())
+        return e.name == "face" && (p.name == "vertex_index" || p.name == "vertex_indices")
+                   ? PlyRead::indices
+                   : PlyRead::other;
+    if (e.name == "vertex" && k_coordinates.count(p.name))
+        return PlyRead::coordinate;
+    if ((e.name == "vertex" && k_vertex_colors.count(p.name)) ||
+        (e.name == "face" && k_face_colors.count(p.name)))
+        return PlyRead::color;
+    return PlyRead::other;
+}
+
+static std::uintmax_t ply_type_bytes(const std::string& type) {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+        return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+        return 2;
+    if (type == "double" || type == "float64")
+        return 8;
+    return 4;
+}
+
+static bool ply_is_float(const std::string& type) { return type == "float" || type == "float32"; }
+static bool ply_is_real(const std::string& type) {
+    return ply_is_float(type) || type == "double" || type == "float64";
+}
+
+// The header as OpenMesh's PLY reader parses it, refused unless it follows the PLY grammar (which
+// OpenMesh assumes without checking) and its counts fit in the file.
+static PlyHeader parse_ply_header(const std::string& path, const std::string& head,
+                                  std::uintmax_t bytes) {
+    static const std::set<std::string> k_types = {
+        "char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
+        "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+    static const std::set<std::string> k_keywords = {"ply",     "format",   "element",   "property",
+                                                     "comment", "obj_info", "end_header"};
+    if (head.rfind("ply", 0) != 0)
+        refuse(path, "not a PLY file (no 'ply' magic)");
+    PlyHeader h;
+    std::uintmax_t token_end = 0; // OpenMesh's stream position before it reads end_header
+    int number = 0;
+    for (std::size_t start = 0; start < head.size(); ++number) {
+        const std::size_t nl = head.find('\n', start);
+        if (nl == std::string::npos)
+            break;
+        std::string line = head.substr(start, nl - start);
+        const std::size_t line_start = start;
+        start = nl + 1;
+        if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+        std::istringstream words(line);
+        std::string key, a, b, c, extra;
+        words >> key;
+        const std::string where = "PLY header line " + std::to_string(number + 1) + ": ";
+        if (number == 0 ? key != "ply" : key.empty())
+            refuse(path, where + "malformed '" + line + "'");
+        if (number == 1 && key != "format")
+            refuse(path, where + "expected the format line, found '" + line + "'");
+        if (key == "end_header") {
+            h.ascii_body = line_start + line.find("end_header") + 10;
+            const bool crlf = token_end + 1 < head.size() && head[token_end] == '\r' &&
+                              head[token_end + 1] == '\n';
+            h.binary_body = token_end + (crlf ? 14 : 12);
+            return h;
+        }
+        // Past the last word of the line, or past the whole line for a comment (OpenMesh reads
+        // the rest of a comment line, and word by word otherwise).
+        token_end = key == "comment" ? start : line_start + line.find_last_not_of(" \t\v\f") + 1;
+        if (key == "ply" || key == "comment")
+            continue;
+        if (key == "obj_info") {
+            // OpenMesh skips its words one by one as unknown keywords: none may be a keyword.
+            while (words >> a)
+                if (k_keywords.count(a))
+                    refuse(path, where + "obj_info holds the keyword '" + a + "'");
+        } else if (key == "format") {
+            if (number != 1 || !(words >> a >> b) || (words >> extra) || b != "1.0" ||
+                (a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian"))
+                refuse(path, where + "unknown format '" + line + "'");
+            h.ascii = a == "ascii";
+            h.big_endian = a == "binary_big_endian";
+        } else if (key == "element") {
+            PlyElement e;
+            if (!(words >> e.name >> e.count) || (words >> extra))
+                refuse(path, where + "malformed element '" + line + "'");
+            check_count(path, e.name == "face" ? "faces" : "elements", e.count, bytes, 1);
+            for (const PlyElement& other : h.elements)
+                if (other.name == e.name && (e.name == "vertex" || e.name == "face"))
+                    refuse(path, where + "a second '" + e.name + "' element");
+            h.elements.push_back(e);
+        } else if (key == "property") {
+            PlyProperty p;
+            words >> a;
+            const bool list = a == "list";
+            const bool ok = list ? (words >> b >> c) && k_types.count(b) && k_types.count(c)
+                                 : k_types.count(a) > 0;
+            if (!ok || !(words >> p.name) || (words >> extra))
+                refuse(path, where + "malformed property '" + line + "'");
+            if (h.elements.empty())
+                refuse(path, where + "property before any element");
+            p.type = list ? c : a;
+            if (list)
+                p.count_type = b;
+            h.elements.back().properties.push_back(p);
+        } else {
+            refuse(path, where + "unknown keyword '" + key + "'");
+        }
+    }
+    refuse(path, "truncated or malformed PLY header (no end_header)");
+}
+
+// Every value OpenMesh's ASCII reader will extract, with the same types and in the same order.
+static void walk_ply_ascii(const std::string& path, const PlyHeader& h) {
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(std::streamoff(h.ascii_body));
+    float real = 0;
+    int integer = 0;
+    unsigned count = 0, index = 0;
+    std::string word;
+    for (const PlyElement& e : h.elements) {
+        if (in.eof())
+            return; // OpenMesh stops here: "unexpected end of file"
+        for (std::uintmax_t n = 0; n < e.count && !in.eof(); ++n)
+            for (const PlyProperty& p : e.properties) {
+                switch (ply_read(e, p)) {
+                case PlyRead::coordinate:
+                    in >> real;
+                    break;
+                case PlyRead::color:
+                    if (ply_is_float(p.type))
+                        in >> real;
+                    else
+                        in >> integer;
+                    break;
+                case PlyRead::indices:
+                    in >> count;
+                    for (unsigned k = 0; k < count && in; ++k)
+                        in >> index;
+                    break;
+                case PlyRead::other:
+                    in >> word;
+                    break;
+                }
+                if (!in)
+                    refuse(path, "truncated or malformed PLY body: " + e.name + " " +
+                                     std::to_string(n) + ", property '" + p.name + "'");
+            }
+        if (e.name == "face")
+            return; // OpenMesh reads nothing after the faces
+    }
+}
+
+// The bytes OpenMesh's binary reader will consume, and every face's vertex count.
+static void walk_ply_binary(const std::string& path, const PlyHeader& h, std::uintmax_t bytes) {
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(std::streamoff(std::min(h.binary_body, bytes)));
+    std::uintmax_t at = h.binary_body;
+    for (const PlyElement& e : h.elements) {
+        auto take = [&](std::uintmax_t n) {
+            if (at > bytes || n > bytes - at)
+                refuse(path, "truncated PLY body: the " + e.name +
+                                 " elements need more than the file's " + std::to_string(bytes) +
+                                 " bytes");
+            at += n;
+        };
+        // Bytes OpenMesh consumes per property (0 for the vertex list, read below).
+        std::vector<std::uintmax_t> width;
+        std::uintmax_t fixed = 0;
+        bool has_indices = false;
+        for (const PlyProperty& p : e.properties) {
+            std::uintmax_t w = ply_type_bytes(p.type); // of a list: one entry, all OpenMesh skips
+            switch (ply_read(e, p)) {
+            case PlyRead::coordinate: // read as float or double, else as nothing
+                w = ply_is_real(p.type) ? w : 0;
+                break;
+            case PlyRead::color: // read as float or as an integer; a double as nothing
+                w = ply_is_float(p.type) || !ply_is_real(p.type) ? w : 0;
+                break;
+            case PlyRead::indices:
+                if (ply_is_real(p.type))
+                    refuse(path, "PLY vertex indices of type " + p.type +
+                                     " (OpenMesh reads integers only)");
+                has_indices = true;
+                w = 0;
+                break;
+            case PlyRead::other:
+                break;
+            }
+            width.push_back(w);
+            fixed += w;
+        }
+        if (!has_indices) {
+            if (fixed > 0 && e.count > bytes / fixed)
+                take(bytes + 1);
+            take(e.count * fixed);
+            in.ignore(std::streamsize(e.count * fixed));
+        } else {
+            for (std::uintmax_t n = 0; n < e.count; ++n)
+                for (std::size_t i = 0; i < e.properties.size(); ++i) {
+                    const PlyProperty& p = e.properties[i];
+                    if (ply_read(e, p) != PlyRead::indices) {
+                        take(width[i]);
+                        in.ignore(std::streamsize(width[i]));
+                        continue;
+                    }
+                    const std::uintmax_t count_bytes = ply_type_bytes(p.count_type);
+                    take(count_bytes);
+                    unsigned char raw[8] = {};
+                    in.read(reinterpret_cast<char*>(raw), std::streamsize(count_bytes));
+                    std::uint32_t count = 0;
+                    for (std::uintmax_t k = 0; k < count_bytes && k < 4; ++k)
+                        count |= std::uint32_t(raw[h.big_endian ? count_bytes - 1 - k : k])
+                                 << (8 * k);
+                    const std::uintmax_t entries = std::uintmax_t{count} * ply_type_bytes(p.type);
+                    take(entries);
+                    in.ignore(std::streamsize(entries));
+                }
+        }
+        if (e.name == "face")
+            return;
+    }
+}
+
+// OFF: OpenMesh reads the first line as a header, [ST][C][N][4][n]OFF [BINARY], then the counts.
+static void check_off(const std::string& path, const std::string& head, std::uintmax_t bytes) {
+    const std::string first = head.substr(0, head.find('\n'));
+    std::size_t p = 0;
+    const bool texcoords = first.rfind("ST", 0) == 0;
+    p += texcoords ? 2 : 0;
+    const bool colors = first.size() > p && first[p] == 'C';
+    p += colors;
+    const bool normals = first.size() > p && first[p] == 'N';
+    p += normals;
+    if (first.compare(p, 3, "OFF") != 0)
+        refuse(path, "not an OFF file (no 'OFF' magic)");
+    const bool binary = first.size() >= p + 10 && first.compare(p + 4, 6, "BINARY") == 0;
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    std::getline(in, line);
+    if (binary) {
+        std::uintmax_t at = line.size() + 1;
+        unsigned char raw[12] = {};
+        if (!in.read(reinterpret_cast<char*>(raw), 12))
+            refuse(path, "truncated binary OFF: no counts");
+        at += 12;
+        auto u32 = [&](const unsigned char* b) {
+            return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+                   std::uint32_t(b[3]) << 24;
+        };
+        const std::uintmax_t nv = u32(raw), nf = u32(raw + 4);
+        // OpenMesh reads colours as three 32-bit integers in a binary file.
+        const std::uintmax_t vertex_bytes = 12 + 12 * normals + 12 * colors + 8 * texcoords;
+        check_count(path, "vertices", nv, bytes, vertex_bytes);
+        check_count(path, "faces", nf, bytes, 4);
+        in.ignore(std::streamsize(nv * vertex_bytes));
+        at += nv * vertex_bytes;
+        for (std::uintmax_t f = 0; f < nf; ++f) {
+            if (at > bytes || bytes - at < 4 || !in.read(reinterpret_cast<char*>(raw), 4))
+                refuse(path, "truncated binary OFF: face " + std::to_string(f) + " of " +
+                                 std::to_string(nf));
+            at += 4;
+            const std::uintmax_t count = u32(raw);
+            if (count > (bytes - at) / 4)
+                refuse(path, "truncated binary OFF: face " + std::to_string(f) + " declares " +
+                                 std::to_string(count) + " vertices");
+            in.ignore(std::streamsize(4 * count));
+            at += 4 * count;
+        }
+        return;
+    }
+    unsigned nv = 0, nf = 0, ne = 0;
+    if (!(in >> nv >> nf >> ne))
+        refuse(path, "malformed OFF counts (expected vertices, faces and edges on line 2)");
+    check_count(path, "vertices", nv, bytes, 6);
+    check_count(path, "faces", nf, bytes, 6);
+    float real = 0;
+    unsigned count = 0, index = 0;
+    for (unsigned v = 0; v < nv && !in.eof(); ++v) {
+        in >> real >> real >> real;
+        if (normals)
+            in >> real >> real >> real;
+        if (!in)
+            refuse(path, "truncated or malformed OFF: vertex " + std::to_string(v));
+        std::getline(in, line); // colours and texture coordinates, parsed apart from the stream
+    }
+    for (unsigned f = 0; f < nf; ++f) {
+        in >> count;
+        for (unsigned k = 0; k < count && in; ++k)
+            in >> index;
+        if (!in)
+            refuse(path, "truncated or malformed OFF: face " + std::to_string(f));
+        if (colors)
+            std::getline(in, line);
+    }
+}
+
 static void check_header(const std::string& path, const std::string& ext, std::uintmax_t bytes) {
     std::ifstream in(path, std::ios::binary);
     std::string head(std::size_t(std::min<std::uintmax_t>(bytes, 1 << 16)), '\0');
     in.read(head.data(), std::streamsize(head.size()));
-    auto too_many = [&](const char* what, std::uintmax_t count, std::uintmax_t min_bytes) {
-        if (count > bytes / min_bytes)
-            throw Error(path, "header declares " + std::to_string(count) + " " + what +
-                                  " but the file holds only " + std::to_string(bytes) + " bytes");
-    };
     if (ext == ".ply") {
-        if (head.rfind("ply", 0) != 0)
-            throw Error(path, "not a PLY file (no 'ply' magic)");
-        const auto end = head.find("end_header");
-        if (end == std::string::npos)
-            throw Error(path, "truncated or malformed PLY header (no end_header)");
-        // OpenMesh's PLY reader also loops forever on a malformed format line: accept only the
-        // header grammar of the PLY specification.
-        static const std::set<std::string> k_types = {
-            "char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
-            "int16", "uint16", "int32", "uint32", "float32", "float64"};
-        std::istringstream lines(head.substr(0, end));
-        std::string line;
-        int number = 0;
-        while (std::getline(lines, line)) {
-            ++number;
-            if (!line.empty() && line.back() == '\r')
-                line.pop_back();
-            std::istringstream words(line);
-            std::string key, a, b, c, extra;
-            words >> key;
-            const std::string where = "PLY header line " + std::to_string(number) + ": ";
-            if (number == 1 ? key != "ply" : key.empty())
-                throw Error(path, where + "malformed '" + line + "'");
-            if (key == "ply" || key == "comment" || key == "obj_info")
-                continue;
-            if (key == "format") {
-                if (!(words >> a >> b) || (words >> extra) || b != "1.0" ||
-                    (a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian"))
-                    throw Error(path, where + "unknown format '" + line + "'");
-            } else if (key == "element") {
-                std::uintmax_t count = 0;
-                if (!(words >> a >> count) || (words >> extra))
-                    throw Error(path, where + "malformed element '" + line + "'");
-                too_many(a == "face" ? "faces" : "elements", count, 1);
-            } else if (key == "property") {
-                words >> a;
-                const bool ok = a == "list" ? (words >> b >> c) && k_types.count(b) && k_types.count(c)
-                                            : k_types.count(a) > 0;
-                if (!ok || !(words >> extra) || (words >> extra))
-                    throw Error(path, where + "malformed property '" + line + "'");
-            } else {
-                throw Error(path, where + "unknown keyword '" + key + "'");
-            }
-        }
+        const PlyHeader h = parse_ply_header(path, head, bytes);
+        if (h.ascii)
+            walk_ply_ascii(path, h);
+        else
+            walk_ply_binary(path, h, bytes);
     } else if (ext == ".off") {
-        std::istringstream words(head);
-        std::string magic;
-        std::uintmax_t nv = 0, nf = 0;
-        words >> magic;
-        if (magic.find("OFF") == std::string::npos)
-            throw Error(path, "not an OFF file (no 'OFF' magic)");
-        if (magic.find("BINARY") == std::string::npos && (words >> nv >> nf)) {
-            too_many("vertices", nv, 6);
-            too_many("faces", nf, 6);
-        }
+        check_off(path, head, bytes);
     } else if (ext == ".stl" && head.rfind("solid", 0) != 0 && bytes >= 84) {
         const auto* p = reinterpret_cast<const unsigned char*>(head.data()) + 80;
         const std::uintmax_t n = p[0] | p[1] << 8 | p[2] << 16 | std::uintmax_t(p[3]) << 24;
         if (84 + 50 * n != bytes)
-            throw Error(path, "binary STL declares " + std::to_string(n) + " triangles but holds " +
-                                  std::to_string(bytes) + " bytes");
+            refuse(path, "binary STL declares " + std::to_string(n) + " triangles but holds " +
+                             std::to_string(bytes) + " bytes");
     }
 }
 

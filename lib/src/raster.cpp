@@ -59,16 +59,22 @@ double load_bytes(std::int64_t w, std::int64_t h, int channels, int sample_bytes
     return double(w) * double(h) * (double(channels) * sample_bytes + 4.0 + 1.0 + 4.0 + 1.0);
 }
 
-// Refuses a raster whose load would need more than half of this machine's memory, before any
-// allocation: a header can declare any size.
-void check_memory(const std::string& path, std::int64_t w, std::int64_t h, int channels,
-                  int sample_bytes) {
+// Refuses a raster whose load would need more than options.max_memory_mb, or more than half of
+// this machine's memory, before any allocation: a header can declare any size.
+void check_memory(const std::string& path, const LoadOptions& options, std::int64_t w,
+                  std::int64_t h, int channels, int sample_bytes) {
     const double need = load_bytes(w, h, channels, sample_bytes);
+    const double mib = 1 << 20;
     const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    const std::string size = "raster is " + std::to_string(w) + "x" + std::to_string(h) +
+                             ": loading it needs " + std::to_string(std::int64_t(need / mib)) +
+                             " MiB";
+    if (options.max_memory_mb > 0 && need > options.max_memory_mb * mib)
+        throw Error(path, size + ", more than the limit of " +
+                              std::to_string(std::int64_t(options.max_memory_mb)) + " MiB");
     if (have > 0 && need > have / 2)
-        throw Error(path, "raster is " + std::to_string(w) + "x" + std::to_string(h) + ": loading it needs " +
-                              std::to_string(int(need / (1 << 20))) + " MiB, more than half of this machine's " +
-                              std::to_string(int(have / (1 << 20))) + " MiB");
+        throw Error(path, size + ", more than half of this machine's " +
+                              std::to_string(std::int64_t(have / mib)) + " MiB");
 }
 
 void check_size(const std::string& path, std::int64_t w, std::int64_t h) {
@@ -82,7 +88,7 @@ void check_size(const std::string& path, std::int64_t w, std::int64_t h) {
 
 // --- SRTM .hgt: big-endian int16, square 1201 or 3601, row 0 north, file name = SW corner. ---
 
-RawGrid read_hgt(const std::string& path, Georef& geo) {
+RawGrid read_hgt(const std::string& path, const LoadOptions& options, Georef& geo) {
     const auto bytes = fs::file_size(path);
     int n = 0;
     for (int side : {1201, 3601})
@@ -93,6 +99,7 @@ RawGrid read_hgt(const std::string& path, Georef& geo) {
                               " bytes is not an SRTM tile (1201x1201 or 3601x3601 int16 = " +
                               std::to_string(1201 * 1201 * 2) + " or " + std::to_string(3601 * 3601 * 2) +
                               " bytes)");
+    check_memory(path, options, n, n, 1, 2);
     // SRTM names the tile by its south-west corner: [NS]dd[EW]ddd, e.g. N42E001.
     const std::string stem = fs::path(path).filename().string();
     auto digits = [&](std::size_t from, std::size_t count) {
@@ -200,7 +207,7 @@ RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
     }
     const OIIO::ImageSpec& spec = in->spec();
     check_size(path, spec.width, spec.height);
-    check_memory(path, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
+    check_memory(path, options, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
     if (spec.depth > 1)
         throw Error(path, "volume images are not elevation rasters");
     RawGrid g;
@@ -212,7 +219,12 @@ RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
     auto read = [&](auto tag) {
         using T = decltype(tag);
         std::vector<T> buf(n * nc);
-        if (!in->read_image(0, 0, 0, nc, OIIO::TypeDescFromC<T>::value(), buf.data())) {
+        // Samples already of type T are asked for as they are (UNKNOWN): naming the type sends
+        // OpenImageIO 2.4 through its conversion path, with a 64 MiB scratch buffer per read
+        // whatever the size of the image.
+        const OIIO::TypeDesc want = OIIO::TypeDescFromC<T>::value();
+        const bool native = want == spec.format && spec.channelformats.empty();
+        if (!in->read_image(0, 0, 0, nc, native ? OIIO::TypeDesc::UNKNOWN : want, buf.data())) {
             std::string why = in->geterror();
             const auto nl = why.find('\n');
             throw Error(path, "cannot read samples (truncated or corrupt): " + why.substr(0, nl));
@@ -356,6 +368,9 @@ void apply_georef(const std::string& path, const Georef& geo, const LoadOptions&
         hf.crs = "none (cell " + std::to_string(options.cell) + ")";
         return;
     }
+    if (!std::isfinite(geo.sx) || !std::isfinite(geo.sy) || !std::isfinite(geo.west) ||
+        !std::isfinite(geo.north))
+        throw Error(path, "georeferencing is not finite (pixel scale or tie point)");
     // Centre of the SW sample in CRS units.
     const double sw_x = geo.west + geo.sx / 2;
     const double sw_y = geo.north - (g.height - 0.5) * geo.sy;
@@ -369,8 +384,12 @@ void apply_georef(const std::string& path, const Georef& geo, const LoadOptions&
     }
     const double lon_c = sw_x + (g.width - 1) * geo.sx / 2;
     const double lat_c = sw_y + (g.height - 1) * geo.sy / 2;
-    if (std::abs(lat_c) > 84)
+    if (!(std::abs(lat_c) <= 84))
         throw Error(path, "latitude beyond UTM coverage (|lat| > 84)");
+    // Longitudes run -180..180, or 0..360 in some files; beyond, the UTM zone is meaningless.
+    if (!(lon_c >= -180 && lon_c <= 360))
+        throw Error(path, "georeferencing puts the centre at longitude " + std::to_string(lon_c) +
+                              ", not on Earth");
     const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
     PJ_CONTEXT* ctx = proj_context_create();
@@ -425,7 +444,7 @@ Heightfield load_heightfield(const std::string& path, const LoadOptions& options
     RawGrid g;
     const std::string ext = lower_extension(path);
     if (ext == ".hgt") {
-        g = read_hgt(path, geo);
+        g = read_hgt(path, options, geo);
     } else {
         g = read_oiio(path, options);
         if (ext == ".tif" || ext == ".tiff")

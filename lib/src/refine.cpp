@@ -18,6 +18,7 @@ static EraseOptions erase_options(const RefineOptions& options) {
     eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
     eo.significance = options.significance;
     eo.max_valence = options.max_valence;
+    eo.shallow_history = true; // a recover must not undo a whole row of erases
     return eo;
 }
 

@@ -79,6 +79,11 @@ struct EraseOptions {
     Projection projection = Projection::automatic; // automatic: xy when every face is CCW in xy
     bool erase_boundary = true; // TINs: erase boundary nodes lying exactly on the outline's line
     int max_valence = 24;       // nodes with more neighbours stay (bounds the hole size)
+    // Erase in passes of independent nodes (no two erased in one pass share a triangle), so every
+    // chain of recover dependencies is at most as long as the passes: for a history that will be
+    // recovered from (the refiner). Otherwise a pass may erase a node right after its neighbour,
+    // which gives fewer nodes, faster, but chains along a row that a recover must undo whole.
+    bool shallow_history = false;
 };
 
 struct EraseStats {
@@ -150,9 +155,10 @@ class NodeEraser {
     //  1. recover: every face whose swallowed nodes exceed `recover_above` (weighted, the units of
     //     the tolerance) under the new weights gets its worst node back, with its dependency
     //     closure, until every face is within `recover_above`;
-    //  2. erase: live nodes whose last measured erase cost, scaled by how much the weights of the
-    //     node and its ring fell, may now be <= `erase_below` are re-evaluated and erased while
-    //     their cost stays <= `erase_below`.
+    //  2. erase: the nodes just recovered and the live nodes whose last measured erase cost,
+    //     scaled by how much the weights of the node and its ring fell, may now be <=
+    //     `erase_below` are swept (rungs rising to `erase_below`, passes over those nodes and the
+    //     rings their erases change) and erased while their cost stays <= `erase_below`.
     // With erase_below < recover_above a node between the two keeps its state (hysteresis). After
     // the call the whole-output bound holds at `recover_above`: every swallowed node's weighted
     // deviation is <= recover_above. Needs a view (not SpModel::vertical).

@@ -36,6 +36,8 @@ struct LoadOptions {
     double zscale = 1.0;      // multiplies every elevation
     bool terrain_rgb = false; // decode RGB as Mapbox Terrain-RGB: (R*65536 + G*256 + B)/10 - 10000
     bool fill_voids = true;   // fill voids from valid neighbours (else: throw if any void)
+    double max_memory_mb = 0; // refuse a raster whose load needs more, MiB, checked before
+                              // allocating (0: half of this machine's memory)
 };
 
 // Loads a DEM by extension/content: .hgt, or anything OpenImageIO reads. Throws Error naming the
