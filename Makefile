@@ -12,6 +12,7 @@ endif
 BUILD_TYPE ?= Release
 
 FUZZ_SECONDS ?= 60
+FUZZ_RUNS ?= -1
 
 .PHONY: setup configure build demo test bench fuzz clean
 
@@ -35,14 +36,14 @@ test: build
 bench: build
 	@./bench/run.sh $(BUILD)/bin $(ARGS)
 
-# Each fuzz target runs FUZZ_SECONDS, seeded from the real files in meshes/; findings land in
-# build-fuzz/findings/.
+# Each fuzz target runs FUZZ_SECONDS (or FUZZ_RUNS executions, if fewer), one after the other,
+# seeded from the real files in meshes/; findings land in build-fuzz/findings/.
 fuzz: setup
 	@mkdir -p build-fuzz
 	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -DTINLOD_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 		> build-fuzz/configure.log 2>&1 || (cat build-fuzz/configure.log; exit 1)
 	@cmake --build build-fuzz -j $(JOBS)
-	@./scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS)
+	@./scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_RUNS)
 
 clean:
 	rm -rf build build-sanitize build-fuzz

@@ -7,8 +7,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 
 using tinlod::test::asset;
 using tinlod::test::run_cli;
@@ -90,6 +94,51 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         u32(0);
         return write("huge.tif", b);
     }();
+    // A 2x2 int16 GeoTIFF in EPSG:4326: pixel scale (dx, dy) degrees, NW corner at (lon, lat).
+    auto geographic_tif = [&](const std::string& name, double dx, double dy, double lon,
+                              double lat) {
+        std::string b = "II*";
+        b += '\0';
+        auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
+        auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
+        auto f64 = [&](double v) {
+            char raw[8];
+            std::memcpy(raw, &v, 8);
+            b.append(raw, 8);
+        };
+        const unsigned data = 8 + 2 + 13 * 12 + 4; // after the header and the directory
+        const unsigned entries[][4] = {
+            {256, 3, 1, 2},           {257, 3, 1, 2},       {258, 3, 1, 16},
+            {259, 3, 1, 1},           {262, 3, 1, 1},       {273, 4, 1, data + 104},
+            {277, 3, 1, 1},           {278, 3, 1, 2},       {279, 4, 1, 8},
+            {339, 3, 1, 2},           {33550, 12, 3, data}, {33922, 12, 6, data + 24},
+            {34735, 3, 16, data + 72}};
+        u32(8);
+        u16(13);
+        for (const auto& e : entries) {
+            u16(e[0]), u16(e[1]), u32(e[2]);
+            e[1] == 3 && e[2] == 1 ? (u16(e[3]), u16(0)) : u32(e[3]);
+        }
+        u32(0);
+        for (double v : {dx, dy, 0.0, 0.0, 0.0, 0.0, lon, lat, 0.0})
+            f64(v);
+        // GeoKeys: model geographic, raster pixel-is-area, EPSG:4326.
+        for (unsigned v :
+             {1u, 1u, 0u, 3u, 1024u, 0u, 1u, 2u, 1025u, 0u, 1u, 1u, 2048u, 0u, 1u, 4326u})
+            u16(v);
+        for (unsigned v : {100u, 200u, 300u, 400u})
+            u16(v);
+        return write(name, b);
+    };
+    // Found by fuzz_mesh: OpenMesh takes a face's vertex count as given (32 GB for this one).
+    const std::string ply_face_header =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n";
+    std::string binary_off = "OFF BINARY\n";
+    for (unsigned char c : {3, 0, 0, 0, 0xff, 0xff, 0xff, 0x7f, 0, 0, 0, 0})
+        binary_off += char(c);
     const std::vector<BadCase> cases = {
         {"absurd raster size", "info " + huge_tif, huge_tif},
         {"missing", "retrieve --full " + (in / "nope.tif").string() + " -o {out}/a.ply", "no such file"},
@@ -115,6 +164,27 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
                                                              "property float x\nend_header\n0\n0\n0\n"),
          "unknown format"},
         {"absurd OFF count", "info " + write("huge.off", "OFF\n300000000 1 0\n0 0 0\n"), "declares 300000000"},
+        {"PLY face of 4e9 vertices",
+         "info " + write("face.ply", ply_face_header + "4000000000 0 1 2\n"), "malformed PLY body"},
+        // Found by fuzz_mesh: once a value fails to parse, OpenMesh loops on with stale counts.
+        {"PLY face not a number", "info " + write("word.ply", ply_face_header + "three 0 1 2\n"),
+         "malformed PLY body: face 0"},
+        {"OFF face of 4e9 vertices",
+         "info " + write("face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n"),
+         "malformed OFF: face 0"},
+        {"binary OFF count", "info " + write("binary.off", binary_off),
+         "header declares 3 vertices but the file holds only 23 bytes"},
+        // Found by fuzz_mesh: OpenMesh's OBJ reader aborts on a face vertex without a position.
+        {"OBJ face vertex without a position",
+         "info " + write("nopos.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf /2 3 1\n"),
+         "face vertex '/2' has no position index"},
+        // Found by fuzz_raster (UBSan): a longitude of 1e17 degrees overflowed the UTM zone.
+        {"longitude off the Earth", "info " + geographic_tif("lon.tif", 0.01, 0.01, 1e17, 40.0),
+         "not on Earth"},
+        {"infinite pixel scale",
+         "info " +
+             geographic_tif("scale.tif", std::numeric_limits<double>::infinity(), 0.01, 1.0, 40.0),
+         "georeferencing is not finite"},
         {"NaN camera", "retrieve " + asset("dem_squared.tif") + " --eye nan,0,0 --at 1,1,1 -o {out}/a.ply",
          "--eye: coordinates must be finite"},
         {"eye inside the terrain",
@@ -145,4 +215,58 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_TRUE(fs::is_empty(out)) << "partial output left behind";
     }
+}
+
+static std::string read_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(Cli, ThreadsIsValidatedAndLeavesTheOutputUnchanged) {
+    const std::string dir = tinlod::test::temp_dir();
+    const std::string dem = "'" + asset("dem_squared.tif") + "'";
+    // Before or after the subcommand; refused before any work, as a usage error.
+    for (const std::string& args : {"--threads 0 build " + dem + " -o " + dir + "/zero.tlq",
+                                    "build " + dem + " -o " + dir + "/zero.tlq --threads two",
+                                    "build " + dem + " -o " + dir + "/zero.tlq --threads 5000"}) {
+        SCOPED_TRACE(args);
+        const auto r = run_cli(args);
+        EXPECT_EQ(r.status, 2);
+        EXPECT_NE(r.err.find("--threads: must be a whole number from 1 to 1024"), std::string::npos)
+            << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_FALSE(fs::exists(dir + "/zero.tlq"));
+    }
+    // The build splits rows of nodes over the threads: one thread writes the same bytes.
+    auto r = run_cli("build " + dem + " -o " + dir + "/all.tlq --stats " + dir + "/all.json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = run_cli("--threads 1 build " + dem + " -o " + dir + "/one.tlq --stats " + dir +
+                "/one.json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir + "/one.json"))["threads"], 1);
+    EXPECT_GE(nlohmann::json::parse(std::ifstream(dir + "/all.json"))["threads"].get<int>(), 1);
+    const std::string all = read_bytes(dir + "/all.tlq");
+    EXPECT_GT(all.size(), 0u);
+    EXPECT_TRUE(all == read_bytes(dir + "/one.tlq")) << "--threads 1 changed the store";
+}
+
+TEST(Cli, RetrieveFromAStoreKeepsAtMostCacheMbOfTiles) {
+    const std::string dir = tinlod::test::temp_dir();
+    ASSERT_EQ(run_cli("build '" + asset("dem_squared.tif") + "' -o " + dir + "/s.tlq").status, 0);
+    // tau = 0 reads every tile of the store.
+    auto retrieve = [&](const std::string& cache) {
+        const auto r = run_cli("retrieve " + dir + "/s.tlq --eye 100,100,400 --at 1500,2000,100 " +
+                               "--tol 0 --cache-mb " + cache + " -o " + dir + "/t.ply --stats " +
+                               dir + "/t.json");
+        EXPECT_EQ(r.status, 0) << r.err;
+        return nlohmann::json::parse(std::ifstream(dir + "/t.json"))["store"];
+    };
+    const auto none = retrieve("0");
+    EXPECT_EQ(none["tiles_read"], none["tiles_total"]);
+    EXPECT_EQ(none["tiles_resident"], 0);
+    EXPECT_EQ(none["tiles_evicted"], none["tiles_read"]);
+    const auto all = retrieve("256");
+    EXPECT_EQ(all["tiles_read"], all["tiles_total"]);
+    EXPECT_EQ(all["tiles_resident"], all["tiles_read"]);
+    EXPECT_EQ(all["tiles_evicted"], 0);
 }

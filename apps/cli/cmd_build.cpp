@@ -54,6 +54,7 @@ static Register build("build", 20, [](CLI::App& cmd) {
                                     {"tree_nodes", tree.node_count()}}},
                         {"time_ms", {{"load", ms_load}, {"bounds", ms_bounds}, {"write", ms_write}}},
                         {"build_samples_per_s", samples_per_s},
+                        {"threads", max_threads()},
                         {"peak_rss_mb", peak_rss_mb()}});
         std::printf("%s: %dx%d samples, %d levels, %lld tiles, %.1f MB in %.0f ms (%.1f M samples/s)\n",
                     args->output.c_str(), hf.width, hf.height, levels,

@@ -157,6 +157,7 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
                                   {"bytes_read", store->last_stats().bytes_read},
                                   {"tiles_total", store->tile_count()},
                                   {"tiles_resident", store->resident_tiles()},
+                                  {"tiles_evicted", store->last_stats().tiles_evicted},
                                   {"file_bytes", store->file_bytes()},
                                   {"cache_mb", args->cache_mb}};
         }

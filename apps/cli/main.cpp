@@ -3,10 +3,14 @@
 
 #include "tinlod/error.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/util.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <string>
 
 namespace tinlod::cli {
 
@@ -44,6 +48,21 @@ void RasterOptions::add(CLI::App& cmd) {
                  "decode an RGB image as Mapbox Terrain-RGB: (R*65536+G*256+B)/10-10000");
 }
 
+// --threads N: a whole number from 1 to 1024, or 0 when the text is not one.
+static int parse_threads(const std::string& text) {
+    if (text.empty() || text.size() > 4 ||
+        !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); }))
+        return 0;
+    const int n = std::stoi(text);
+    return n <= 1024 ? n : 0;
+}
+
+static void apply_threads(int n) {
+    set_max_threads(n);
+    // Mesa's software rasteriser (render, compare) sizes its own pool from this variable.
+    ::setenv("LP_NUM_THREADS", std::to_string(n).c_str(), 1);
+}
+
 LoadOptions RasterOptions::load_options() const {
     LoadOptions lo;
     lo.cell = cell;
@@ -60,6 +79,13 @@ int main(int argc, char** argv) {
                  "meshes"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "tinlod 0.1.0");
+    std::string threads;
+    const CLI::Option* threads_option =
+        app.add_option("--threads", threads,
+                       "threads to run at once: loading, building, measuring, rendering (default: "
+                       "every core)");
+    // Options of the main command may also follow the subcommand's.
+    app.fallthrough();
     auto& commands = registry();
     std::sort(commands.begin(), commands.end(),
               [](const Command& a, const Command& b) { return a.order < b.order; });
@@ -74,6 +100,17 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    }
+    if (threads_option->count() > 0) {
+        const int n = parse_threads(threads);
+        if (n == 0) {
+            std::fprintf(
+                stderr,
+                "tinlod: error: --threads: must be a whole number from 1 to 1024, not '%s'\n",
+                threads.c_str());
+            return 2; // a usage error, found before any work
+        }
+        apply_threads(n);
     }
     try {
         for (auto& [sub, run] : runs)

@@ -5,6 +5,7 @@
 // the point-triangle distance is Ericson's, "Real-Time Collision Detection" (2005), 5.1.5.
 #include "tinlod/hausdorff.hpp"
 #include "tinlod/error.hpp"
+#include "tinlod/util.hpp"
 
 #include <glm/glm.hpp>
 
@@ -197,10 +198,10 @@ std::vector<glm::dvec3> sample_surface(const Mesh& mesh, const std::vector<Trian
     return points;
 }
 
-// Distance from each point to the surface, over every hardware thread.
+// Distance from each point to the surface, over max_threads() threads.
 std::vector<double> distances(const std::vector<glm::dvec3>& points, const TriangleBvh& bvh) {
     std::vector<double> out(points.size());
-    const std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t threads = std::size_t(max_threads());
     const std::size_t chunk = (points.size() + threads - 1) / threads;
     std::vector<std::thread> workers;
     for (std::size_t t = 0; t < threads; ++t)

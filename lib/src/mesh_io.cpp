@@ -391,6 +391,29 @@ static void check_off(const std::string& path, const std::string& head, std::uin
     }
 }
 
+// OBJ: OpenMesh's reader asserts (aborts the process) on a face vertex without a position index
+// ("f /2 3"), and takes a position that fails to parse as whatever value it read last. The OBJ
+// grammar asks every face vertex for an integer position: v, v/vt, v//vn or v/vt/vn.
+static void check_obj(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line, word;
+    for (std::int64_t number = 1; std::getline(in, line); ++number) {
+        std::istringstream words(line);
+        if (!(words >> word) || word != "f")
+            continue;
+        while (words >> word) {
+            const std::size_t slash = word.find('/');
+            if (slash == std::string::npos)
+                continue; // OpenMesh skips a lone word that is not a number
+            std::istringstream position(word.substr(0, slash));
+            int index = 0;
+            if (!(position >> index))
+                refuse(path, "OBJ line " + std::to_string(number) + ": face vertex '" + word +
+                                 "' has no position index");
+        }
+    }
+}
+
 static void check_header(const std::string& path, const std::string& ext, std::uintmax_t bytes) {
     std::ifstream in(path, std::ios::binary);
     std::string head(std::size_t(std::min<std::uintmax_t>(bytes, 1 << 16)), '\0');
@@ -403,6 +426,8 @@ static void check_header(const std::string& path, const std::string& ext, std::u
             walk_ply_binary(path, h, bytes);
     } else if (ext == ".off") {
         check_off(path, head, bytes);
+    } else if (ext == ".obj") {
+        check_obj(path);
     } else if (ext == ".stl" && head.rfind("solid", 0) != 0 && bytes >= 84) {
         const auto* p = reinterpret_cast<const unsigned char*>(head.data()) + 80;
         const std::uintmax_t n = p[0] | p[1] << 8 | p[2] << 16 | std::uintmax_t(p[3]) << 24;

@@ -256,8 +256,7 @@ QuadTree::QuadTree(const Heightfield& hf, Progress* progress) {
                 }
         };
         // Rows of nodes are independent (the level below is complete): split them over threads.
-        const std::uint32_t workers = std::min<std::uint32_t>(
-            std::max(1u, std::thread::hardware_concurrency()), ny);
+        const std::uint32_t workers = std::min<std::uint32_t>(max_threads(), ny);
         std::vector<std::thread> pool;
         for (std::uint32_t t = 1; t < workers; ++t)
             pool.emplace_back(rows, ny * t / workers, ny * (t + 1) / workers);

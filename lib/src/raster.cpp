@@ -313,7 +313,6 @@ void crop_and_fill(const std::string& path, RawGrid& g, Georef& geo, Heightfield
         geo.north -= top * geo.sy;
         g = std::move(cropped);
     }
-    std::vector<std::size_t> frontier;
     std::int64_t remaining = 0;
     for (std::size_t i = 0; i < g.z.size(); ++i)
         remaining += g.is_void[i];
@@ -321,40 +320,58 @@ void crop_and_fill(const std::string& path, RawGrid& g, Georef& geo, Heightfield
         return;
     if (!fill)
         throw Error(path, std::to_string(remaining) + " void samples inside the terrain");
-    // known: 0 void, 1 valid or filled in an earlier ring.
-    std::vector<std::uint8_t> known(g.z.size());
+    // known: 0 void, 1 valid or filled in an earlier ring. Ring k holds the voids k steps (8-way)
+    // from the valid samples; each ring is found from the last, so the fill is linear in the
+    // samples (rescanning every void each ring took minutes for a half-void SRTM1 tile).
+    const int w = g.width, h = g.height;
+    std::vector<std::uint8_t> known(g.z.size()), queued(g.z.size());
     for (std::size_t i = 0; i < g.z.size(); ++i)
         known[i] = !g.is_void[i];
+    auto neighbours = [&](std::size_t i, auto&& visit) {
+        const int r = int(i / w), c = int(i % w);
+        for (int dr = -1; dr <= 1; ++dr)
+            for (int dc = -1; dc <= 1; ++dc) {
+                const int rr = r + dr, cc = c + dc;
+                if ((dr || dc) && rr >= 0 && rr < h && cc >= 0 && cc < w)
+                    visit(std::size_t(rr) * w + cc);
+            }
+    };
+    std::vector<std::size_t> ring, next;
     for (std::size_t i = 0; i < g.z.size(); ++i)
         if (!known[i])
-            frontier.push_back(i);
-    const int w = g.width, h = g.height;
-    while (!frontier.empty()) {
-        std::vector<std::pair<std::size_t, float>> ring;
-        std::vector<std::size_t> rest;
-        for (std::size_t i : frontier) {
-            const int r = int(i / w), c = int(i % w);
+            neighbours(i, [&](std::size_t n) {
+                if (known[n] && !queued[i]) {
+                    queued[i] = 1;
+                    ring.push_back(i);
+                }
+            });
+    std::vector<float> value;
+    while (!ring.empty()) {
+        value.assign(ring.size(), 0.0f);
+        for (std::size_t k = 0; k < ring.size(); ++k) {
             double sum = 0;
             int count = 0;
-            for (int dr = -1; dr <= 1; ++dr)
-                for (int dc = -1; dc <= 1; ++dc) {
-                    const int rr = r + dr, cc = c + dc;
-                    if ((dr || dc) && rr >= 0 && rr < h && cc >= 0 && cc < w &&
-                        known[std::size_t(rr) * w + cc]) {
-                        sum += g.z[std::size_t(rr) * w + cc];
-                        ++count;
-                    }
+            neighbours(ring[k], [&](std::size_t n) {
+                if (known[n]) {
+                    sum += g.z[n];
+                    ++count;
                 }
-            if (count)
-                ring.emplace_back(i, float(sum / count));
-            else
-                rest.push_back(i);
+            });
+            value[k] = float(sum / count);
         }
-        for (auto [i, v] : ring) {
-            g.z[i] = v;
-            known[i] = 1;
+        next.clear();
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+            g.z[ring[k]] = value[k];
+            known[ring[k]] = 1;
         }
-        frontier.swap(rest);
+        for (std::size_t i : ring)
+            neighbours(i, [&](std::size_t n) {
+                if (!known[n] && !queued[n]) {
+                    queued[n] = 1;
+                    next.push_back(n);
+                }
+            });
+        ring.swap(next);
     }
     hf.filled = remaining;
 }

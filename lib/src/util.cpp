@@ -1,15 +1,21 @@
-// Atomic writes, timing, memory, progress.
+// Atomic writes, timing, memory, progress, the thread count.
 #include "tinlod/util.hpp"
 #include "tinlod/error.hpp"
 
+#include <OpenImageIO/imageio.h>
+
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cassert>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <thread>
 
 namespace tinlod {
 
@@ -53,6 +59,20 @@ double peak_rss_mb() {
         if (line.rfind("VmHWM:", 0) == 0)
             return std::stod(line.substr(6)) / 1024.0;
     return 0.0;
+}
+
+static std::atomic<int> g_max_threads{0}; // 0: the hardware concurrency
+
+void set_max_threads(int threads) {
+    assert(threads >= 1);
+    g_max_threads = threads;
+    OIIO::attribute("threads", threads);
+    OIIO::attribute("exr_threads", threads);
+}
+
+int max_threads() {
+    const int n = g_max_threads;
+    return n > 0 ? n : int(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 Progress::Progress(std::string label, std::int64_t total)

@@ -1,4 +1,5 @@
-// Small shared services: atomic file writes, timing, peak memory, progress bar, stats JSON.
+// Small shared services: atomic file writes, timing, peak memory, progress bar, stats JSON, the
+// thread count.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,6 +21,12 @@ void write_json(const std::string& path, const nlohmann::json& doc);
 
 // Peak resident set size of this process, MiB (VmHWM).
 double peak_rss_mb();
+
+// Threads the library may run at once: its own workers (the quad-tree build, Hausdorff distances)
+// and OpenImageIO's and OpenEXR's pools. `threads` >= 1; the default is the hardware concurrency.
+// Set it before the work starts (the CLI's --threads), not while a pool runs.
+void set_max_threads(int threads);
+int max_threads();
 
 class Stopwatch {
   public:
