@@ -1,7 +1,8 @@
 # The suite's plots (run by bench/run.sh): the quality frontier (error against triangle count for
-# every contender) and how cost grows (retrieval time against output size per terrain size, node
-# erase time against input size). Reads the series bench_suite wrote into `tmp`, writes PNGs into
-# `out`. usage: gnuplot -e "tmp='DIR'; out='DIR'" bench/plot.gp
+# every contender), how cost grows (retrieval time against output size per terrain size, node
+# erase time against input size) and the flight's per-frame update time against the nodes it
+# changed and against the TIN size. Reads the series bench_suite and bench_fly wrote into `tmp`,
+# writes PNGs into `out`. usage: gnuplot -e "tmp='DIR'; out='DIR'" bench/plot.gp
 set terminal pngcairo size 900,560 font ",10" noenhanced
 set grid
 # Twelve distinct colours, so no two contenders share one (gnuplot cycles through eight).
@@ -33,4 +34,22 @@ set title 'node erase of the whole grid TIN (τ = 1 px)'
 set xlabel 'input triangles'
 set ylabel 'CPU ms'
 plot tmp.'/scaling_erase.dat' index 0 using 1:2 with linespoints title columnheader(1)
+unset multiplot
+
+set output out.'/flight.png'
+set multiplot layout 1,2 title 'Flight: Refiner::update per frame (CPU ms), one point per frame'
+unset logscale
+set yrange [0:*]
+set format x '%.1s%c'
+set key inside right bottom
+set title 'against the nodes the frame changed'
+set xlabel 'nodes changed (erased + recovered)'
+set ylabel 'update CPU ms'
+stats tmp.'/flight.dat' nooutput
+plot for [i=0:STATS_blocks-1] tmp.'/flight.dat' index i using 1:3 with points pointsize 0.8 \
+     title columnheader(1)
+set title 'against the TIN size'
+set xlabel 'live TIN nodes'
+plot for [i=0:STATS_blocks-1] tmp.'/flight.dat' index i using 2:3 with points pointsize 0.8 \
+     title columnheader(1)
 unset multiplot

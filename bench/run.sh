@@ -1,7 +1,8 @@
 #!/bin/sh
 # The benchmark suite end to end (`make bench`, `make bench ARGS=--quick`): set-up (gnuplot, the
-# npm peers), the side-by-side suite (bench_suite), the Google Benchmark micro-benchmarks
-# (bench_micro), the plots; everything lands in bench/results/.
+# npm peers), the flight benchmark (bench_fly), the side-by-side suite (bench_suite, which puts the
+# flight's claims and section into RESULTS.md), the Google Benchmark micro-benchmarks (bench_micro),
+# the plots; everything lands in bench/results/.
 #
 # usage: bench/run.sh BIN_DIR [--quick]
 set -eu
@@ -31,8 +32,9 @@ unzip -q -o "$DATA/dem/N48W125.hgt.zip" -d "$TMP"
 mkdir -p "$OUT"
 
 COMMAND="make bench${QUICK:+ ARGS=--quick}"
+"$BIN/bench_fly" $QUICK --data "$DATA" --out "$OUT" --tmp "$TMP"
 "$BIN/bench_suite" $QUICK --data "$DATA" --peers "$ROOT/bench/peers" --out "$OUT" --tmp "$TMP" \
-    --command "$COMMAND"
+    --command "$COMMAND" --flight "$TMP/flight.json"
 
 MIN_TIME=0.5
 [ -n "$QUICK" ] && MIN_TIME=0.1
