@@ -258,6 +258,8 @@ struct Hole {
     glm::dvec3 origin{0.0}, ex{1, 0, 0}, ey{0, 1, 0}; // projection frame (xy: the world frame)
     double delta = 0.0; // the node's own deviation from the new triangles
     double cost = 0.0;  // max weighted deviation over the node and the fan's swallowed nodes
+    std::uint32_t star = 0; // the node that gave the cost, and its (unweighted) deviation
+    double star_dev = 0.0;
     bool deferred = false; // the fan swallowed more nodes than the evaluation may visit
 };
 
@@ -327,6 +329,19 @@ struct Assignment {
     float dev;
 };
 
+// What an update needs to know of a live node without walking its fan (see update()).
+struct LiveNode {
+    std::uint32_t node;
+    // The node whose deviation gave the last evaluated cost, and that deviation: the cost under
+    // any later view is at least star_dev times the star's weight there while the fan stands.
+    std::uint32_t star;
+    float star_dev;
+    // Bounds on the fan's swallowed nodes: each lies within `reach` of the node (3-D) and deviates
+    // at most `fan_dev` from its face. Raised as the fan changes, tightened when an update walks it.
+    float reach;
+    float fan_dev;
+};
+
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
 
@@ -340,12 +355,19 @@ struct NodeEraser::Impl {
     bool xy = true;
     double focal_distance = 1.0;
     Weigher weigher;                          // pixels per unit deviation for the current view
-    std::vector<float> weight;      // per vertex: weigher at the node, rounded up (empty: all 1)
-    std::vector<float> weight_prev; // the same for the view before (update)
+    // Per vertex, computed when first asked for under a view (weight_of), so a frame pays for the
+    // nodes it visits, not for the whole terrain: the weigher at the node rounded up (both empty:
+    // every weight is 1) and the view (epoch) the weight belongs to.
+    mutable std::vector<float> weight;
+    mutable std::vector<std::uint32_t> weight_epoch;
+    std::uint32_t epoch = 0;
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
-    std::vector<std::int32_t> record_of;      // per vertex: its erase record, -1 when live
+    // Per vertex: its erase record (>= 0), or for a live node -2 - its place in live_list (so an
+    // update visits the live nodes without walking the whole terrain).
+    std::vector<std::int32_t> record_of;
+    std::vector<LiveNode> live_list; // the live nodes, in no order
     std::vector<std::uint8_t> flags;          // per vertex: k_locked, k_dirty
     NodeHeap heap;
     std::vector<EraseRecord> records;
@@ -358,6 +380,55 @@ struct NodeEraser::Impl {
     std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
 };
+
+// The nearest float at or above (below) d: a bound stored as float is never understated
+// (overstated).
+static float float_up(double d) {
+    const float f = float(d);
+    return double(f) < d ? std::nextafter(f, INFINITY) : f;
+}
+
+static float float_down(double d) {
+    const float f = float(d);
+    return double(f) > d ? std::nextafter(f, -INFINITY) : f;
+}
+
+static void add_live(NodeEraser::Impl &s, std::uint32_t x) {
+    s.record_of[x] = -2 - std::int32_t(s.live_list.size());
+    s.live_list.push_back({x, x, 0.0f, 0.0f, 0.0f});
+}
+
+static LiveNode &live_node(NodeEraser::Impl &s, std::uint32_t x) {
+    assert(s.record_of[x] < 0);
+    return s.live_list[std::size_t(-2 - s.record_of[x])];
+}
+
+static void remove_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
+    const std::int32_t place = -2 - s.record_of[x];
+    const LiveNode last = s.live_list.back();
+    s.live_list[std::size_t(place)] = last;
+    s.record_of[last.node] = -2 - place;
+    s.live_list.pop_back();
+    s.record_of[x] = record;
+}
+
+// The fans of the live nodes among the hole's points h.p[0..count) (node ids `ids`) now hold faces
+// inside the hole whose swallowed nodes deviate at most `dev`: widens their bounds to cover them.
+static void widen_fans(NodeEraser::Impl &s, const Hole &h, const std::uint32_t *ids, int count,
+                       double dev) {
+    for (int i = 0; i < count; ++i) {
+        if (s.record_of[ids[i]] >= 0)
+            continue;
+        double far2 = 0.0;
+        for (int j = 0; j < count; ++j) {
+            const glm::dvec3 d = h.p[j] - h.p[i];
+            far2 = std::max(far2, glm::dot(d, d));
+        }
+        LiveNode &l = live_node(s, ids[i]);
+        l.reach = std::max(l.reach, float_up(std::sqrt(far2) + dev));
+        l.fan_dev = std::max(l.fan_dev, float_up(dev));
+    }
+}
 
 // ---- Geometry of a hole ------------------------------------------------------------------------
 
@@ -460,23 +531,33 @@ static bool gather_ring(const Mesh &m, VH v, Hole &h, int max_valence) {
     return n >= 3;
 }
 
-static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
-    return dev > 0.0 ? dev * (s.weight.empty() ? 1.0 : double(s.weight[node])) : 0.0;
+// Node `node`'s weight under the current view, computed on first use (see Impl::weight).
+static double weight_of(const NodeEraser::Impl &s, std::uint32_t node) {
+    if (s.weight.empty())
+        return 1.0;
+    if (s.weight_epoch[node] != s.epoch) {
+        s.weight[node] = float_up(s.weigher(to_glm(s.mesh->point(VH(int(node))))));
+        s.weight_epoch[node] = s.epoch;
+    }
+    return double(s.weight[node]);
 }
 
-// Every node's weight for the current view, once, so an evaluation multiplies instead of taking
-// an arc cosine per swallowed node. Rounded up to float: a bound is never understated.
-static void fill_weights(NodeEraser::Impl &s) {
+static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
+    return dev > 0.0 ? dev * weight_of(s, node) : 0.0;
+}
+
+// A new view: every weight becomes stale (recomputed when next asked for).
+static void new_weights(NodeEraser::Impl &s) {
+    ++s.epoch;
     if (!s.has_view || s.options.significance.model == SpModel::vertical) {
         s.weight.clear();
+        s.weight_epoch.clear();
         return;
     }
-    const Mesh &m = *s.mesh;
-    s.weight.resize(m.n_vertices());
-    for (std::size_t i = 0; i < s.weight.size(); ++i) {
-        const double w = s.weigher(to_glm(m.point(VH(int(i)))));
-        const float f = float(w);
-        s.weight[i] = double(f) < w ? std::nextafter(f, INFINITY) : f;
+    const std::size_t n = s.mesh->n_vertices();
+    if (s.weight.size() != n) {
+        s.weight.assign(n, 0.0f);
+        s.weight_epoch.assign(n, s.epoch - 1);
     }
 }
 
@@ -492,7 +573,7 @@ static void classify_nodes(NodeEraser::Impl &s) {
             s.flags[v.idx()] |= k_locked;
     }
     s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
-    fill_weights(s);
+    new_weights(s);
 }
 
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
@@ -562,6 +643,23 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     s.assign.push_back({std::uint32_t(v.idx()), own, float(dev)});
     h.delta = dev;
     h.cost = weighted(s, std::uint32_t(v.idx()), dev);
+    h.star = std::uint32_t(v.idx());
+    h.star_dev = dev;
+    auto raise = [&](std::uint32_t node, double d) {
+        const double w = weighted(s, node, d);
+        if (w > h.cost) {
+            h.cost = w;
+            h.star = node;
+            h.star_dev = d;
+        }
+    };
+    // The cost so far is a lower bound of the erase's cost under any view: remembered for update().
+    auto remember = [&] {
+        LiveNode &l = live_node(s, std::uint32_t(v.idx()));
+        l.star = h.star;
+        l.star_dev = float_down(h.star_dev);
+        return true;
+    };
     if (s.xy)
         for (int t = 0; t < h.ntri; ++t) {
             // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
@@ -570,8 +668,7 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
             for (const std::uint8_t k : c) {
                 const double ulp =
                     1.2e-7 * std::max({std::abs(h.p[k].x), std::abs(h.p[k].y), 1.0});
-                h.cost = std::max(h.cost, weighted(s, std::uint32_t(h.r[k].idx()),
-                                                   4.0 * ulp * h.frame[t].slope));
+                raise(std::uint32_t(h.r[k].idx()), 4.0 * ulp * h.frame[t].slope);
             }
         }
     for (int i = 0; i < fans && h.cost <= limit; ++i)
@@ -579,15 +676,15 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
              u = s.next_swallowed[u]) {
             if (s.assign.size() > max_swallowed) {
                 h.deferred = true;
-                return true;
+                return remember();
             }
             const std::uint8_t t = locate(s, h, to_glm(m.point(VH(u))), dev);
             s.assign.push_back({std::uint32_t(u), t, float(dev)});
-            h.cost = std::max(h.cost, weighted(s, std::uint32_t(u), dev));
+            raise(std::uint32_t(u), dev);
             if (h.cost > limit)
                 break; // over the bound: the exact excess does not matter
         }
-    return true;
+    return remember();
 }
 
 // The queue key of the evaluated hole: its cost, or the paper's SP in the paper model.
@@ -711,11 +808,13 @@ static void retriangulate(NodeEraser::Impl &s) {
         m.status(face[t]).set_deleted(true);
         s.free_faces.push_back(face[t]);
     }
+    float hole_dev = 0.0f;
     for (const Assignment &a : s.assign) {
         const int f = face[a.triangle].idx();
         s.next_swallowed[a.node] = s.face_head[f];
         s.face_head[f] = std::int32_t(a.node);
         s.face_maxdev[f] = std::max(s.face_maxdev[f], a.dev);
+        hole_dev = std::max(hole_dev, a.dev);
     }
 
     EraseRecord record;
@@ -725,7 +824,11 @@ static void retriangulate(NodeEraser::Impl &s) {
     record.boundary = h.boundary;
     for (int i = 0; i < n; ++i)
         s.ring_pool.push_back(std::uint32_t(h.r[i].idx()));
-    s.record_of[h.v.idx()] = std::int32_t(s.records.size());
+    remove_live(s, std::uint32_t(h.v.idx()), std::int32_t(s.records.size()));
+    std::array<std::uint32_t, k_max_ring> ids;
+    for (int i = 0; i < n; ++i)
+        ids[i] = std::uint32_t(h.r[i].idx());
+    widen_fans(s, h, ids.data(), n, double(hole_dev));
     s.records.push_back(record);
     --s.live;
     s.live_faces -= fans - h.ntri;
@@ -1087,7 +1190,14 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         s.face_maxdev[f.idx()] = std::max(s.face_maxdev[f.idx()], float(dev));
     }
     swallowed.resize(swallowed_begin);
-    s.record_of[x] = -1;
+    add_live(s, x);
+    float hole_dev = 0.0f;
+    for (int i = 0; i < fans; ++i)
+        hole_dev = std::max(hole_dev, s.face_maxdev[face[i].idx()]);
+    std::array<std::uint32_t, k_max_ring + 1> ids;
+    std::copy(ring, ring + n, ids.begin());
+    ids[n] = x;
+    widen_fans(s, h, ids.data(), n + 1, double(hole_dev));
     ++s.live;
     s.live_faces += fans - (n - 2);
 }
@@ -1117,7 +1227,10 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.next_swallowed.assign(s.mesh->n_vertices(), -1);
     s.face_head.assign(s.mesh->n_faces(), -1);
     s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
-    s.record_of.assign(s.mesh->n_vertices(), -1);
+    s.record_of.resize(s.mesh->n_vertices());
+    s.live_list.reserve(s.mesh->n_vertices());
+    for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
+        add_live(s, x);
     set_view(view, options);
 }
 
@@ -1152,6 +1265,8 @@ EraseStats NodeEraser::erase() {
         rank_nodes(s);
         stats.erased = erase_loop(s);
     }
+    if (s.live_list.capacity() > 2 * s.live_list.size())
+        s.live_list.shrink_to_fit(); // an update keeps the live nodes only
     const EraseStats now = measure();
     stats.output_nodes = s.live;
     stats.output_triangles = s.live_faces;
@@ -1255,6 +1370,38 @@ static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s
     return worst;
 }
 
+// Whether the swallowed nodes of live node l's fan may cost more than `recover_above` under the
+// current view, from its bounds alone: the largest deviation times the largest weight in the cube
+// they lie in.
+static bool fan_may_recover(const NodeEraser::Impl &s, const LiveNode &l, double recover_above) {
+    if (l.fan_dev <= 0.0f)
+        return false;
+    const glm::dvec3 p = to_glm(s.mesh->point(VH(int(l.node))));
+    const glm::dvec3 r(double(l.reach));
+    return double(l.fan_dev) * s.weigher.bound(p - r, p + r) > recover_above;
+}
+
+// Puts live face f on the recover worklist when its swallowed nodes may cost more than
+// `recover_above` under the current view: their largest deviation times the largest weight in the
+// box they lie in says so, without visiting them.
+static void seed_recover(const NodeEraser::Impl &s, FH f, double recover_above,
+                         std::vector<FH> &work) {
+    const Mesh &m = *s.mesh;
+    const float dev = s.face_maxdev[f.idx()];
+    if (s.face_head[f.idx()] < 0 || dev <= 0.0f)
+        return;
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (auto v : m.fv_range(f)) {
+        lo = glm::min(lo, to_glm(m.point(v)));
+        hi = glm::max(hi, to_glm(m.point(v)));
+    }
+    // Swallowed nodes stand inside the face in xy and within their deviation of it in z.
+    lo.z -= dev;
+    hi.z += dev;
+    if (double(dev) * s.weigher.bound(lo, hi) > recover_above)
+        work.push_back(f);
+}
+
 UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
     Impl &s = *impl_;
     assert(s.options.significance.model != SpModel::vertical && erase_below <= recover_above);
@@ -1268,8 +1415,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     if (s.options.significance.model == SpModel::paper)
         s.focal_distance = std::max(focal_point(m, view).distance, 1e-9);
     s.weigher = Weigher(&s.view, s.options.significance);
-    std::swap(s.weight, s.weight_prev);
-    fill_weights(s);
+    new_weights(s);
     stats.ms_weights = clock.ms();
 
     // recover: a worklist of faces, seeded with every face whose swallowed nodes may exceed the
@@ -1278,20 +1424,31 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     // re-inserted.
     clock.reset();
     std::vector<FH> work;
-    for (auto f : m.faces()) {
-        const float dev = s.face_maxdev[f.idx()];
-        if (s.face_head[f.idx()] < 0 || dev <= 0.0f)
+    for (LiveNode &l : s.live_list) {
+        if (!fan_may_recover(s, l, recover_above))
             continue;
-        glm::dvec3 lo(INFINITY), hi(-INFINITY);
-        for (auto v : f.vertices()) {
-            lo = glm::min(lo, to_glm(m.point(v)));
-            hi = glm::max(hi, to_glm(m.point(v)));
+        // Tighten the node's bounds from its fan as it stands; each face is then tried by the
+        // node its halfedge leaves from, so once.
+        const VH x{int(l.node)};
+        const glm::dvec3 px = to_glm(m.point(x));
+        double far2 = 0.0;
+        float fan_dev = 0.0f;
+        for (auto he : m.voh_range(x)) {
+            const glm::dvec3 d = to_glm(m.point(m.to_vertex_handle(he))) - px;
+            far2 = std::max(far2, glm::dot(d, d));
+            const FH f = m.face_handle(he);
+            if (f.is_valid())
+                fan_dev = std::max(fan_dev, s.face_maxdev[f.idx()]);
         }
-        // Swallowed nodes stand inside the face in xy and within their deviation of it in z.
-        lo.z -= dev;
-        hi.z += dev;
-        if (double(dev) * s.weigher.bound(lo, hi) > recover_above)
-            work.push_back(f);
+        l.reach = float_up(std::sqrt(far2) + double(fan_dev));
+        l.fan_dev = fan_dev;
+        if (!fan_may_recover(s, l, recover_above))
+            continue;
+        for (auto he : m.voh_range(x)) {
+            const FH f = m.face_handle(he);
+            if (f.is_valid() && m.halfedge_handle(f) == he)
+                seed_recover(s, f, recover_above, work);
+        }
     }
     std::vector<std::uint32_t> done;
     while (!work.empty()) {
@@ -1318,26 +1475,20 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     // erase: only nodes whose cost may have fallen to the bound are re-evaluated.
     clock.reset();
     std::vector<std::uint32_t> candidates;
-    auto ratio = [&](std::uint32_t v) {
-        const float before = s.weight_prev[v];
-        return before > 0.0f ? s.weight[v] / before : 1.0f;
-    };
-    for (auto v : m.vertices()) {
-        const std::uint32_t x = std::uint32_t(v.idx());
+    for (const LiveNode &l : s.live_list) {
+        const std::uint32_t x = l.node;
         if (s.flags[x] & k_locked)
             continue;
         const float key = s.heap.key(x);
         if (!std::isfinite(key))
             continue; // its hole cannot be re-triangulated: only a change of its ring can help
-        float fall = ratio(x);
-        // Weights vary smoothly: a node whose own weight kept it at twice the bound stays.
-        if (!(s.flags[x] & k_dirty) && double(key) * fall > 2.0 * erase_below)
-            continue;
-        if (!(s.flags[x] & k_dirty) && double(key) * fall > erase_below) {
-            for (auto r : m.vv_range(v))
-                fall = std::min(fall, ratio(std::uint32_t(r.idx())));
-            if (double(key) * fall > erase_below)
+        if (!(s.flags[x] & k_dirty)) {
+            // The cost under this view is at least the star's deviation times its weight now.
+            const double least = double(l.star_dev) * weight_of(s, l.star);
+            if (least > erase_below) {
+                s.heap.store_key(x, float_down(least));
                 continue;
+            }
         }
         ++stats.candidates;
         s.flags[x] |= k_dirty;
@@ -1390,7 +1541,8 @@ std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
     return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
            s.record_of.capacity() * 4 + s.flags.capacity() + s.heap.bytes() +
-           (s.weight.capacity() + s.weight_prev.capacity()) * 4 +
+           (s.weight.capacity() + s.weight_epoch.capacity()) * 4 +
+           s.live_list.capacity() * sizeof(LiveNode) +
            s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
 }

@@ -118,7 +118,7 @@ struct UpdateStats {
     std::int64_t erased = 0;      // nodes erased
     std::int64_t candidates = 0;  // live nodes whose erase was re-evaluated
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
-    double ms_weights = 0.0;      // new per-node weights
+    double ms_weights = 0.0;      // the new view's weigher (node weights follow on demand)
     double ms_recover = 0.0;      // the recover pass
     double ms_erase = 0.0;        // the erase pass
 };
@@ -148,17 +148,23 @@ class NodeEraser {
     // Recovers every erased node; the mesh then has the input's nodes and triangles.
     std::int64_t recover_all();
 
-    // A new view (and model/tolerance) for the next erase(); recomputes every node's weight.
+    // A new view (and model/tolerance) for the next erase(); node weights are recomputed as they
+    // are needed.
     void set_view(const View *view, const EraseOptions &options);
 
     // Follows the observer to `view` in both directions (the refiner's frame step):
     //  1. recover: every face whose swallowed nodes exceed `recover_above` (weighted, the units of
     //     the tolerance) under the new weights gets its worst node back, with its dependency
-    //     closure, until every face is within `recover_above`;
-    //  2. erase: the nodes just recovered and the live nodes whose last measured erase cost,
-    //     scaled by how much the weights of the node and its ring fell, may now be <=
-    //     `erase_below` are swept (rungs rising to `erase_below`, passes over those nodes and the
-    //     rings their erases change) and erased while their cost stays <= `erase_below`.
+    //     closure, until every face is within `recover_above`. Faces are found from the live
+    //     nodes' bounds on their fans (reach and largest deviation), so only the fans those bounds
+    //     cannot clear are walked;
+    //  2. erase: the nodes just recovered, the nodes whose ring changed, and the live nodes whose
+    //     last evaluation's worst node (its deviation times its weight now: a lower bound of the
+    //     cost) no longer keeps them above `erase_below` are swept (rungs rising to
+    //     `erase_below`, passes over those nodes and the rings their erases change) and erased
+    //     while their cost stays <= `erase_below`.
+    // Its cost follows the live nodes (a few operations each) and the nodes that change, not the
+    // input's size.
     // With erase_below < recover_above a node between the two keeps its state (hysteresis). After
     // the call the whole-output bound holds at `recover_above`: every swallowed node's weighted
     // deviation is <= recover_above. Needs a view (not SpModel::vertical).
