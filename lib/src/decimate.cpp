@@ -283,6 +283,10 @@ class Weigher {
         cone_ = std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
         falloff_ = std::max(options.falloff_deg, 1e-6) * M_PI / 180.0;
         floor_ = options.floor;
+        // Beyond this cosine of the angle to the axis the factor is the floor (a hair inside, so
+        // rounding never takes the shortcut where the formula is above the floor).
+        const double floored = cone_ + falloff_ * std::log(1.0 / std::max(floor_, 1e-300));
+        floor_cos_ = floored < M_PI ? std::cos(floored) - 1e-9 : -2.0;
     }
     double operator()(const glm::dvec3 &p) const {
         if (unit_)
@@ -295,6 +299,8 @@ class Weigher {
         if (depth > 0.0 && std::abs(glm::dot(d, r_)) * k_ <= half_w_ * depth &&
             std::abs(glm::dot(d, u_)) * k_ <= half_h_ * depth)
             return k_ / od; // inside the frustum
+        if (depth < floor_cos_ * od)
+            return k_ / od * floor_; // far outside the view cone: no arc cosine
         const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
         return beyond <= 0.0 ? k_ / od : k_ / od * std::max(floor_, std::exp(-beyond / falloff_));
     }
@@ -320,6 +326,7 @@ class Weigher {
     bool unit_ = true;
     glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
     double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
+    double floor_cos_ = -2.0;
 };
 
 // A swallowed node's place in a re-triangulated hole: its new triangle and its deviation there.
