@@ -347,6 +347,7 @@ struct LiveNode {
     // at most `fan_dev` from its face. Raised as the fan changes, tightened when an update walks it.
     float reach;
     float fan_dev;
+    std::int32_t last_record; // the node's record from an earlier erase, -1 if none
 };
 
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
@@ -400,9 +401,10 @@ static float float_down(double d) {
     return double(f) > d ? std::nextafter(f, -INFINITY) : f;
 }
 
-static void add_live(NodeEraser::Impl &s, std::uint32_t x) {
+// Makes x live; `record` is its record from an earlier erase (-1 if none), kept for re-use.
+static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
     s.record_of[x] = -2 - std::int32_t(s.live_list.size());
-    s.live_list.push_back({x, x, 0.0f, 0.0f, 0.0f});
+    s.live_list.push_back({x, x, 0.0f, 0.0f, 0.0f, record});
 }
 
 static LiveNode &live_node(NodeEraser::Impl &s, std::uint32_t x) {
@@ -824,19 +826,28 @@ static void retriangulate(NodeEraser::Impl &s) {
         hole_dev = std::max(hole_dev, a.dev);
     }
 
-    EraseRecord record;
-    record.node = std::uint32_t(h.v.idx());
-    record.ring_begin = std::uint32_t(s.ring_pool.size());
+    // A node erased before re-uses its record, and its ring's room in the pool when the ring
+    // fits: the history stays within one record per node however long the flight.
+    const std::uint32_t x = std::uint32_t(h.v.idx());
+    std::int32_t k = live_node(s, x).last_record;
+    if (k < 0) {
+        k = std::int32_t(s.records.size());
+        s.records.emplace_back();
+    }
+    EraseRecord &record = s.records[std::size_t(k)];
+    if (record.ring_capacity < n) {
+        record.ring_begin = std::uint32_t(s.ring_pool.size());
+        record.ring_capacity = std::uint8_t(n);
+        s.ring_pool.resize(s.ring_pool.size() + std::size_t(n));
+    }
+    record.node = x;
     record.ring_size = std::uint8_t(n);
     record.boundary = h.boundary;
-    for (int i = 0; i < n; ++i)
-        s.ring_pool.push_back(std::uint32_t(h.r[i].idx()));
-    remove_live(s, std::uint32_t(h.v.idx()), std::int32_t(s.records.size()));
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
-        ids[i] = std::uint32_t(h.r[i].idx());
+        ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = std::uint32_t(h.r[i].idx());
+    remove_live(s, x, k);
     widen_fans(s, h, ids.data(), n, double(hole_dev));
-    s.records.push_back(record);
     --s.live;
     s.live_faces -= fans - h.ntri;
 }
@@ -1197,7 +1208,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         s.face_maxdev[f.idx()] = std::max(s.face_maxdev[f.idx()], float(dev));
     }
     swallowed.resize(swallowed_begin);
-    add_live(s, x);
+    add_live(s, x, s.record_of[x]);
     float hole_dev = 0.0f;
     for (int i = 0; i < fans; ++i)
         hole_dev = std::max(hole_dev, s.face_maxdev[face[i].idx()]);
@@ -1237,7 +1248,7 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.record_of.resize(s.mesh->n_vertices());
     s.live_list.reserve(s.mesh->n_vertices());
     for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
-        add_live(s, x);
+        add_live(s, x, -1);
     set_view(view, options);
 }
 

@@ -109,6 +109,7 @@ struct EraseRecord {
     std::uint32_t node = 0;       // vertex idx
     std::uint32_t ring_begin = 0; // offset in the eraser's ring pool
     std::uint8_t ring_size = 0;
+    std::uint8_t ring_capacity = 0; // room at ring_begin (a node erased again re-uses it)
     bool boundary = false;
 };
 
