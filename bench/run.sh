@@ -19,6 +19,12 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 DATA=${TINLOD_DATA:-$ROOT/../shared/data}
 OUT=$ROOT/bench/results
 START=$(date +%s)
+for f in dem/N42E001.hgt dem/N48W125.hgt.zip; do
+    [ -f "$DATA/$f" ] || {
+        echo "run.sh: $DATA/$f: not found (the bench reads ../shared/data beside the repository, or TINLOD_DATA)" >&2
+        exit 1
+    }
+done
 
 "$ROOT/scripts/setup.sh" gnuplot-nox
 command -v node >/dev/null || "$ROOT/scripts/setup.sh" nodejs npm
