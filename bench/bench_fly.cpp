@@ -35,6 +35,7 @@
 
 #include "common.hpp"
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -321,20 +322,29 @@ double percentile(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
 }
 
-double pearson(const std::vector<double> &x, const std::vector<double> &y) {
+// Means and centred sums of squares and products of paired samples.
+struct Moments {
+    double mx = 0, my = 0, sxx = 0, syy = 0, sxy = 0;
+};
+
+Moments moments(const std::vector<double> &x, const std::vector<double> &y) {
     const double n = double(x.size());
-    double mx = 0, my = 0;
+    Moments m;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        mx += x[i] / n;
-        my += y[i] / n;
+        m.mx += x[i] / n;
+        m.my += y[i] / n;
     }
-    double sxy = 0, sxx = 0, syy = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        sxy += (x[i] - mx) * (y[i] - my);
-        sxx += (x[i] - mx) * (x[i] - mx);
-        syy += (y[i] - my) * (y[i] - my);
+        m.sxy += (x[i] - m.mx) * (y[i] - m.my);
+        m.sxx += (x[i] - m.mx) * (x[i] - m.mx);
+        m.syy += (y[i] - m.my) * (y[i] - m.my);
     }
-    return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : 0.0;
+    return m;
+}
+
+double pearson(const std::vector<double> &x, const std::vector<double> &y) {
+    const Moments m = moments(x, y);
+    return m.sxx > 0 && m.syy > 0 ? m.sxy / std::sqrt(m.sxx * m.syy) : 0.0;
 }
 
 // Least-squares line y = intercept + slope * x.
@@ -343,19 +353,9 @@ struct Line {
 };
 
 Line fit(const std::vector<double> &x, const std::vector<double> &y) {
-    const double n = double(x.size());
-    double mx = 0, my = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        mx += x[i] / n;
-        my += y[i] / n;
-    }
-    double sxy = 0, sxx = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        sxy += (x[i] - mx) * (y[i] - my);
-        sxx += (x[i] - mx) * (x[i] - mx);
-    }
-    const double slope = sxx > 0 ? sxy / sxx : 0.0;
-    return {my - slope * mx, slope};
+    const Moments m = moments(x, y);
+    const double slope = m.sxx > 0 ? m.sxy / m.sxx : 0.0;
+    return {m.my - slope * m.mx, slope};
 }
 
 struct Summary {
@@ -632,26 +632,16 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
 
 FlyOptions parse(int argc, char **argv) {
     FlyOptions o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc)
-                throw std::runtime_error(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--quick")
-            o.quick = true;
-        else if (a == "--data")
-            o.data = next();
-        else if (a == "--out")
-            o.out = next();
-        else if (a == "--tmp")
-            o.tmp = next();
-        else
-            throw std::runtime_error("unknown argument " + a);
+    CLI::App app{"bench_fly: the flight benchmark (a Refiner over the ~4k² terrain, three paths)"};
+    app.add_option("--data", o.data, "the shared data folder (dem/N42E001.hgt)")->required();
+    app.add_option("--out", o.out, "results folder (flight.csv)")->required();
+    app.add_option("--tmp", o.tmp, "scratch folder (plot series, flight.json)")->required();
+    app.add_flag("--quick", o.quick, "2049² terrain, the first frames of each path");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        std::exit(app.exit(e));
     }
-    if (o.data.empty() || o.out.empty() || o.tmp.empty())
-        throw std::runtime_error("usage: bench_fly --data DIR --out DIR --tmp DIR [--quick]");
     return o;
 }
 

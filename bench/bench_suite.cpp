@@ -40,6 +40,7 @@
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
+#include <CLI/CLI.hpp>
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
@@ -1264,33 +1265,19 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
 
 SuiteOptions parse(int argc, char **argv) {
     SuiteOptions o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc)
-                throw std::runtime_error(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--quick")
-            o.quick = true;
-        else if (a == "--data")
-            o.data = next();
-        else if (a == "--peers")
-            o.peers = next();
-        else if (a == "--out")
-            o.out = next();
-        else if (a == "--tmp")
-            o.tmp = next();
-        else if (a == "--command")
-            o.command = next();
-        else if (a == "--flight")
-            o.flight = next();
-        else
-            throw std::runtime_error("unknown argument " + a);
+    CLI::App app{"bench_suite: every contender side by side on the same inputs"};
+    app.add_option("--data", o.data, "the shared data folder (dem/, mesh/)")->required();
+    app.add_option("--peers", o.peers, "bench/peers (run_peers.mjs, node_modules)")->required();
+    app.add_option("--out", o.out, "results folder (RESULTS.md, CSV, plot series)")->required();
+    app.add_option("--tmp", o.tmp, "scratch folder")->required();
+    app.add_option("--command", o.command, "the command RESULTS.md names")->capture_default_str();
+    app.add_option("--flight", o.flight, "bench_fly's summary (flight.json)");
+    app.add_flag("--quick", o.quick, "the quick run");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        std::exit(app.exit(e));
     }
-    if (o.data.empty() || o.peers.empty() || o.out.empty() || o.tmp.empty())
-        throw std::runtime_error("usage: bench_suite --data DIR --peers DIR --out DIR --tmp DIR "
-                                 "[--quick] [--command TEXT] [--flight FLIGHT.json]");
     return o;
 }
 
