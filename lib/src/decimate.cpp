@@ -364,10 +364,13 @@ struct NodeEraser::Impl {
     double focal_distance = 1.0;
     Weigher weigher;                          // pixels per unit deviation for the current view
     // Per vertex, computed when first asked for under a view (weight_of), so a frame pays for the
-    // nodes it visits, not for the whole terrain: the weigher at the node rounded up (both empty:
-    // every weight is 1) and the view (epoch) the weight belongs to.
-    mutable std::vector<float> weight;
-    mutable std::vector<std::uint32_t> weight_epoch;
+    // nodes it visits, not for the whole terrain: the weigher at the node rounded up (empty: every
+    // weight is 1) and the view (epoch) the weight belongs to.
+    struct Weight {
+        float value;
+        std::uint32_t epoch;
+    };
+    mutable std::vector<Weight> weight; // one array: a node's weight and epoch share a cache line
     std::uint32_t epoch = 0;
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
@@ -544,11 +547,10 @@ static bool gather_ring(const Mesh &m, VH v, Hole &h, int max_valence) {
 static double weight_of(const NodeEraser::Impl &s, std::uint32_t node) {
     if (s.weight.empty())
         return 1.0;
-    if (s.weight_epoch[node] != s.epoch) {
-        s.weight[node] = float_up(s.weigher(to_glm(s.mesh->point(VH(int(node))))));
-        s.weight_epoch[node] = s.epoch;
-    }
-    return double(s.weight[node]);
+    NodeEraser::Impl::Weight &w = s.weight[node];
+    if (w.epoch != s.epoch)
+        w = {float_up(s.weigher(to_glm(s.mesh->point(VH(int(node)))))), s.epoch};
+    return double(w.value);
 }
 
 static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
@@ -560,14 +562,11 @@ static void new_weights(NodeEraser::Impl &s) {
     ++s.epoch;
     if (!s.has_view || s.options.significance.model == SpModel::vertical) {
         s.weight.clear();
-        s.weight_epoch.clear();
         return;
     }
     const std::size_t n = s.mesh->n_vertices();
-    if (s.weight.size() != n) {
-        s.weight.assign(n, 0.0f);
-        s.weight_epoch.assign(n, s.epoch - 1);
-    }
+    if (s.weight.size() != n)
+        s.weight.assign(n, {0.0f, s.epoch - 1});
 }
 
 // ---- Stages ------------------------------------------------------------------------------------
@@ -1578,7 +1577,7 @@ std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
     return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
            s.record_of.capacity() * 4 + s.flags.capacity() + s.heap.bytes() +
-           (s.weight.capacity() + s.weight_epoch.capacity()) * 4 +
+           s.weight.capacity() * sizeof(Impl::Weight) +
            s.live_list.capacity() * sizeof(LiveNode) +
            s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
