@@ -155,15 +155,15 @@ class NodeEraser {
 
     // Follows the observer to `view` in both directions (the refiner's frame step):
     //  1. recover: every face whose swallowed nodes exceed `recover_above` (weighted, the units of
-    //     the tolerance) under the new weights gets its worst node back, with its dependency
-    //     closure, until every face is within `recover_above`. Faces are found from the live
-    //     nodes' bounds on their fans (reach and largest deviation), so only the fans those bounds
-    //     cannot clear are walked;
+    //     the tolerance) under the new weights gets nodes back top down, until every face is
+    //     within `recover_above`: the erase its worst node's recovery waits on (the first erased
+    //     ring node down the chain of dependencies, or the node itself) is undone, and the face is
+    //     checked again. Faces are found from the live nodes' bounds on their fans (reach and
+    //     largest deviation), so only the fans those bounds cannot clear are walked;
     //  2. erase: the nodes just recovered, the nodes whose ring changed, and the live nodes whose
     //     last evaluation's worst node (its deviation times its weight now: a lower bound of the
-    //     cost) no longer keeps them above `erase_below` are swept (rungs rising to
-    //     `erase_below`, passes over those nodes and the rings their erases change) and erased
-    //     while their cost stays <= `erase_below`.
+    //     cost) no longer keeps them above `erase_below` are swept (passes over those nodes and
+    //     the rings their erases change) and erased while their cost stays <= `erase_below`.
     // Its cost follows the live nodes (a few operations each) and the nodes that change, not the
     // input's size.
     // With erase_below < recover_above a node between the two keeps its state (hysteresis). After
