@@ -503,6 +503,18 @@ static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::
     return std::uint8_t(best);
 }
 
+// Whether a new triangle of the hole covers p (projected), edges included.
+static bool covered(const Hole &h, const glm::dvec3 &p) {
+    const glm::dvec2 x2 = project(h, p);
+    const glm::dvec3 x(x2.x, x2.y, 1.0);
+    for (int t = 0; t < h.ntri; ++t) {
+        const double b0 = glm::dot(h.frame[t].w0, x), b1 = glm::dot(h.frame[t].w1, x);
+        if (std::min({b0, b1, 1.0 - b0 - b1}) >= 0.0)
+            return true;
+    }
+    return false;
+}
+
 static HH find_halfedge(const Mesh &m, VH a, VH b) {
     const HH start = m.halfedge_handle(a);
     if (!start.is_valid())
@@ -683,6 +695,20 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
                 raise(std::uint32_t(h.r[k].idx()), 4.0 * ulp * h.frame[t].slope);
             }
         }
+    // The node whose deviation gave this node's last cost is tried first: when it still lies under
+    // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
+    // deviation settles most evaluations that fail without walking the fan.
+    const std::uint32_t last_star = live_node(s, std::uint32_t(v.idx())).star;
+    if (s.xy && h.cost <= limit && last_star != std::uint32_t(v.idx()) &&
+        s.record_of[last_star] >= 0) {
+        const glm::dvec3 p = to_glm(m.point(VH(int(last_star))));
+        if (covered(h, p)) {
+            locate(s, h, p, dev);
+            raise(last_star, dev);
+            if (h.cost > limit)
+                return remember();
+        }
+    }
     for (int i = 0; i < fans && h.cost <= limit; ++i)
         for (std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()]; u >= 0;
              u = s.next_swallowed[u]) {
