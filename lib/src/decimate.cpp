@@ -329,6 +329,9 @@ class Weigher {
     double floor_cos_ = -2.0;
 };
 
+// Weigher::bound times this bounds the stored weights too (rounded up to float).
+constexpr double k_rounded_weight = 1.0 + 1e-6;
+
 // A swallowed node's place in a re-triangulated hole: its new triangle and its deviation there.
 struct Assignment {
     std::uint32_t node;
@@ -1414,19 +1417,34 @@ static std::uint32_t ready_dependency(const NodeEraser::Impl &s, std::uint32_t v
     }
 }
 
-// The worst swallowed node of face f and its weighted deviation (-1 and 0 when f swallowed none).
-static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s, FH f) {
+// The worst swallowed node of face f whose weighted deviation exceeds `above`, and that weighted
+// deviation (-1 when none does).
+static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s, FH f,
+                                                       double above) {
     const Mesh &m = *s.mesh;
     std::int32_t u = s.face_head[f.idx()];
     if (u < 0)
-        return {-1, 0.0};
+        return {-1, above};
     HH he = m.halfedge_handle(f);
     const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he)));
     const glm::dvec3 b = to_glm(m.point(m.to_vertex_handle(he)));
     const glm::dvec3 c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
     const glm::dvec3 normal = glm::cross(b - a, c - a);
     const double slope = s.xy ? glm::length(glm::dvec2(normal.x, normal.y)) / std::abs(normal.z) : 0.0;
-    std::pair<std::int32_t, double> worst{-1, -1.0};
+    // A node's weight is looked up only when its deviation times a bound of the weights over the
+    // face (TINs: over its corners' box in xy, within its largest deviation in z) could beat the
+    // worst so far; that bound may clear the whole face at once (with a margin for the float
+    // rounding of the stored deviation and of its recomputation here).
+    std::pair<std::int32_t, double> worst{-1, above};
+    double weight_bound = INFINITY;
+    if (s.xy && !s.weight.empty()) {
+        const double dev = 1.001 * double(s.face_maxdev[f.idx()]);
+        weight_bound = s.weigher.bound(glm::min(glm::min(a, b), c) - glm::dvec3(0.0, 0.0, dev),
+                                       glm::max(glm::max(a, b), c) + glm::dvec3(0.0, 0.0, dev)) *
+                       k_rounded_weight;
+        if (!(dev * weight_bound > above))
+            return worst;
+    }
     for (; u >= 0; u = s.next_swallowed[u]) {
         const glm::dvec3 p = to_glm(m.point(VH(u)));
         double dev;
@@ -1440,6 +1458,8 @@ static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s
         } else {
             dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
         }
+        if (!(dev * weight_bound > worst.second))
+            continue;
         const double w = weighted(s, std::uint32_t(u), dev);
         if (w > worst.second)
             worst = {u, w};
@@ -1533,8 +1553,8 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         if (m.status(f).deleted())
             continue;
         ++stats.faces_checked;
-        const auto [u, cost] = worst_swallowed(s, f);
-        if (u < 0 || cost <= recover_above)
+        const std::int32_t u = worst_swallowed(s, f, recover_above).first;
+        if (u < 0)
             continue;
         // Top down: the erase u's recovery waits for that can be undone now comes back alone, and f
         // is checked again. The new fan often brings u within the bound before its whole closure
