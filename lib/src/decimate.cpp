@@ -178,11 +178,10 @@ class NodeHeap {
         else
             down(pos_[v]);
     }
-    // Empties the heap, keeping every stored key.
-    void clear() {
-        for (std::uint32_t v : heap_)
-            pos_[v] = -1;
-        heap_.clear();
+    // Frees the queue, keeping every stored key (store_key and key work until the next reset).
+    void release_queue() {
+        std::vector<std::int32_t>().swap(pos_);
+        std::vector<std::uint32_t>().swap(heap_);
     }
     void pop() {
         const std::uint32_t v = heap_.front();
@@ -390,6 +389,7 @@ struct NodeEraser::Impl {
     std::vector<std::uint32_t> ring_pool;
     std::vector<EH> free_edges;
     std::vector<FH> free_faces;
+    bool compacted = false; // compact() ran: erased edges and faces are not kept
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
     Hole hole;
@@ -761,6 +761,15 @@ static void rank_nodes(NodeEraser::Impl &s) {
     s.heap.build(std::move(ranked));
 }
 
+// Room for `more` elements in history array v: after compact() it grows by an eighth rather than
+// doubling (the history is most of the refiner's memory, and it then grows only by the nodes a
+// flight erases for the first time).
+template <class T>
+static void grow(const NodeEraser::Impl &s, std::vector<T> &v, std::size_t more) {
+    if (s.compacted && v.size() + more > v.capacity())
+        v.reserve(std::max(v.size() + more, v.capacity() + v.capacity() / 8));
+}
+
 // retriangulate: replaces the fan of the evaluated hole by its new triangles in place, moves the
 // swallowed nodes to the triangles that now cover them and records the erase.
 static void retriangulate(NodeEraser::Impl &s) {
@@ -864,12 +873,14 @@ static void retriangulate(NodeEraser::Impl &s) {
     std::int32_t k = live_node(s, x).last_record;
     if (k < 0) {
         k = std::int32_t(s.records.size());
+        grow(s, s.records, 1);
         s.records.emplace_back();
     }
     EraseRecord &record = s.records[std::size_t(k)];
     if (record.ring_capacity < n) {
         record.ring_begin = std::uint32_t(s.ring_pool.size());
         record.ring_capacity = std::uint8_t(n);
+        grow(s, s.ring_pool, std::size_t(n));
         s.ring_pool.resize(s.ring_pool.size() + std::size_t(n));
     }
     record.node = x;
@@ -1096,6 +1107,26 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
 
 // ---- Recovery ----------------------------------------------------------------------------------
 
+// A free edge for a re-insert: one an erase freed, or a new one once compact() dropped them.
+static EH take_edge(NodeEraser::Impl &s) {
+    if (s.free_edges.empty())
+        return s.mesh->edge_handle(s.mesh->new_edge(VH(), VH()));
+    const EH e = s.free_edges.back();
+    s.free_edges.pop_back();
+    return e;
+}
+
+static FH take_face(NodeEraser::Impl &s) {
+    if (s.free_faces.empty()) {
+        s.face_head.push_back(-1);
+        s.face_maxdev.push_back(0.0f);
+        return s.mesh->new_face();
+    }
+    const FH f = s.free_faces.back();
+    s.free_faces.pop_back();
+    return f;
+}
+
 // Re-inserts erased node x, whose ring nodes are all live: the faces inside its ring become its
 // fan again, the diagonals and two free edges its spokes.
 static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
@@ -1166,15 +1197,11 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         for (int k = 0; k < n_edges; ++k)
             fix_out[i] |= spoke_edge[k] == out;
     }
-    while (n_edges < n) {
-        spoke_edge[n_edges++] = s.free_edges.back();
-        s.free_edges.pop_back();
-    }
+    while (n_edges < n)
+        spoke_edge[n_edges++] = take_edge(s);
     const int fans = boundary ? n - 1 : n;
-    while (n_faces < fans) {
-        face[n_faces++] = s.free_faces.back();
-        s.free_faces.pop_back();
-    }
+    while (n_faces < fans)
+        face[n_faces++] = take_face(s);
 
     std::array<HH, k_max_ring> spoke; // x -> r_i
     for (int i = 0; i < n; ++i) {
@@ -1396,6 +1423,37 @@ EraseRecord NodeEraser::record(Mesh::VertexHandle v) const {
 
 std::span<const std::uint32_t> NodeEraser::ring(const EraseRecord &record) const {
     return {impl_->ring_pool.data() + record.ring_begin, record.ring_size};
+}
+
+void NodeEraser::compact() {
+    Impl &s = *impl_;
+    Mesh &m = *s.mesh;
+    // The per-face state rides along as face properties while the collection moves the faces.
+    OpenMesh::FPropHandleT<float> maxdev;
+    OpenMesh::FPropHandleT<std::int32_t> head;
+    m.add_property(maxdev);
+    m.add_property(head);
+    m.property(maxdev).data_vector() = std::move(s.face_maxdev);
+    m.property(head).data_vector() = std::move(s.face_head);
+    m.garbage_collection(false, true, true);
+    s.face_maxdev = std::move(m.property(maxdev).data_vector());
+    s.face_head = std::move(m.property(head).data_vector());
+    m.remove_property(maxdev);
+    m.remove_property(head);
+    s.face_maxdev.shrink_to_fit();
+    s.face_head.shrink_to_fit();
+    s.compacted = true;
+    s.heap.release_queue(); // updates keep keys only
+    std::vector<EH>().swap(s.free_edges);
+    std::vector<FH>().swap(s.free_faces);
+    s.records.shrink_to_fit();
+    s.ring_pool.shrink_to_fit();
+}
+
+void NodeEraser::rebind(Mesh &mesh) {
+    assert(mesh.n_vertices() == impl_->mesh->n_vertices() &&
+           mesh.n_faces() == impl_->face_head.size());
+    impl_->mesh = &mesh;
 }
 
 const Mesh &NodeEraser::mesh() const { return *impl_->mesh; }

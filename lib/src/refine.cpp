@@ -7,9 +7,10 @@
 namespace tinlod {
 
 struct Refiner::Impl {
-    Mesh mesh;
+    std::unique_ptr<Mesh> mesh;
     RefineOptions options;
     std::unique_ptr<NodeEraser> eraser;
+    std::size_t edge_room = 0, face_room = 0; // the mesh's reserved edges and faces
     FrameStats first;
 };
 
@@ -26,10 +27,19 @@ static void start(Refiner::Impl& s, const View& first) {
     assert(s.options.tol_px > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
     assert(s.options.significance.model != SpModel::vertical);
     Stopwatch clock;
-    s.eraser = std::make_unique<NodeEraser>(s.mesh, &first, erase_options(s.options));
+    s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first, erase_options(s.options));
     s.first.ms_weights = clock.ms();
     clock.reset();
     const EraseStats e = s.eraser->erase();
+    // The grid's erased edges and faces leave memory (a copy gets arrays of the compacted size),
+    // with room for the TIN to grow by half before its arrays reallocate.
+    s.eraser->compact();
+    auto compacted = std::make_unique<Mesh>(*s.mesh);
+    s.edge_room = compacted->n_edges() * 3 / 2;
+    s.face_room = compacted->n_faces() * 3 / 2;
+    compacted->reserve(compacted->n_vertices(), s.edge_room, s.face_room);
+    s.eraser->rebind(*compacted);
+    s.mesh = std::move(compacted);
     s.first.ms_erase = clock.ms();
     s.first.erased = e.erased;
     s.first.candidates = e.evaluations;
@@ -41,14 +51,14 @@ static void start(Refiner::Impl& s, const View& first) {
 
 Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& options)
     : impl_(std::make_unique<Impl>()) {
-    impl_->mesh = grid_tin(hf);
+    impl_->mesh = std::make_unique<Mesh>(grid_tin(hf));
     impl_->options = options;
     start(*impl_, first);
 }
 
 Refiner::Refiner(Mesh mesh, const View& first, const RefineOptions& options)
     : impl_(std::make_unique<Impl>()) {
-    impl_->mesh = std::move(mesh);
+    impl_->mesh = std::make_unique<Mesh>(std::move(mesh));
     impl_->options = options;
     start(*impl_, first);
 }
@@ -75,17 +85,23 @@ FrameStats Refiner::update(const View& view) {
     return f;
 }
 
-const Mesh& Refiner::mesh() const { return impl_->mesh; }
+const Mesh& Refiner::mesh() const { return *impl_->mesh; }
 
 bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_erased(v); }
 
 std::size_t Refiner::bytes() const {
-    const Mesh& m = impl_->mesh;
+    const Mesh& m = *impl_->mesh;
     // OpenMesh's arrays: per vertex a point, an outgoing halfedge, a status byte and the origin
     // property; per halfedge its vertex, next, prev and face; per edge and face a status byte, per
-    // face a halfedge.
+    // face a halfedge. Edges and faces count their reserved room; past it an array has at most
+    // doubled.
+    const auto room = [](std::size_t n, std::size_t reserved) {
+        return n <= reserved ? reserved : 2 * n;
+    };
+    const std::size_t edges = room(m.n_edges(), impl_->edge_room);
     const std::size_t mesh_bytes = m.n_vertices() * (sizeof(Mesh::Point) + 4 + 1 + 8) +
-                                   m.n_halfedges() * 16 + m.n_edges() * 1 + m.n_faces() * (4 + 1);
+                                   edges * (2 * 16 + 1) +
+                                   room(m.n_faces(), impl_->face_room) * (4 + 1);
     return mesh_bytes + impl_->eraser->history_bytes();
 }
 

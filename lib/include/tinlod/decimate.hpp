@@ -127,8 +127,8 @@ struct UpdateStats {
 // The history of the erases made on a TIN (or surface mesh): erase by significance, recover any
 // erased node exactly. The eraser edits the caller's mesh in place (OpenMesh meshes cannot be
 // moved, only copied); the mesh must outlive it. Vertex handles stay valid for the eraser's whole
-// life: erased vertices, edges and faces are marked deleted and re-used on recover. Call
-// mesh.garbage_collection() only once the eraser is gone.
+// life: erased vertices, edges and faces are marked deleted and re-used on recover (compact()
+// drops the erased edges and faces). Call mesh.garbage_collection() only once the eraser is gone.
 class NodeEraser {
   public:
     // `mesh`: triangles only, no deleted elements, status attributes (tinlod::Mesh has them).
@@ -170,6 +170,14 @@ class NodeEraser {
     // the call the whole-output bound holds at `recover_above`: every swallowed node's weighted
     // deviation is <= recover_above. Needs a view (not SpModel::vertical).
     UpdateStats update(const View &view, double recover_above, double erase_below);
+
+    // Drops the erased edges and faces from the mesh's arrays (an erase from a grid keeps a few
+    // percent of them): edge and face handles change, vertex handles stay (erased vertices remain,
+    // marked deleted: they name the history). Re-inserts then add edges and faces as they need.
+    // OpenMesh keeps the arrays' capacity; to give the memory back, copy the mesh and rebind.
+    void compact();
+    // Continues on `mesh`, a copy of the eraser's current mesh.
+    void rebind(Mesh &mesh);
 
     bool is_erased(Mesh::VertexHandle v) const;
     // The record of an erased node's last erase; v must be erased.
