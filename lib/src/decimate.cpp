@@ -1446,8 +1446,12 @@ void NodeEraser::compact() {
     s.heap.release_queue(); // updates keep keys only
     std::vector<EH>().swap(s.free_edges);
     std::vector<FH>().swap(s.free_faces);
+    // Room for a record per live node (a node never needs two) and for their rings, so a flight
+    // does not pay a reallocation of the whole history when its first new node goes.
     s.records.shrink_to_fit();
+    s.records.reserve(s.records.size() + s.live_list.size());
     s.ring_pool.shrink_to_fit();
+    s.ring_pool.reserve(s.ring_pool.size() + 8 * s.live_list.size());
 }
 
 void NodeEraser::rebind(Mesh &mesh) {
