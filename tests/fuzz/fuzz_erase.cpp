@@ -172,6 +172,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.projection = in.ConsumeBool() ? Projection::automatic : Projection::xy;
     options.erase_boundary = in.ConsumeBool();
     options.shallow_history = in.ConsumeBool();
+    const bool compact = in.ConsumeBool(); // drop the erased edges and faces before the update
     options.max_valence = in.ConsumeIntegralInRange(3, k_max_ring);
     const std::int64_t budget = in.ConsumeIntegralInRange(1, hf.width * hf.height);
 
@@ -207,6 +208,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check(stats.erased == stats.input_nodes - stats.output_nodes, "stats.erased");
         check_tin(eraser, input_area);
         check_bound(hf, eraser, view, options.significance.model, options.tolerance, slack);
+        Mesh compacted;
+        if (compact) {
+            eraser.compact();
+            compacted = work;
+            eraser.rebind(compacted);
+            check(compacted.n_faces() == std::size_t(eraser.live_triangles()),
+                  "compact kept erased faces");
+            check_tin(eraser, input_area);
+        }
         if (options.significance.model != SpModel::vertical && std::isfinite(options.tolerance)) {
             eraser.update(next, options.tolerance, 0.75 * options.tolerance);
             check_tin(eraser, input_area);
