@@ -477,9 +477,10 @@ static void frame_triangles(const NodeEraser::Impl &s, Hole &h) {
 }
 
 // The new triangle covering p (the one where p's smallest weight is largest), and p's deviation
-// from it: vertical for a TIN, from its plane otherwise.
+// from it: vertical for a TIN, from its plane otherwise. `inside`, if given, tells whether that
+// triangle covers p (projected, edges included) or is only the nearest.
 static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::dvec3 &p,
-                           double &dev) {
+                           double &dev, bool *inside = nullptr) {
     const glm::dvec2 x2 = project(h, p);
     const glm::dvec3 x(x2.x, x2.y, 1.0);
     int best = 0;
@@ -494,6 +495,8 @@ static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::
         if (lowest >= 0.0)
             break; // inside (or on the edge of) this triangle
     }
+    if (inside)
+        *inside = best_min >= 0.0;
     const TriangleFrame &f = h.frame[best];
     if (s.xy) {
         // The mesh holds float coordinates of exact grid positions: widen the deviation by what a
@@ -504,18 +507,6 @@ static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::
         dev = std::abs(glm::dot(p - h.p[h.tri[best].a], f.height));
     }
     return std::uint8_t(best);
-}
-
-// Whether a new triangle of the hole covers p (projected), edges included.
-static bool covered(const Hole &h, const glm::dvec3 &p) {
-    const glm::dvec2 x2 = project(h, p);
-    const glm::dvec3 x(x2.x, x2.y, 1.0);
-    for (int t = 0; t < h.ntri; ++t) {
-        const double b0 = glm::dot(h.frame[t].w0, x), b1 = glm::dot(h.frame[t].w1, x);
-        if (std::min({b0, b1, 1.0 - b0 - b1}) >= 0.0)
-            return true;
-    }
-    return false;
 }
 
 static HH find_halfedge(const Mesh &m, VH a, VH b) {
@@ -704,9 +695,9 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     const std::uint32_t last_star = live_node(s, std::uint32_t(v.idx())).star;
     if (s.xy && h.cost <= limit && last_star != std::uint32_t(v.idx()) &&
         s.record_of[last_star] >= 0) {
-        const glm::dvec3 p = to_glm(m.point(VH(int(last_star))));
-        if (covered(h, p)) {
-            locate(s, h, p, dev);
+        bool inside = false;
+        locate(s, h, to_glm(m.point(VH(int(last_star)))), dev, &inside);
+        if (inside) {
             raise(last_star, dev);
             if (h.cost > limit)
                 return remember();
