@@ -21,6 +21,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 
 namespace tinlod {
 
@@ -321,6 +322,23 @@ class Weigher {
         return beyond <= 0.0 ? k_ / dist : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
     }
 
+    // A lower bound of the weight anywhere in the box [lo, hi]: k over the distance to its farthest
+    // corner, times the peripheral factor of the largest angle its bounding sphere makes with the
+    // axis (the factor falls with the angle).
+    double lower(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
+        if (unit_)
+            return 1.0;
+        const double dist = glm::length(glm::max(glm::abs(lo - eye_), glm::abs(hi - eye_)));
+        const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
+        const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
+        const double angle = dc <= radius ? M_PI
+                                          : std::acos(std::clamp(glm::dot(c, f_) / dc, -1.0, 1.0)) +
+                                                std::asin(radius / dc);
+        const double beyond = angle - cone_;
+        return beyond <= 0.0 ? k_ / dist
+                             : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
+    }
+
   private:
     bool unit_ = true;
     glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
@@ -350,6 +368,25 @@ struct LiveNode {
     float reach;
     float fan_dev;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
+    std::uint32_t cell;       // its cell of the update's grid (NodeEraser::Impl::cells)
+};
+
+// A run of a long swallowed list (see build_blocks).
+struct Block {
+    std::int32_t head;   // its first node
+    std::uint32_t count; // its length
+    double dev;          // >= the deviation of each of its nodes from the face
+    glm::dvec3 lo, hi;   // the box of its nodes
+};
+
+// A square of the grid in xy that lets an update skip whole regions: bounds over the live nodes in
+// it, kept conservative between updates (raised, or lowered for star_dev, as the nodes change).
+struct Cell {
+    float fan_dev = 0.0f;  // >= every live node's fan_dev
+    float reach = 0.0f;    // >= every live node's reach
+    float star_dev = 0.0f; // <= every live node's star_dev
+    float zlo = INFINITY, zhi = -INFINITY; // the heights of every node in it, live or erased
+    bool dirty = true;     // some live node in it may be dirty
 };
 
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
@@ -377,10 +414,23 @@ struct NodeEraser::Impl {
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
+    // Per face: 1 when its list has blocks (face_blocks, see build_blocks), dropped when the list
+    // is rebuilt.
+    std::vector<std::uint8_t> face_blocked;
+    std::unordered_map<std::int32_t, std::vector<Block>> face_blocks;
+    std::vector<std::pair<float, std::int32_t>> block_scratch; // worst_swallowed's
+    std::vector<std::uint8_t> block_cell_scratch;             // build_blocks'
+    std::vector<std::int32_t> block_order_scratch;
     // Per vertex: its erase record (>= 0), or for a live node -2 - its place in live_list (so an
     // update visits the live nodes without walking the whole terrain).
     std::vector<std::int32_t> record_of;
     std::vector<LiveNode> live_list; // the live nodes, in no order
+    // The update's grid: cells of side cell_side from grid_lo, grid_nx per row.
+    std::vector<Cell> cells;
+    std::vector<std::uint8_t> cell_visit; // update's scratch: the cells that may matter
+    glm::dvec2 grid_lo{0.0};
+    double cell_side = 1.0;
+    int grid_nx = 1, grid_ny = 1;
     std::vector<std::uint8_t> flags;          // per vertex: k_locked, k_dirty
     std::vector<std::uint8_t> stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
     std::uint8_t pass = 0;
@@ -409,15 +459,53 @@ static float float_down(double d) {
     return double(f) > d ? std::nextafter(f, -INFINITY) : f;
 }
 
+static std::uint32_t cell_of(const NodeEraser::Impl &s, const glm::dvec3 &p) {
+    const int cx = std::clamp(int(std::floor((p.x - s.grid_lo.x) / s.cell_side)), 0, s.grid_nx - 1);
+    const int cy = std::clamp(int(std::floor((p.y - s.grid_lo.y) / s.cell_side)), 0, s.grid_ny - 1);
+    return std::uint32_t(cy * s.grid_nx + cx);
+}
+
+// The box that holds cell c's live nodes and, `reach` around them, their fans' swallowed nodes.
+static std::pair<glm::dvec3, glm::dvec3> cell_box(const NodeEraser::Impl &s, std::uint32_t c,
+                                                  double reach) {
+    const Cell &cell = s.cells[c];
+    const double margin = reach + 1e-6 * s.cell_side; // and the rounding of cell_of's division
+    const glm::dvec2 lo =
+        s.grid_lo + s.cell_side * glm::dvec2(int(c) % s.grid_nx, int(c) / s.grid_nx);
+    return {{lo.x - margin, lo.y - margin, double(cell.zlo) - margin},
+            {lo.x + s.cell_side + margin, lo.y + s.cell_side + margin, double(cell.zhi) + margin}};
+}
+
 // Makes x live; `record` is its record from an earlier erase (-1 if none), kept for re-use.
 static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
+    const glm::dvec3 p = to_glm(s.mesh->point(VH(int(x))));
+    const std::uint32_t c = cell_of(s, p);
+    Cell &cell = s.cells[c];
+    cell.zlo = std::min(cell.zlo, float_down(p.z));
+    cell.zhi = std::max(cell.zhi, float_up(p.z));
+    cell.star_dev = 0.0f;
+    cell.dirty = true;
     s.record_of[x] = -2 - std::int32_t(s.live_list.size());
-    s.live_list.push_back({x, x, 0.0f, 0.0f, 0.0f, record});
+    s.live_list.push_back({x, x, 0.0f, 0.0f, 0.0f, record, c});
 }
 
 static LiveNode &live_node(NodeEraser::Impl &s, std::uint32_t x) {
     assert(s.record_of[x] < 0);
     return s.live_list[std::size_t(-2 - s.record_of[x])];
+}
+
+// Face f's list is rebuilt: its blocks go.
+static void drop_blocks(NodeEraser::Impl &s, FH f) {
+    if (s.face_blocked[f.idx()]) {
+        s.face_blocked[f.idx()] = 0;
+        s.face_blocks.erase(f.idx());
+    }
+}
+
+// Marks live node x dirty (its key predates a change of its fan).
+static void mark_dirty(NodeEraser::Impl &s, std::uint32_t x) {
+    s.flags[x] |= k_dirty;
+    s.cells[live_node(s, x).cell].dirty = true;
 }
 
 static void remove_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
@@ -444,6 +532,9 @@ static void widen_fans(NodeEraser::Impl &s, const Hole &h, const std::uint32_t *
         LiveNode &l = live_node(s, ids[i]);
         l.reach = std::max(l.reach, float_up(std::sqrt(far2) + dev));
         l.fan_dev = std::max(l.fan_dev, float_up(dev));
+        Cell &cell = s.cells[l.cell];
+        cell.reach = std::max(cell.reach, l.reach);
+        cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
     }
 }
 
@@ -594,6 +685,16 @@ static void classify_nodes(NodeEraser::Impl &s) {
     new_weights(s);
 }
 
+// A bound of the stored weights of the nodes a TIN face with corners a, b, c swallowed, which lie
+// in its corners' box in xy and within `maxdev` of it in z (with a margin for the float rounding
+// of maxdev and of the deviations' recomputation).
+static double swallowed_weight_bound(const NodeEraser::Impl &s, const glm::dvec3 &a,
+                                     const glm::dvec3 &b, const glm::dvec3 &c, float maxdev) {
+    const glm::dvec3 dz(0.0, 0.0, 1.001 * double(maxdev));
+    return s.weigher.bound(glm::min(glm::min(a, b), c) - dz, glm::max(glm::max(a, b), c) + dz) *
+           k_rounded_weight;
+}
+
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
 // it only as some value > limit); false when v cannot be erased without a fold-over, a
 // non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the fan it
@@ -676,6 +777,8 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
         LiveNode &l = live_node(s, std::uint32_t(v.idx()));
         l.star = h.star;
         l.star_dev = float_down(h.star_dev);
+        Cell &cell = s.cells[l.cell];
+        cell.star_dev = std::min(cell.star_dev, l.star_dev);
         return true;
     };
     if (s.xy)
@@ -703,19 +806,29 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
                 return remember();
         }
     }
-    for (int i = 0; i < fans && h.cost <= limit; ++i)
-        for (std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()]; u >= 0;
-             u = s.next_swallowed[u]) {
+    for (int i = 0; i < fans && h.cost <= limit; ++i) {
+        const FH f = m.face_handle(h.h[i]);
+        // A node's weight is looked up only when its deviation times the largest weight where the
+        // face's swallowed nodes lie (its corners' box, within their largest deviation in z) could
+        // raise the cost: each update asks for fresh weights.
+        const double weight_bound =
+            s.xy && !s.weight.empty() && s.face_head[f.idx()] >= 0
+                ? swallowed_weight_bound(s, pv, h.p[i], h.p[(i + 1) % n], s.face_maxdev[f.idx()])
+                : INFINITY;
+        for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u]) {
             if (s.assign.size() > max_swallowed) {
                 h.deferred = true;
                 return remember();
             }
             const std::uint8_t t = locate(s, h, to_glm(m.point(VH(u))), dev);
             s.assign.push_back({std::uint32_t(u), t, float(dev)});
+            if (!(dev * weight_bound > h.cost))
+                continue;
             raise(std::uint32_t(u), dev);
             if (h.cost > limit)
                 break; // over the bound: the exact excess does not matter
         }
+    }
     return remember();
 }
 
@@ -843,6 +956,7 @@ static void retriangulate(NodeEraser::Impl &s) {
     }
     for (int t = 0; t < fans; ++t) {
         s.face_head[face[t].idx()] = -1;
+        drop_blocks(s, face[t]);
         s.face_maxdev[face[t].idx()] = 0.0f;
     }
     for (int t = h.ntri; t < fans; ++t) {
@@ -897,7 +1011,7 @@ static void touch_ring(NodeEraser::Impl &s) {
         const std::uint32_t u = std::uint32_t(h.r[i].idx());
         if (s.flags[u] & k_locked)
             continue;
-        s.flags[u] |= k_dirty;
+        mark_dirty(s, u);
         if (!s.heap.contains(u))
             s.heap.set(u, float(std::min<double>(s.heap.key(u), erase_limit(s))));
     }
@@ -991,7 +1105,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit) {
     }
     retriangulate(s);
     for (int i = 0; i < s.hole.n; ++i) {
-        s.flags[s.hole.r[i].idx()] |= k_dirty;
+        mark_dirty(s, std::uint32_t(s.hole.r[i].idx()));
         s.stamp[s.hole.r[i].idx()] = s.pass;
     }
     return true;
@@ -1110,6 +1224,7 @@ static EH take_edge(NodeEraser::Impl &s) {
 static FH take_face(NodeEraser::Impl &s) {
     if (s.free_faces.empty()) {
         s.face_head.push_back(-1);
+        s.face_blocked.push_back(0);
         s.face_maxdev.push_back(0.0f);
         return s.mesh->new_face();
     }
@@ -1172,6 +1287,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
             if (std::uint32_t(u) != x)
                 swallowed.push_back(std::uint32_t(u));
         s.face_head[face[k].idx()] = -1;
+        drop_blocks(s, face[k]);
         s.face_maxdev[face[k].idx()] = 0.0f;
     }
 
@@ -1287,6 +1403,9 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
 
 // ---- NodeEraser --------------------------------------------------------------------------------
 
+// Input nodes per cell of the update's grid (about 30 per side on a grid TIN).
+constexpr double k_nodes_per_cell = 1024.0;
+
 NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
     : impl_(std::make_unique<Impl>()) {
     Impl &s = *impl_;
@@ -1309,9 +1428,29 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
            (options.projection == Projection::automatic && all_ccw);
     s.next_swallowed.assign(s.mesh->n_vertices(), -1);
     s.face_head.assign(s.mesh->n_faces(), -1);
+    s.face_blocked.assign(s.mesh->n_faces(), 0);
     s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
     s.record_of.resize(s.mesh->n_vertices());
     s.live_list.reserve(s.mesh->n_vertices());
+    // The update's grid: about k_nodes_per_cell input nodes per cell.
+    glm::dvec2 lo(INFINITY), hi(-INFINITY);
+    for (auto v : s.mesh->vertices()) {
+        const glm::dvec3 p = to_glm(s.mesh->point(v));
+        lo = glm::min(lo, glm::dvec2(p));
+        hi = glm::max(hi, glm::dvec2(p));
+    }
+    if (s.mesh->n_vertices() > 0) {
+        const glm::dvec2 extent = hi - lo;
+        const double cells = std::max(1.0, double(s.mesh->n_vertices()) / k_nodes_per_cell);
+        const double area = extent.x * extent.y;
+        // At most ~4000 cells a side, however thin the mesh's outline.
+        s.cell_side = std::max({area > 0.0 ? std::sqrt(area / cells) : 0.0,
+                                std::max(extent.x, extent.y) / 4000.0, 1e-30});
+        s.grid_lo = lo;
+        s.grid_nx = int(extent.x / s.cell_side) + 1;
+        s.grid_ny = int(extent.y / s.cell_side) + 1;
+    }
+    s.cells.assign(std::size_t(s.grid_nx) * std::size_t(s.grid_ny), Cell{});
     for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
         add_live(s, x, -1);
     set_view(view, options);
@@ -1433,6 +1572,10 @@ void NodeEraser::compact() {
     m.remove_property(head);
     s.face_maxdev.shrink_to_fit();
     s.face_head.shrink_to_fit();
+    // The blocks name faces by index: they go (the next scans build them again).
+    s.face_blocked.assign(s.face_head.size(), 0);
+    s.face_blocked.shrink_to_fit();
+    s.face_blocks.clear();
     s.compacted = true;
     s.heap.release_queue(); // updates keep keys only
     std::vector<EH>().swap(s.free_edges);
@@ -1470,9 +1613,73 @@ static std::uint32_t ready_dependency(const NodeEraser::Impl &s, std::uint32_t v
     }
 }
 
+// Lists at least this long get blocks when worst_swallowed scans them whole.
+constexpr std::size_t k_block_list = 256;
+constexpr int k_block_side = 8; // blocks: a k_block_side² grid over the face's box in xy
+
+// Puts the nodes of face f's list (`nodes`, with their deviations) in runs by the square of a grid
+// over the face's box in xy that holds them, and keeps each run as a block: its first node, its
+// length, its nodes' largest deviation and their box. A scan then skips a block whose deviation
+// times the largest weight in its box cannot matter (a face of ~10^5 nodes on a flat, in sight of
+// a low eye, was weighed node by node every frame: ~570 k weights per frame on the flight
+// benchmark's 2049² valley path).
+static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi) {
+    const Mesh &m = *s.mesh;
+    const std::vector<std::pair<float, std::int32_t>> &nodes = s.block_scratch;
+    constexpr int cells = k_block_side * k_block_side;
+    std::array<std::uint32_t, cells + 1> start{};
+    std::vector<std::uint8_t> &cell_of_node = s.block_cell_scratch;
+    cell_of_node.resize(nodes.size());
+    const glm::dvec2 scale = double(k_block_side) / glm::max(hi - lo, glm::dvec2(1e-300));
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+        const glm::dvec3 p = to_glm(m.point(VH(nodes[k].second)));
+        const int cx = std::clamp(int((p.x - lo.x) * scale.x), 0, k_block_side - 1);
+        const int cy = std::clamp(int((p.y - lo.y) * scale.y), 0, k_block_side - 1);
+        cell_of_node[k] = std::uint8_t(cy * k_block_side + cx);
+        ++start[cell_of_node[k] + 1];
+    }
+    for (int c = 0; c < cells; ++c)
+        start[c + 1] += start[c];
+    std::vector<std::int32_t> &order = s.block_order_scratch;
+    order.resize(nodes.size());
+    std::array<std::uint32_t, cells> fill;
+    std::copy(start.begin(), start.end() - 1, fill.begin());
+    std::vector<Block> blocks;
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+        order[fill[cell_of_node[k]]++] = std::int32_t(k);
+    for (int c = 0; c < cells; ++c) {
+        if (start[c] == start[c + 1])
+            continue;
+        Block b;
+        b.head = nodes[std::size_t(order[start[c]])].second;
+        b.count = start[c + 1] - start[c];
+        glm::dvec3 blo(INFINITY), bhi(-INFINITY);
+        double dev = 0.0;
+        for (std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
+            const auto &[d, u] = nodes[std::size_t(order[k])];
+            const glm::dvec3 p = to_glm(m.point(VH(u)));
+            blo = glm::min(blo, p);
+            bhi = glm::max(bhi, p);
+            dev = std::max(dev, double(d));
+        }
+        b.dev = dev;
+        b.lo = blo;
+        b.hi = bhi;
+        blocks.push_back(b);
+    }
+    // Relink the list run by run.
+    s.face_head[f.idx()] = nodes[std::size_t(order.front())].second;
+    for (std::size_t k = 0; k + 1 < order.size(); ++k)
+        s.next_swallowed[nodes[std::size_t(order[k])].second] =
+            nodes[std::size_t(order[k + 1])].second;
+    s.next_swallowed[nodes[std::size_t(order.back())].second] = -1;
+    s.face_blocks[f.idx()] = std::move(blocks);
+    s.face_blocked[f.idx()] = 1;
+}
+
 // The worst swallowed node of face f whose weighted deviation exceeds `above`, and that weighted
 // deviation (-1 when none does).
-static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s, FH f,
+static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f,
                                                        double above) {
     const Mesh &m = *s.mesh;
     std::int32_t u = s.face_head[f.idx()];
@@ -1491,32 +1698,53 @@ static std::pair<std::int32_t, double> worst_swallowed(const NodeEraser::Impl &s
     std::pair<std::int32_t, double> worst{-1, above};
     double weight_bound = INFINITY;
     if (s.xy && !s.weight.empty()) {
-        const double dev = 1.001 * double(s.face_maxdev[f.idx()]);
-        weight_bound = s.weigher.bound(glm::min(glm::min(a, b), c) - glm::dvec3(0.0, 0.0, dev),
-                                       glm::max(glm::max(a, b), c) + glm::dvec3(0.0, 0.0, dev)) *
-                       k_rounded_weight;
-        if (!(dev * weight_bound > above))
+        weight_bound = swallowed_weight_bound(s, a, b, c, s.face_maxdev[f.idx()]);
+        if (!(1.001 * double(s.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
     }
-    for (; u >= 0; u = s.next_swallowed[u]) {
+    // The deviation of swallowed node u from f, computed the same way by every scan.
+    auto deviation = [&](std::int32_t u) {
         const glm::dvec3 p = to_glm(m.point(VH(u)));
-        double dev;
-        if (s.xy) {
-            const glm::dvec2 x(p.x, p.y);
-            const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / normal.z;
-            const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / normal.z;
-            // The same float-rounding widening as locate(): the bound is never overstated.
-            const double ulp = 1.2e-7 * std::max({std::abs(x.x), std::abs(x.y), 1.0});
-            dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z)) + 4.0 * ulp * slope;
-        } else {
-            dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
-        }
-        if (!(dev * weight_bound > worst.second))
-            continue;
+        if (!s.xy)
+            return std::abs(glm::dot(p - a, normal)) / glm::length(normal);
+        const glm::dvec2 x(p.x, p.y);
+        const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / normal.z;
+        const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / normal.z;
+        // The same float-rounding widening as locate(): the bound is never overstated.
+        const double ulp = 1.2e-7 * std::max({std::abs(x.x), std::abs(x.y), 1.0});
+        return std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z)) + 4.0 * ulp * slope;
+    };
+    auto visit = [&](std::int32_t u, double dev, double bound) {
+        if (!(dev * bound > worst.second))
+            return;
         const double w = weighted(s, std::uint32_t(u), dev);
         if (w > worst.second)
             worst = {u, w};
+    };
+    if (s.face_blocked[f.idx()]) {
+        for (const Block &block : s.face_blocks.find(f.idx())->second) {
+            const double bound = s.weigher.bound(block.lo, block.hi) * k_rounded_weight;
+            if (!(block.dev * bound > worst.second))
+                continue;
+            u = block.head;
+            for (std::uint32_t k = 0; k < block.count; ++k, u = s.next_swallowed[u])
+                visit(u, deviation(u), bound);
+        }
+        return worst;
     }
+    // A long list scanned whole gets blocks on the way (when a weight bound can use them).
+    const bool block = std::isfinite(weight_bound);
+    std::vector<std::pair<float, std::int32_t>> &nodes = s.block_scratch;
+    nodes.clear();
+    for (; u >= 0; u = s.next_swallowed[u]) {
+        const double dev = deviation(u);
+        if (block)
+            nodes.emplace_back(float_up(dev), u);
+        visit(u, dev, weight_bound);
+    }
+    if (block && nodes.size() >= k_block_list)
+        build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),
+                     glm::dvec2(glm::max(glm::max(a, b), c)));
     return worst;
 }
 
@@ -1528,7 +1756,7 @@ static bool fan_may_recover(const NodeEraser::Impl &s, const LiveNode &l, double
         return false;
     const glm::dvec3 p = to_glm(s.mesh->point(VH(int(l.node))));
     const glm::dvec3 r(double(l.reach));
-    return double(l.fan_dev) * s.weigher.bound(p - r, p + r) > recover_above;
+    return double(l.fan_dev) * s.weigher.bound(p - r, p + r) * k_rounded_weight > recover_above;
 }
 
 // Puts live face f on the recover worklist when its swallowed nodes may cost more than
@@ -1545,11 +1773,41 @@ static void seed_recover(const NodeEraser::Impl &s, FH f, double recover_above,
         lo = glm::min(lo, to_glm(m.point(v)));
         hi = glm::max(hi, to_glm(m.point(v)));
     }
-    // Swallowed nodes stand inside the face in xy and within their deviation of it in z.
-    lo.z -= dev;
-    hi.z += dev;
-    if (double(dev) * s.weigher.bound(lo, hi) > recover_above)
+    // Swallowed nodes stand within their deviation of the face (a TIN's inside it in xy; a
+    // surface mesh's along its normal, so the box widens on every axis).
+    const glm::dvec3 margin = s.xy ? glm::dvec3(0.0, 0.0, dev) : glm::dvec3(dev);
+    if (double(dev) * s.weigher.bound(lo - margin, hi + margin) * k_rounded_weight > recover_above)
         work.push_back(f);
+}
+
+// Seeds the recover worklist with the faces of live node l's fan whose swallowed nodes may cost
+// more than `recover_above`, tightening l's bounds from its fan as it stands on the way.
+static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
+                     std::vector<FH> &work) {
+    if (!fan_may_recover(s, l, recover_above))
+        return;
+    // Each face is tried by the node its halfedge leaves from, so once.
+    const Mesh &m = *s.mesh;
+    const VH x{int(l.node)};
+    const glm::dvec3 px = to_glm(m.point(x));
+    double far2 = 0.0;
+    float fan_dev = 0.0f;
+    for (auto he : m.voh_range(x)) {
+        const glm::dvec3 d = to_glm(m.point(m.to_vertex_handle(he))) - px;
+        far2 = std::max(far2, glm::dot(d, d));
+        const FH f = m.face_handle(he);
+        if (f.is_valid())
+            fan_dev = std::max(fan_dev, s.face_maxdev[f.idx()]);
+    }
+    l.reach = float_up(std::sqrt(far2) + double(fan_dev));
+    l.fan_dev = fan_dev;
+    if (!fan_may_recover(s, l, recover_above))
+        return;
+    for (auto he : m.voh_range(x)) {
+        const FH f = m.face_handle(he);
+        if (f.is_valid() && m.halfedge_handle(f) == he)
+            seed_recover(s, f, recover_above, work);
+    }
 }
 
 UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
@@ -1572,33 +1830,27 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     // bound (their largest deviation over the distance to the box they lie in says so, without
     // visiting them); a face that gets its worst node back is replaced by the fans of the nodes
     // re-inserted.
+    // The grid skips the cells whose bounds clear every node in them; the walk over the live
+    // nodes rebuilds those bounds (widen_fans raises them as the update changes fans).
     clock.reset();
+    std::vector<std::uint8_t> &visit = s.cell_visit;
+    visit.resize(s.cells.size());
+    for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
+        Cell &cell = s.cells[c];
+        const auto [lo, hi] = cell_box(s, c, double(cell.reach));
+        visit[c] = cell.fan_dev > 0.0f && double(cell.fan_dev) * s.weigher.bound(lo, hi) *
+                                                  k_rounded_weight >
+                                              recover_above;
+        cell.fan_dev = 0.0f;
+        cell.reach = 0.0f;
+    }
     std::vector<FH> work;
     for (LiveNode &l : s.live_list) {
-        if (!fan_may_recover(s, l, recover_above))
-            continue;
-        // Tighten the node's bounds from its fan as it stands; each face is then tried by the
-        // node its halfedge leaves from, so once.
-        const VH x{int(l.node)};
-        const glm::dvec3 px = to_glm(m.point(x));
-        double far2 = 0.0;
-        float fan_dev = 0.0f;
-        for (auto he : m.voh_range(x)) {
-            const glm::dvec3 d = to_glm(m.point(m.to_vertex_handle(he))) - px;
-            far2 = std::max(far2, glm::dot(d, d));
-            const FH f = m.face_handle(he);
-            if (f.is_valid())
-                fan_dev = std::max(fan_dev, s.face_maxdev[f.idx()]);
-        }
-        l.reach = float_up(std::sqrt(far2) + double(fan_dev));
-        l.fan_dev = fan_dev;
-        if (!fan_may_recover(s, l, recover_above))
-            continue;
-        for (auto he : m.voh_range(x)) {
-            const FH f = m.face_handle(he);
-            if (f.is_valid() && m.halfedge_handle(f) == he)
-                seed_recover(s, f, recover_above, work);
-        }
+        if (visit[l.cell])
+            seed_fan(s, l, recover_above, work);
+        Cell &cell = s.cells[l.cell];
+        cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
+        cell.reach = std::max(cell.reach, l.reach);
     }
     while (!work.empty()) {
         const FH f = work.back();
@@ -1617,7 +1869,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         ++stats.recovered;
         // Re-evaluated by this update's erase: a node recovered only because a worse one depended
         // on it may cost little, and a key of "significant" would keep it forever.
-        s.flags[x] |= k_dirty;
+        mark_dirty(s, x);
         for (auto g : m.vf_range(VH(int(x))))
             work.push_back(g);
         if (!m.status(f).deleted())
@@ -1626,11 +1878,21 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     stats.ms_recover = clock.ms();
 
     // erase: only nodes whose cost may have fallen to the bound are re-evaluated.
+    // The grid skips the cells where no node is dirty and every node's cost is over the bound: the
+    // least star deviation times the least weight in the box the stars lie in says so.
     clock.reset();
+    for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
+        Cell &cell = s.cells[c];
+        const auto [lo, hi] = cell_box(s, c, double(cell.reach));
+        visit[c] = cell.dirty || !(double(cell.star_dev) * s.weigher.lower(lo, hi) > erase_below);
+        cell.star_dev = INFINITY;
+    }
     std::vector<std::uint32_t> candidates;
     for (const LiveNode &l : s.live_list) {
         const std::uint32_t x = l.node;
-        if (s.flags[x] & k_locked)
+        Cell &cell = s.cells[l.cell];
+        cell.star_dev = std::min(cell.star_dev, l.star_dev);
+        if (!visit[l.cell] || (s.flags[x] & k_locked))
             continue;
         const float key = s.heap.key(x);
         if (!std::isfinite(key))
@@ -1648,6 +1910,8 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         candidates.push_back(x);
     }
     stats.erased = sweep_dirty(s, erase_below, std::move(candidates));
+    for (Cell &cell : s.cells)
+        cell.dirty = false; // the sweep left no live node dirty
     stats.ms_erase = clock.ms();
     return stats;
 }
@@ -1690,12 +1954,21 @@ EraseStats NodeEraser::measure() const {
     return stats;
 }
 
+static std::size_t block_bytes(const NodeEraser::Impl &s) {
+    std::size_t bytes = s.block_cell_scratch.capacity() + s.block_order_scratch.capacity() * 4;
+    for (const auto &[face, blocks] : s.face_blocks)
+        bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
+    return bytes;
+}
+
 std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
     return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
+           s.face_blocked.capacity() + s.block_scratch.capacity() * 8 + block_bytes(s) +
            s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() + s.heap.bytes() +
            s.weight.capacity() * sizeof(Impl::Weight) +
-           s.live_list.capacity() * sizeof(LiveNode) +
+           s.live_list.capacity() * sizeof(LiveNode) + s.cells.capacity() * sizeof(Cell) +
+           s.cell_visit.capacity() +
            s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
 }
