@@ -389,6 +389,51 @@ struct Cell {
     bool dirty = true;     // some live node in it may be dirty
 };
 
+// An append-only array in chunks of 2^20 entries. It grows without moving what it holds (the
+// history is most of a refiner's memory: a vector's reallocation copied all of it in one frame,
+// 0.7 s of a 4097² flight's worst frame), and the entries one append takes never straddle two
+// chunks, so run() sees them contiguous.
+template <class T> class ChunkedPool {
+  public:
+    static constexpr std::size_t k_shift = 20, k_chunk = std::size_t(1) << k_shift;
+
+    T &operator[](std::size_t i) { return chunks_[i >> k_shift][i & (k_chunk - 1)]; }
+    const T &operator[](std::size_t i) const { return chunks_[i >> k_shift][i & (k_chunk - 1)]; }
+    // The entries from i on that one append took.
+    const T *run(std::size_t i) const { return &(*this)[i]; }
+    // The index space in use (a chunk's unused tail counts when an append moved on).
+    std::size_t size() const { return size_; }
+    // Appends n value-initialised entries (n <= k_chunk) in one chunk; returns the first's index.
+    std::size_t append(std::size_t n) {
+        assert(n <= k_chunk);
+        if (chunks_.empty() || chunks_.back().size() + n > k_chunk) {
+            size_ = chunks_.size() << k_shift;
+            chunks_.emplace_back();
+        }
+        std::vector<T> &last = chunks_.back();
+        if (last.size() + n > last.capacity()) // doubling inside the chunk only
+            last.reserve(std::min(k_chunk, std::max(2 * last.capacity(), last.size() + n)));
+        last.resize(last.size() + n);
+        const std::size_t first = size_;
+        size_ += n;
+        return first;
+    }
+    void shrink_to_fit() {
+        if (!chunks_.empty())
+            chunks_.back().shrink_to_fit();
+    }
+    std::size_t bytes() const {
+        std::size_t b = chunks_.capacity() * sizeof(std::vector<T>);
+        for (const std::vector<T> &c : chunks_)
+            b += c.capacity() * sizeof(T);
+        return b;
+    }
+
+  private:
+    std::vector<std::vector<T>> chunks_;
+    std::size_t size_ = 0;
+};
+
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
 
@@ -435,11 +480,10 @@ struct NodeEraser::Impl {
     std::vector<std::uint8_t> stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
     std::uint8_t pass = 0;
     NodeHeap heap;
-    std::vector<EraseRecord> records;
-    std::vector<std::uint32_t> ring_pool;
+    ChunkedPool<EraseRecord> records;
+    ChunkedPool<std::uint32_t> ring_pool;
     std::vector<EH> free_edges;
     std::vector<FH> free_faces;
-    bool compacted = false; // compact() ran: erased edges and faces are not kept
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
     Hole hole;
@@ -865,15 +909,6 @@ static void rank_nodes(NodeEraser::Impl &s) {
     s.heap.build(std::move(ranked));
 }
 
-// Room for `more` elements in history array v: after compact() it grows by an eighth rather than
-// doubling (the history is most of the refiner's memory, and it then grows only by the nodes a
-// flight erases for the first time).
-template <class T>
-static void grow(const NodeEraser::Impl &s, std::vector<T> &v, std::size_t more) {
-    if (s.compacted && v.size() + more > v.capacity())
-        v.reserve(std::max(v.size() + more, v.capacity() + v.capacity() / 8));
-}
-
 // retriangulate: replaces the fan of the evaluated hole by its new triangles in place, moves the
 // swallowed nodes to the triangles that now cover them and records the erase.
 static void retriangulate(NodeEraser::Impl &s) {
@@ -976,17 +1011,12 @@ static void retriangulate(NodeEraser::Impl &s) {
     // fits: the history stays within one record per node however long the flight.
     const std::uint32_t x = std::uint32_t(h.v.idx());
     std::int32_t k = live_node(s, x).last_record;
-    if (k < 0) {
-        k = std::int32_t(s.records.size());
-        grow(s, s.records, 1);
-        s.records.emplace_back();
-    }
+    if (k < 0)
+        k = std::int32_t(s.records.append(1));
     EraseRecord &record = s.records[std::size_t(k)];
     if (record.ring_capacity < n) {
-        record.ring_begin = std::uint32_t(s.ring_pool.size());
+        record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
         record.ring_capacity = std::uint8_t(n);
-        grow(s, s.ring_pool, std::size_t(n));
-        s.ring_pool.resize(s.ring_pool.size() + std::size_t(n));
     }
     record.node = x;
     record.ring_size = std::uint8_t(n);
@@ -1240,7 +1270,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     const EraseRecord record = s.records[s.record_of[x]];
     const int n = record.ring_size;
     const bool boundary = record.boundary;
-    const std::uint32_t *ring = s.ring_pool.data() + record.ring_begin;
+    const std::uint32_t *ring = s.ring_pool.run(record.ring_begin);
     const VH v{int(x)};
     auto ring_index = [&](VH u) {
         for (int i = 0; i < n; ++i)
@@ -1552,7 +1582,7 @@ EraseRecord NodeEraser::record(Mesh::VertexHandle v) const {
 }
 
 std::span<const std::uint32_t> NodeEraser::ring(const EraseRecord &record) const {
-    return {impl_->ring_pool.data() + record.ring_begin, record.ring_size};
+    return {impl_->ring_pool.run(record.ring_begin), record.ring_size};
 }
 
 void NodeEraser::compact() {
@@ -1576,16 +1606,11 @@ void NodeEraser::compact() {
     s.face_blocked.assign(s.face_head.size(), 0);
     s.face_blocked.shrink_to_fit();
     s.face_blocks.clear();
-    s.compacted = true;
     s.heap.release_queue(); // updates keep keys only
     std::vector<EH>().swap(s.free_edges);
     std::vector<FH>().swap(s.free_faces);
-    // Room for a record per live node (a node never needs two) and for their rings, so a flight
-    // does not pay a reallocation of the whole history when its first new node goes.
     s.records.shrink_to_fit();
-    s.records.reserve(s.records.size() + s.live_list.size());
     s.ring_pool.shrink_to_fit();
-    s.ring_pool.reserve(s.ring_pool.size() + 8 * s.live_list.size());
 }
 
 void NodeEraser::rebind(Mesh &mesh) {
@@ -1603,7 +1628,7 @@ std::int64_t NodeEraser::live_triangles() const { return impl_->live_faces; }
 static std::uint32_t ready_dependency(const NodeEraser::Impl &s, std::uint32_t v) {
     for (;;) {
         const EraseRecord &record = s.records[std::size_t(s.record_of[v])];
-        const std::uint32_t *ring = s.ring_pool.data() + record.ring_begin;
+        const std::uint32_t *ring = s.ring_pool.run(record.ring_begin);
         const std::uint32_t *erased = std::find_if(ring, ring + record.ring_size, [&](std::uint32_t r) {
             return s.record_of[r] >= 0;
         });
@@ -1969,7 +1994,7 @@ std::size_t NodeEraser::history_bytes() const {
            s.weight.capacity() * sizeof(Impl::Weight) +
            s.live_list.capacity() * sizeof(LiveNode) + s.cells.capacity() * sizeof(Cell) +
            s.cell_visit.capacity() +
-           s.records.capacity() * sizeof(EraseRecord) + s.ring_pool.capacity() * 4 +
+           s.records.bytes() + s.ring_pool.bytes() +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH);
 }
 
