@@ -1641,6 +1641,7 @@ static std::uint32_t ready_dependency(const NodeEraser::Impl &s, std::uint32_t v
 // Lists at least this long get blocks when worst_swallowed scans them whole.
 constexpr std::size_t k_block_list = 256;
 constexpr int k_block_side = 8; // blocks: a k_block_side² grid over the face's box in xy
+constexpr std::size_t k_kept_scratch = 4096; // larger block scratch is released after use
 
 // Puts the nodes of face f's list (`nodes`, with their deviations) in runs by the square of a grid
 // over the face's box in xy that holds them, and keeps each run as a block: its first node, its
@@ -1770,6 +1771,12 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     if (block && nodes.size() >= k_block_list)
         build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),
                      glm::dvec2(glm::max(glm::max(a, b), c)));
+    if (nodes.capacity() > k_kept_scratch) {
+        // A face over a whole flat (10^5 nodes and more) is blocked once: its scratch goes.
+        std::vector<std::pair<float, std::int32_t>>().swap(nodes);
+        std::vector<std::uint8_t>().swap(s.block_cell_scratch);
+        std::vector<std::int32_t>().swap(s.block_order_scratch);
+    }
     return worst;
 }
 
