@@ -1099,6 +1099,8 @@ constexpr double k_tau_rung_ratio = 8.0;
 constexpr double k_budget_rung_ratio = 2.0;
 constexpr std::int64_t k_queue_share = 2; // the queue erases from this many times the budget
 constexpr std::size_t k_chain_swallowed = 32; // see sweep_pass
+// An update does not erase a node whose fan swallowed more nodes than this (see sweep_dirty).
+constexpr std::size_t k_update_swallowed = 65536;
 constexpr std::uint32_t k_sample_stride = 7;  // node budget: the sample of first costs
 
 // A new sweep pass: its number in s.pass, the stamps of 256 passes ago cleared.
@@ -1112,7 +1114,8 @@ static void next_pass(NodeEraser::Impl &s) {
 // One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
 // cost is within the limit. s.stamp holds, per node, the pass (mod 256) in which its ring last
 // changed. Returns true when x was erased; x stays dirty when it must wait for the next pass.
-static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit) {
+static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
+                       std::size_t cap = std::numeric_limits<std::size_t>::max()) {
     // A node whose ring this pass changed waits for the next pass when its fan swallowed many
     // nodes (else a run of erases along a row, as on a flat sea where every cost is 0, drags one
     // growing face's nodes from erase to erase, quadratic in the run's length), and always with
@@ -1120,14 +1123,18 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit) {
     const bool fresh = s.stamp[x] == s.pass;
     if (fresh && s.options.shallow_history)
         return false;
-    if (!evaluate(s, VH(int(x)), limit,
-                  fresh ? k_chain_swallowed : std::numeric_limits<std::size_t>::max())) {
+    if (!evaluate(s, VH(int(x)), limit, fresh ? std::min(cap, k_chain_swallowed) : cap)) {
         s.flags[x] &= std::uint8_t(~k_dirty);
         s.heap.store_key(x, INFINITY); // until its ring changes
         return false;
     }
-    if (s.hole.deferred)
+    if (s.hole.deferred) {
+        if (!fresh) { // over the cap: left as it is until its ring changes
+            s.flags[x] &= std::uint8_t(~k_dirty);
+            s.heap.store_key(x, INFINITY);
+        }
         return false;
+    }
     s.flags[x] &= std::uint8_t(~k_dirty);
     if (!(s.hole.cost <= limit)) {
         s.heap.store_key(x, float(s.hole.cost));
@@ -1172,7 +1179,7 @@ static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<s
                 continue;
             if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
                 continue;
-            if (sweep_node(s, x, limit)) {
+            if (sweep_node(s, x, limit, k_update_swallowed)) {
                 ++erased;
                 for (int i = 0; i < s.hole.n; ++i)
                     next.push_back(std::uint32_t(s.hole.r[i].idx()));
