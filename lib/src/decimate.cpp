@@ -463,8 +463,8 @@ struct NodeEraser::Impl {
     // is rebuilt.
     std::vector<std::uint8_t> face_blocked;
     std::unordered_map<std::int32_t, std::vector<Block>> face_blocks;
-    std::vector<std::pair<float, std::int32_t>> block_scratch; // worst_swallowed's
-    std::vector<std::uint8_t> block_cell_scratch;             // build_blocks'
+    std::vector<std::int32_t> block_scratch; // build_blocks' scratch
+    std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
     // Per vertex: its erase record (>= 0), or for a live node -2 - its place in live_list (so an
     // update visits the live nodes without walking the whole terrain).
@@ -1099,7 +1099,8 @@ constexpr double k_tau_rung_ratio = 8.0;
 constexpr double k_budget_rung_ratio = 2.0;
 constexpr std::int64_t k_queue_share = 2; // the queue erases from this many times the budget
 constexpr std::size_t k_chain_swallowed = 32; // see sweep_pass
-// An update does not erase a node whose fan swallowed more nodes than this (see sweep_dirty).
+// An update does not erase a node whose fan swallowed more nodes than this: on 4097² a face over a
+// flat holds millions, and re-evaluating its corners every frame cost whole frames.
 constexpr std::size_t k_update_swallowed = 65536;
 constexpr std::uint32_t k_sample_stride = 7;  // node budget: the sample of first costs
 
@@ -1112,7 +1113,8 @@ static void next_pass(NodeEraser::Impl &s) {
 }
 
 // One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
-// cost is within the limit. s.stamp holds, per node, the pass (mod 256) in which its ring last
+// cost is within the limit; a node whose fan swallowed more than `cap` nodes is left as it is
+// until its ring changes. s.stamp holds, per node, the pass (mod 256) in which its ring last
 // changed. Returns true when x was erased; x stays dirty when it must wait for the next pass.
 static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
                        std::size_t cap = std::numeric_limits<std::size_t>::max()) {
@@ -1648,24 +1650,29 @@ static std::uint32_t ready_dependency(const NodeEraser::Impl &s, std::uint32_t v
 // Lists at least this long get blocks when worst_swallowed scans them whole.
 constexpr std::size_t k_block_list = 256;
 constexpr int k_block_side = 8; // blocks: a k_block_side² grid over the face's box in xy
-constexpr std::size_t k_kept_scratch = 4096; // larger block scratch is released after use
+constexpr std::size_t k_kept_scratch = 4096; // larger scratch is released after use
 
-// Puts the nodes of face f's list (`nodes`, with their deviations) in runs by the square of a grid
+// Puts the nodes of face f's list (`deviation(u)` gives node u's) in runs by the square of a grid
 // over the face's box in xy that holds them, and keeps each run as a block: its first node, its
 // length, its nodes' largest deviation and their box. A scan then skips a block whose deviation
 // times the largest weight in its box cannot matter (a face of ~10^5 nodes on a flat, in sight of
 // a low eye, was weighed node by node every frame: ~570 k weights per frame on the flight
 // benchmark's 2049² valley path).
-static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi) {
+template <class Deviation>
+static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi,
+                         const Deviation &deviation) {
     const Mesh &m = *s.mesh;
-    const std::vector<std::pair<float, std::int32_t>> &nodes = s.block_scratch;
+    std::vector<std::int32_t> &nodes = s.block_scratch;
+    nodes.clear();
+    for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u])
+        nodes.push_back(u);
     constexpr int cells = k_block_side * k_block_side;
     std::array<std::uint32_t, cells + 1> start{};
     std::vector<std::uint8_t> &cell_of_node = s.block_cell_scratch;
     cell_of_node.resize(nodes.size());
     const glm::dvec2 scale = double(k_block_side) / glm::max(hi - lo, glm::dvec2(1e-300));
     for (std::size_t k = 0; k < nodes.size(); ++k) {
-        const glm::dvec3 p = to_glm(m.point(VH(nodes[k].second)));
+        const glm::dvec3 p = to_glm(m.point(VH(nodes[k])));
         const int cx = std::clamp(int((p.x - lo.x) * scale.x), 0, k_block_side - 1);
         const int cy = std::clamp(int((p.y - lo.y) * scale.y), 0, k_block_side - 1);
         cell_of_node[k] = std::uint8_t(cy * k_block_side + cx);
@@ -1684,16 +1691,16 @@ static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const 
         if (start[c] == start[c + 1])
             continue;
         Block b;
-        b.head = nodes[std::size_t(order[start[c]])].second;
+        b.head = nodes[std::size_t(order[start[c]])];
         b.count = start[c + 1] - start[c];
         glm::dvec3 blo(INFINITY), bhi(-INFINITY);
         double dev = 0.0;
         for (std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
-            const auto &[d, u] = nodes[std::size_t(order[k])];
+            const std::int32_t u = nodes[std::size_t(order[k])];
             const glm::dvec3 p = to_glm(m.point(VH(u)));
             blo = glm::min(blo, p);
             bhi = glm::max(bhi, p);
-            dev = std::max(dev, double(d));
+            dev = std::max(dev, double(float_up(deviation(u))));
         }
         b.dev = dev;
         b.lo = blo;
@@ -1701,13 +1708,18 @@ static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const 
         blocks.push_back(b);
     }
     // Relink the list run by run.
-    s.face_head[f.idx()] = nodes[std::size_t(order.front())].second;
+    s.face_head[f.idx()] = nodes[std::size_t(order.front())];
     for (std::size_t k = 0; k + 1 < order.size(); ++k)
-        s.next_swallowed[nodes[std::size_t(order[k])].second] =
-            nodes[std::size_t(order[k + 1])].second;
-    s.next_swallowed[nodes[std::size_t(order.back())].second] = -1;
+        s.next_swallowed[nodes[std::size_t(order[k])]] = nodes[std::size_t(order[k + 1])];
+    s.next_swallowed[nodes[std::size_t(order.back())]] = -1;
     s.face_blocks[f.idx()] = std::move(blocks);
     s.face_blocked[f.idx()] = 1;
+    if (nodes.capacity() > k_kept_scratch) {
+        // A face over a whole flat (10^5 nodes and more) is blocked once: its scratch goes.
+        std::vector<std::int32_t>().swap(nodes);
+        std::vector<std::uint8_t>().swap(s.block_cell_scratch);
+        std::vector<std::int32_t>().swap(s.block_order_scratch);
+    }
 }
 
 // The worst swallowed node of face f whose weighted deviation exceeds `above`, and that weighted
@@ -1765,25 +1777,13 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         }
         return worst;
     }
-    // A long list scanned whole gets blocks on the way (when a weight bound can use them).
-    const bool block = std::isfinite(weight_bound);
-    std::vector<std::pair<float, std::int32_t>> &nodes = s.block_scratch;
-    nodes.clear();
-    for (; u >= 0; u = s.next_swallowed[u]) {
-        const double dev = deviation(u);
-        if (block)
-            nodes.emplace_back(float_up(dev), u);
-        visit(u, dev, weight_bound);
-    }
-    if (block && nodes.size() >= k_block_list)
+    std::size_t length = 0;
+    for (; u >= 0; u = s.next_swallowed[u], ++length)
+        visit(u, deviation(u), weight_bound);
+    // A long list scanned whole gets blocks (when a weight bound can use them).
+    if (std::isfinite(weight_bound) && length >= k_block_list)
         build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),
-                     glm::dvec2(glm::max(glm::max(a, b), c)));
-    if (nodes.capacity() > k_kept_scratch) {
-        // A face over a whole flat (10^5 nodes and more) is blocked once: its scratch goes.
-        std::vector<std::pair<float, std::int32_t>>().swap(nodes);
-        std::vector<std::uint8_t>().swap(s.block_cell_scratch);
-        std::vector<std::int32_t>().swap(s.block_order_scratch);
-    }
+                     glm::dvec2(glm::max(glm::max(a, b), c)), deviation);
     return worst;
 }
 
@@ -2003,7 +2003,7 @@ static std::size_t block_bytes(const NodeEraser::Impl &s) {
 std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
     return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
-           s.face_blocked.capacity() + s.block_scratch.capacity() * 8 + block_bytes(s) +
+           s.face_blocked.capacity() + s.block_scratch.capacity() * 4 + block_bytes(s) +
            s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() + s.heap.bytes() +
            s.weight.capacity() * sizeof(Impl::Weight) +
            s.live_list.capacity() * sizeof(LiveNode) + s.cells.capacity() * sizeof(Cell) +
