@@ -414,14 +414,15 @@ Summary summarise(const std::vector<FrameRow> &rows) {
 
 void write_csv(const std::string &file, const std::vector<PathResult> &results) {
     std::ofstream out(file);
-    out << "path,frame,t,ms,cpu_ms,changed,erased,recovered,candidates,nodes,triangles,"
+    out << "path,frame,t,ms,cpu_ms,changed,erased,recovered,reerased,candidates,nodes,triangles,"
            "bytes_per_node,rebuild_ms,rebuild_cpu_ms,rebuild_nodes,rebuild_triangles,"
            "rebuild_ratio,max_screen_px,rebuild_max_screen_px\n";
     for (const PathResult &p : results)
         for (const FrameRow &r : p.rows) {
             out << p.name << "," << r.frame << "," << fmt("%.3f", r.t) << "," << fmt("%.4f", r.ms)
                 << "," << fmt("%.4f", r.cpu_ms) << "," << r.changed() << "," << r.stats.erased
-                << "," << r.stats.recovered << "," << r.stats.candidates << "," << r.stats.nodes
+                << "," << r.stats.recovered << "," << r.stats.reerased << ","
+                << r.stats.candidates << "," << r.stats.nodes
                 << "," << r.stats.triangles << "," << fmt("%.2f", r.bytes_per_node) << ",";
             if (r.rebuilt)
                 out << fmt("%.2f", r.rebuild_ms) << "," << fmt("%.2f", r.rebuild_cpu_ms) << ","

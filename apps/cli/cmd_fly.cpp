@@ -111,7 +111,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         csv << k_frame_header << '\n';
         std::vector<double> totals;
         double worst = 0.0;
-        std::int64_t recovered_all = 0, erased_all = 0;
+        std::int64_t recovered_all = 0, erased_all = 0, reerased_all = 0;
         Progress progress("fly", frames);
         for (int i = 0; i < frames; ++i) {
             FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
@@ -119,6 +119,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                 totals.push_back(f.ms_total);
             recovered_all += f.recovered;
             erased_all += f.erased;
+            reerased_all += f.reerased;
             double max_px = -1.0; // not measured
             if (args->check) {
                 ErrorOptions eo;
@@ -153,10 +154,10 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             });
         const auto& m = refiner->mesh();
         std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + erase), then per frame p50 "
-                    "%.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all; %.0f bytes per node "
-                    "(TIN + history)%s\n",
+                    "%.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all (%lld erased again by "
+                    "the update that recovered them); %.0f bytes per node (TIN + history)%s\n",
                     frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
-                    (long long)erased_all, (long long)recovered_all,
+                    (long long)erased_all, (long long)recovered_all, (long long)reerased_all,
                     double(refiner->bytes()) / double(m.n_vertices()),
                     args->check ? (", measured max " + std::to_string(worst) + " px").c_str() : "");
     };

@@ -436,6 +436,7 @@ template <class T> class ChunkedPool {
 
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
+constexpr std::uint8_t k_recovered = 4; // recovered by the update under way
 
 } // namespace
 
@@ -487,6 +488,7 @@ struct NodeEraser::Impl {
     std::vector<FH> free_faces;
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
+    std::int64_t reerased = 0; // the update under way's erases of nodes it recovered
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
@@ -1190,6 +1192,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
         s.heap.store_key(x, float(s.hole.cost));
         return false;
     }
+    s.reerased += (s.flags[x] & k_recovered) != 0;
     retriangulate(s);
     for (int i = 0; i < s.hole.n; ++i) {
         mark_dirty(s, std::uint32_t(s.hole.r[i].idx()));
@@ -1931,6 +1934,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         cell.reach = 0.0f;
     }
     std::vector<FH> work;
+    std::vector<std::uint32_t> recovered;
     for (LiveNode &l : s.live_list) {
         if (visit[l.cell])
             seed_fan(s, l, recover_above, work);
@@ -1953,6 +1957,8 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         const std::uint32_t x = ready_dependency(s, std::uint32_t(u));
         reinsert(s, x);
         ++stats.recovered;
+        s.flags[x] |= k_recovered;
+        recovered.push_back(x);
         // Re-evaluated by this update's erase: a node recovered only because a worse one depended
         // on it may cost little, and a key of "significant" would keep it forever.
         mark_dirty(s, x);
@@ -1995,7 +2001,11 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         s.flags[x] |= k_dirty;
         candidates.push_back(x);
     }
+    s.reerased = 0;
     stats.erased = sweep_dirty(s, erase_below, std::move(candidates));
+    stats.reerased = s.reerased;
+    for (const std::uint32_t x : recovered)
+        s.flags[x] &= std::uint8_t(~k_recovered);
     for (Cell &cell : s.cells)
         cell.dirty = false; // the sweep left no live node dirty
     stats.ms_erase = clock.ms();

@@ -75,6 +75,7 @@ FrameStats Refiner::update(const View& view) {
     FrameStats f;
     f.erased = u.erased;
     f.recovered = u.recovered;
+    f.reerased = u.reerased;
     f.candidates = u.candidates;
     f.ms_weights = u.ms_weights;
     f.ms_recover = u.ms_recover;

@@ -117,6 +117,8 @@ struct EraseRecord {
 struct UpdateStats {
     std::int64_t recovered = 0;   // nodes re-inserted (dependency closures included)
     std::int64_t erased = 0;      // nodes erased
+    std::int64_t reerased = 0;    // of those, nodes this update had recovered (a recovery another
+                                  // node's waited on, undone once that node was back)
     std::int64_t candidates = 0;  // live nodes whose erase was re-evaluated
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
     double ms_weights = 0.0;      // the new view's weigher (node weights follow on demand)

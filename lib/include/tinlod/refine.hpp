@@ -29,6 +29,7 @@ struct FrameStats {
     std::int64_t triangles = 0;  // live triangles after the update
     std::int64_t erased = 0;     // nodes erased by this update
     std::int64_t recovered = 0;  // nodes recovered by this update
+    std::int64_t reerased = 0;   // nodes this update recovered and then erased again
     std::int64_t candidates = 0; // live nodes re-evaluated for erase
     double ms_weights = 0.0;     // per-node weights for the new view
     double ms_recover = 0.0;
