@@ -6,6 +6,7 @@
 #include "tinlod/decimate.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
+#include "tinlod/refine.hpp"
 
 #include <gtest/gtest.h>
 
@@ -433,6 +434,41 @@ TEST(Erase, BunnyKeepsTopologyAndRecoversExactly) {
     Mesh back = eraser.mesh();
     back.garbage_collection();
     EXPECT_EQ(triangle_set(back), input_triangles);
+}
+
+// The refiner on a surface mesh (projection on each fan's mean plane, recover bounds widened on
+// every axis): approaching recovers, receding erases, and every frame keeps the topology.
+TEST(Erase, BunnyRefinerFlightKeepsTopology) {
+    const Mesh input = read_mesh(asset("bun_zipper_res4.ply"));
+    const Invariants before = invariants(input);
+    const auto view_from = [](double distance) {
+        View view;
+        view.eye = {0.0, 0.1, distance};
+        view.at = {-0.02, 0.1, 0.0};
+        return view;
+    };
+    RefineOptions options;
+    options.tol_px = 4.0;
+    Refiner refiner(input, view_from(0.6), options);
+    const std::int64_t far_nodes = refiner.first_frame().nodes;
+    std::int64_t recovered = 0, erased = 0, nearest_nodes = 0;
+    for (const double distance : {0.45, 0.3, 0.15, 0.3, 0.6}) {
+        SCOPED_TRACE(distance);
+        const FrameStats f = refiner.update(view_from(distance));
+        recovered += f.recovered;
+        erased += f.erased;
+        if (distance == 0.15)
+            nearest_nodes = f.nodes;
+        Mesh out = refiner.mesh();
+        out.garbage_collection();
+        const Invariants now = invariants(out);
+        EXPECT_EQ(now.euler, before.euler);
+        EXPECT_LE(now.non_manifold, before.non_manifold);
+        EXPECT_EQ(now.boundary_edges, before.boundary_edges);
+    }
+    EXPECT_GT(nearest_nodes, far_nodes);
+    EXPECT_GT(recovered, 0);
+    EXPECT_GT(erased, 0);
 }
 
 } // namespace
