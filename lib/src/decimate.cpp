@@ -478,7 +478,7 @@ struct NodeEraser::Impl {
     double cell_side = 1.0;
     double area_per_node = 0.0; // xy: the input's bounding-box area over its nodes
     int grid_nx = 1, grid_ny = 1;
-    std::vector<std::uint8_t> flags;          // per vertex: k_locked, k_dirty
+    std::vector<std::uint8_t> flags;          // per vertex: k_locked, k_dirty, k_recovered
     std::vector<std::uint8_t> stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
     std::uint8_t pass = 0;
     NodeHeap heap;
@@ -1151,11 +1151,19 @@ static double covered_estimate(const NodeEraser::Impl &s, std::uint32_t x) {
     const VH v{int(x)};
     const glm::dvec2 c(to_glm(m.point(v)));
     double twice = 0.0;
-    for (const HH he : m.voh_range(v))
-        if (!m.is_boundary(he))
-            twice += orient(c, glm::dvec2(to_glm(m.point(m.to_vertex_handle(he)))),
-                            glm::dvec2(to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))))));
+    for (const HH he : m.voh_range(v)) {
+        if (m.is_boundary(he))
+            continue;
+        const VH a = m.to_vertex_handle(he), b = m.to_vertex_handle(m.next_halfedge_handle(he));
+        twice += orient(c, glm::dvec2(to_glm(m.point(a))), glm::dvec2(to_glm(m.point(b))));
+    }
     return 0.5 * twice / s.area_per_node;
+}
+
+// Leaves x as it is (not dirty, infinite key) until a change of its ring marks it dirty again.
+static void park(NodeEraser::Impl &s, std::uint32_t x) {
+    s.flags[x] &= std::uint8_t(~k_dirty);
+    s.heap.store_key(x, INFINITY);
 }
 
 static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
@@ -1171,20 +1179,16 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     // 4097² flight update's locates went to such walks).
     if (cap != std::numeric_limits<std::size_t>::max() && s.xy && s.area_per_node > 0.0 &&
         covered_estimate(s, x) > double(cap)) {
-        s.flags[x] &= std::uint8_t(~k_dirty);
-        s.heap.store_key(x, INFINITY);
+        park(s, x);
         return false;
     }
     if (!evaluate(s, VH(int(x)), limit, fresh ? std::min(cap, k_chain_swallowed) : cap)) {
-        s.flags[x] &= std::uint8_t(~k_dirty);
-        s.heap.store_key(x, INFINITY); // until its ring changes
+        park(s, x);
         return false;
     }
     if (s.hole.deferred) {
-        if (!fresh) { // over the cap: left as it is until its ring changes
-            s.flags[x] &= std::uint8_t(~k_dirty);
-            s.heap.store_key(x, INFINITY);
-        }
+        if (!fresh)
+            park(s, x); // over the cap
         return false;
     }
     s.flags[x] &= std::uint8_t(~k_dirty);
