@@ -273,6 +273,32 @@ TEST(Erase, InvariantsHoldAfterEveryStage) {
     }
 }
 
+// A grid TIN's swallowed nodes are scanned from the lattice; the same TIN with one more node, an
+// isolated one, is not a lattice to the eraser and keeps swallowed lists. Both must erase alike and
+// measure the error every sample of the DEM shows.
+TEST(Erase, LatticeScanAgreesWithSwallowedLists) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 257});
+    const View view = corner_view(hf);
+    const Mesh grid = grid_tin(hf);
+    Mesh listed = grid;
+    listed.add_vertex(grid.point(Mesh::VertexHandle(0)));
+    ErrorOptions eo;
+    eo.view = &view;
+    EraseOptions options;
+    options.tolerance = 1.0;
+    std::int64_t nodes[2];
+    int k = 0;
+    for (const Mesh *input : {&grid, static_cast<const Mesh *>(&listed)}) {
+        Mesh work = *input;
+        const EraseStats stats = erase_nodes(work, &view, options);
+        const TinError measured = measure_error(hf, work, eo);
+        EXPECT_LE(measured.max_screen_px, options.tolerance);
+        EXPECT_NEAR(stats.max_screen_px, measured.max_screen_px, 1e-3);
+        nodes[k++] = stats.output_nodes;
+    }
+    EXPECT_NEAR(double(nodes[0]), double(nodes[1]), 0.005 * double(nodes[1]));
+}
+
 TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
     const Heightfield hf = load_cropped({"dem_srtm30.tif", false, 0});
     const View view = corner_view(hf);
