@@ -452,9 +452,11 @@ struct NodeEraser::Impl {
     bool xy = true;
     double focal_distance = 1.0;
     Weigher weigher;                          // pixels per unit deviation for the current view
-    // Per vertex, computed when first asked for under a view (weight_of), so a frame pays for the
-    // nodes it visits, not for the whole terrain: the weigher at the node rounded up (empty: every
-    // weight is 1) and the view (epoch) the weight belongs to.
+    bool unit_weights = true; // no view, or the vertical model: every weight is 1
+    // Per vertex while erase() runs (it asks for a node's weight again and again), computed when
+    // first asked for (weight_of): the weigher at the node rounded up, and the view (epoch) the
+    // weight belongs to. An update computes each weight where it needs it (as fast there, and 8
+    // bytes per node less to keep).
     struct Weight {
         float value;
         std::uint32_t epoch;
@@ -869,13 +871,17 @@ static bool gather_ring(const Mesh &m, VH v, Hole &h, int max_valence) {
     return n >= 3;
 }
 
-// Node `node`'s weight under the current view, computed on first use (see Impl::weight).
+// Node `node`'s weight under the current view: the weigher at the node rounded up to a float,
+// from Impl::weight when it is kept.
 static double weight_of(const NodeEraser::Impl &s, std::uint32_t node) {
-    if (s.weight.empty())
+    if (s.unit_weights)
         return 1.0;
+    const auto compute = [&] { return float_up(s.weigher(to_glm(s.mesh->point(VH(int(node)))))); };
+    if (s.weight.empty())
+        return double(compute());
     NodeEraser::Impl::Weight &w = s.weight[node];
     if (w.epoch != s.epoch)
-        w = {float_up(s.weigher(to_glm(s.mesh->point(VH(int(node)))))), s.epoch};
+        w = {compute(), s.epoch};
     return double(w.value);
 }
 
@@ -883,11 +889,13 @@ static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev
     return dev > 0.0 ? dev * weight_of(s, node) : 0.0;
 }
 
-// A new view: every weight becomes stale (recomputed when next asked for).
-static void new_weights(NodeEraser::Impl &s) {
+// A new view: every weight becomes stale (recomputed when next asked for); `keep` keeps them
+// per vertex (erase), else they go.
+static void new_weights(NodeEraser::Impl &s, bool keep) {
     ++s.epoch;
-    if (!s.has_view || s.options.significance.model == SpModel::vertical) {
-        s.weight.clear();
+    s.unit_weights = !s.has_view || s.options.significance.model == SpModel::vertical;
+    if (s.unit_weights || !keep) {
+        std::vector<NodeEraser::Impl::Weight>().swap(s.weight);
         return;
     }
     const std::size_t n = s.mesh->n_vertices();
@@ -909,7 +917,7 @@ static void classify_nodes(NodeEraser::Impl &s) {
             s.flags[v.idx()] |= k_locked;
     }
     s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
-    new_weights(s);
+    new_weights(s, true);
 }
 
 // A bound of the stored weights of the nodes a TIN face with corners a, b, c swallowed, which lie
@@ -947,7 +955,7 @@ static void scan_hole(const NodeEraser::Impl &s, Hole &h, const glm::dvec3 &pv, 
     }
     const double dz = 1.001 * double(fan_dev);
     const auto band = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-        return s.weight.empty() ? 1.0
+        return s.unit_weights ? 1.0
                                 : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
     };
     for (int t = 0; t < h.ntri; ++t) {
@@ -1107,7 +1115,7 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
         // face's swallowed nodes lie (its corners' box, within their largest deviation in z) could
         // raise the cost: each update asks for fresh weights.
         const double weight_bound =
-            s.xy && !s.weight.empty() && s.face_head[f.idx()] >= 0
+            s.xy && !s.unit_weights && s.face_head[f.idx()] >= 0
                 ? swallowed_weight_bound(s, pv, h.p[i], h.p[(i + 1) % n], s.face_maxdev[f.idx()])
                 : INFINITY;
         for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u]) {
@@ -1923,6 +1931,7 @@ void NodeEraser::compact() {
     s.face_blocked.shrink_to_fit();
     s.face_blocks.clear();
     s.heap.release_queue(); // updates keep keys only
+    std::vector<Impl::Weight>().swap(s.weight); // and compute weights where they need them
     std::vector<EH>().swap(s.free_edges);
     std::vector<FH>().swap(s.free_faces);
     s.records.shrink_to_fit();
@@ -2049,7 +2058,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     // rounding of the stored deviation and of its recomputation here).
     std::pair<std::int32_t, double> worst{-1, above};
     double weight_bound = INFINITY;
-    if (s.xy && !s.weight.empty()) {
+    if (s.xy && !s.unit_weights) {
         weight_bound = swallowed_weight_bound(s, a, b, c, s.face_maxdev[f.idx()]);
         if (!(1.001 * double(s.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
@@ -2083,7 +2092,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
             std::uint32_t(m.to_vertex_handle(he).idx()),
             std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx()),
             [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-                if (s.weight.empty())
+                if (s.unit_weights)
                     return 1.0;
                 const double bound = s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
                 return dz * bound > worst.second ? bound : -1.0;
@@ -2190,7 +2199,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     if (s.options.significance.model == SpModel::paper)
         s.focal_distance = std::max(focal_point(m, view).distance, 1e-9);
     s.weigher = Weigher(&s.view, s.options.significance);
-    new_weights(s);
+    new_weights(s, false);
     stats.ms_weights = clock.ms();
 
     // recover: a worklist of faces, seeded with every face whose swallowed nodes may exceed the
