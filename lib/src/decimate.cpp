@@ -1757,6 +1757,31 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
 // Input nodes per cell of the update's grid (about 30 per side on a grid TIN).
 constexpr double k_nodes_per_cell = 1024.0;
 
+// The arrays an update reads at random, one entry per node (or edge, face), on huge pages: on a
+// 4097² grid they span hundreds of MB, and with 4 KiB pages most reads miss the TLB. The flight
+// benchmark's updates ran 10 % faster. Only for a refiner's mesh (see rebind): a single erase of
+// N42E001 gained nothing, as the collapse into huge pages costs what the erase saves.
+static void advise_huge(const NodeEraser::Impl &s) {
+    const Mesh &m = *s.mesh;
+    if (m.n_vertices() > 0) {
+        advise_huge_pages(m.points(), m.n_vertices() * sizeof(Mesh::Point));
+        advise_huge_pages(&m.vertex(VH(0)), m.n_vertices() * sizeof(m.vertex(VH(0))));
+        advise_huge_pages(&m.status(VH(0)), m.n_vertices() * sizeof(m.status(VH(0))));
+    }
+    if (m.n_edges() > 0)
+        advise_huge_pages(&m.edge(EH(0)), m.n_edges() * sizeof(m.edge(EH(0))));
+    if (m.n_faces() > 0)
+        advise_huge_pages(&m.face(FH(0)), m.n_faces() * sizeof(m.face(FH(0))));
+    const auto whole = [](const auto &v) { advise_huge_pages(v.data(), v.size() * sizeof(v[0])); };
+    whole(s.record_of);
+    whole(s.flags);
+    whole(s.stamp);
+    whole(s.weight);
+    whole(s.next_swallowed);
+    whole(s.face_head);
+    whole(s.face_maxdev);
+}
+
 NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
     : impl_(std::make_unique<Impl>()) {
     Impl &s = *impl_;
@@ -1942,6 +1967,7 @@ void NodeEraser::rebind(Mesh &mesh) {
     assert(mesh.n_vertices() == impl_->mesh->n_vertices() &&
            mesh.n_faces() == impl_->face_head.size());
     impl_->mesh = &mesh;
+    advise_huge(*impl_);
 }
 
 const Mesh &NodeEraser::mesh() const { return *impl_->mesh; }

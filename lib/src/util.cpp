@@ -4,7 +4,12 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <sys/mman.h>
 #include <unistd.h>
+
+#ifndef MADV_COLLAPSE
+#define MADV_COLLAPSE 25 // Linux 6.1: glibc 2.36's headers lack it; an older kernel refuses it
+#endif
 
 #include <algorithm>
 #include <atomic>
@@ -66,6 +71,20 @@ double peak_rss_mb() {
         if (line.rfind("VmHWM:", 0) == 0)
             return std::stod(line.substr(6)) / 1024.0;
     return 0.0;
+}
+
+void advise_huge_pages(const void* data, std::size_t bytes) {
+    constexpr std::uintptr_t huge = std::uintptr_t(2) << 20;
+    const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
+    const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
+    if (end <= begin)
+        return;
+#ifdef MADV_HUGEPAGE
+    void* start = reinterpret_cast<void*>(begin);
+    if (madvise(start, end - begin, MADV_HUGEPAGE) != 0)
+        return;
+    madvise(start, end - begin, MADV_COLLAPSE);
+#endif
 }
 
 static std::atomic<int> g_max_threads{0}; // 0: the hardware concurrency

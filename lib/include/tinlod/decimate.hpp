@@ -178,7 +178,8 @@ class NodeEraser {
     // marked deleted: they name the history). Re-inserts then add edges and faces as they need.
     // OpenMesh keeps the arrays' capacity; to give the memory back, copy the mesh and rebind.
     void compact();
-    // Continues on `mesh`, a copy of the eraser's current mesh.
+    // Continues on `mesh`, a copy of the eraser's current mesh, for a long run of updates: the
+    // large arrays (the mesh's and the eraser's) are moved to huge pages where the kernel allows.
     void rebind(Mesh &mesh);
 
     bool is_erased(Mesh::VertexHandle v) const;

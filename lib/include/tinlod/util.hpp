@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -21,6 +22,11 @@ void write_json(const std::string& path, const nlohmann::json& doc);
 
 // Peak resident set size of this process, MiB (VmHWM).
 double peak_rss_mb();
+
+// Asks the kernel to back the 2 MiB pages inside [data, data + bytes) with huge pages, now (Linux:
+// MADV_HUGEPAGE, then MADV_COLLAPSE; nothing where either is refused). For large arrays read at
+// random for a long time, where 4 KiB pages cost a TLB miss per read.
+void advise_huge_pages(const void* data, std::size_t bytes);
 
 // Threads the library may run at once: its own workers (the quad-tree build, Hausdorff distances)
 // and OpenImageIO's and OpenEXR's pools. `threads` >= 1; the default is the hardware concurrency.
