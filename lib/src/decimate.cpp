@@ -647,8 +647,8 @@ static double vertical_dev(const TriangleFrame &f, double x, double y, double z)
     return std::abs(z - (f.height.x * x + f.height.y * y + f.height.z)) + 4.0 * ulp * f.slope;
 }
 
-// vertical_dev over one triangle of a grid TIN with corners a, b, c, its rounding margin taken where
-// it is largest in the triangle (at the corner farthest from the axes).
+// vertical_dev over one triangle of a grid TIN with corners a, b, c, its rounding margin taken
+// where it is largest in the triangle (at the corner farthest from the axes).
 class PlaneDev {
   public:
     PlaneDev(const TriangleFrame &f, const glm::dvec3 &a, const glm::dvec3 &b, const glm::dvec3 &c)
@@ -658,7 +658,8 @@ class PlaneDev {
         margin_ = 4.0 * 1.2e-7 * far * f.slope;
     }
     double operator()(const Mesh::Point &p) const {
-        return std::abs(double(p[2]) - (h_.x * double(p[0]) + h_.y * double(p[1]) + h_.z)) + margin_;
+        const double z = h_.x * double(p[0]) + h_.y * double(p[1]) + h_.z;
+        return std::abs(double(p[2]) - z) + margin_;
     }
 
   private:
@@ -956,7 +957,7 @@ static void scan_hole(const NodeEraser::Impl &s, Hole &h, const glm::dvec3 &pv, 
     const double dz = 1.001 * double(fan_dev);
     const auto band = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
         return s.unit_weights ? 1.0
-                                : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
+                              : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
     };
     for (int t = 0; t < h.ntri; ++t) {
         const PlaneDev deviation(h.frame[t], h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
