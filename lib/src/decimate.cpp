@@ -639,12 +639,18 @@ static void frame_triangles(const NodeEraser::Impl &s, Hole &h) {
     }
 }
 
-// A TIN point's vertical deviation from the triangle of frame f. The mesh holds float coordinates
-// of exact grid positions: the deviation is widened by what a rounding of every corner (a few ulp
-// of the coordinates) can move the interpolant.
+// What rounding every corner of a TIN triangle of this slope (|grad z|) to float can move its
+// interpolant at a point whose largest coordinate magnitude is `coord`: a few ulp of it. The mesh
+// holds float coordinates of exact grid positions, so deviations are widened by this.
+static double rounding_margin(double coord, double slope) {
+    const double ulp = 1.2e-7 * std::max(coord, 1.0);
+    return 4.0 * ulp * slope;
+}
+
+// A TIN point's vertical deviation from the triangle of frame f, widened by the rounding margin.
 static double vertical_dev(const TriangleFrame &f, double x, double y, double z) {
-    const double ulp = 1.2e-7 * std::max({std::abs(x), std::abs(y), 1.0});
-    return std::abs(z - (f.height.x * x + f.height.y * y + f.height.z)) + 4.0 * ulp * f.slope;
+    return std::abs(z - (f.height.x * x + f.height.y * y + f.height.z)) +
+           rounding_margin(std::max(std::abs(x), std::abs(y)), f.slope);
 }
 
 // vertical_dev over one triangle of a grid TIN with corners a, b, c, its rounding margin taken
@@ -654,8 +660,8 @@ class PlaneDev {
     PlaneDev(const TriangleFrame &f, const glm::dvec3 &a, const glm::dvec3 &b, const glm::dvec3 &c)
         : h_(f.height) {
         const double far = std::max({std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y),
-                                     std::abs(c.x), std::abs(c.y), 1.0});
-        margin_ = 4.0 * 1.2e-7 * far * f.slope;
+                                     std::abs(c.x), std::abs(c.y)});
+        margin_ = rounding_margin(far, f.slope);
     }
     double operator()(const Mesh::Point &p) const {
         const double z = h_.x * double(p[0]) + h_.y * double(p[1]) + h_.z;
@@ -1075,11 +1081,10 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
             // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
             // triangle next to it must not read more than the bound there either.
             const std::uint8_t c[3] = {h.tri[t].a, h.tri[t].b, h.tri[t].c};
-            for (const std::uint8_t k : c) {
-                const double ulp =
-                    1.2e-7 * std::max({std::abs(h.p[k].x), std::abs(h.p[k].y), 1.0});
-                raise(std::uint32_t(h.r[k].idx()), 4.0 * ulp * h.frame[t].slope);
-            }
+            for (const std::uint8_t k : c)
+                raise(std::uint32_t(h.r[k].idx()),
+                      rounding_margin(std::max(std::abs(h.p[k].x), std::abs(h.p[k].y)),
+                                      h.frame[t].slope));
         }
     // The node whose deviation gave this node's last cost is tried first: when it still lies under
     // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
@@ -1380,10 +1385,6 @@ static void next_pass(NodeEraser::Impl &s) {
     }
 }
 
-// One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
-// cost is within the limit; a node whose fan swallowed more than `cap` nodes is left as it is
-// until its ring changes. s.stamp holds, per node, the pass (mod 256) in which its ring last
-// changed. Returns true when x was erased; x stays dirty when it must wait for the next pass.
 // The input nodes the xy fan of x covers, estimated by its area at the input's mean density (low
 // where the input does not fill its box).
 static double covered_estimate(const NodeEraser::Impl &s, std::uint32_t x) {
@@ -1406,6 +1407,10 @@ static void park(NodeEraser::Impl &s, std::uint32_t x) {
     s.heap.store_key(x, INFINITY);
 }
 
+// One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
+// cost is within the limit; a node whose fan swallowed more than `cap` nodes is left as it is
+// until its ring changes. s.stamp holds, per node, the pass (mod 256) in which its ring last
+// changed. Returns true when x was erased; x stays dirty when it must wait for the next pass.
 static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
                        std::size_t cap = std::numeric_limits<std::size_t>::max()) {
     // A node whose ring this pass changed waits for the next pass when its fan swallowed many
@@ -2090,18 +2095,18 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         if (!(1.001 * double(s.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
     }
-    // The deviation of swallowed node u from f, computed the same way by every scan.
-    auto deviation = [&](std::int32_t u) {
-        const glm::dvec3 p = to_glm(m.point(VH(u)));
+    // The deviation from f of a swallowed node at p, computed the same way by every scan.
+    auto deviation_at = [&](const glm::dvec3 &p) {
         if (!s.xy)
             return std::abs(glm::dot(p - a, normal)) / glm::length(normal);
         const glm::dvec2 x(p.x, p.y);
         const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / normal.z;
         const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / normal.z;
         // The same float-rounding widening as locate(): the bound is never overstated.
-        const double ulp = 1.2e-7 * std::max({std::abs(x.x), std::abs(x.y), 1.0});
-        return std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z)) + 4.0 * ulp * slope;
+        return std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z)) +
+               rounding_margin(std::max(std::abs(x.x), std::abs(x.y)), slope);
     };
+    auto deviation = [&](std::int32_t u) { return deviation_at(to_glm(m.point(VH(u)))); };
     auto visit = [&](std::int32_t u, double dev, double bound) {
         if (!(dev * bound > worst.second))
             return;
@@ -2124,8 +2129,8 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
                 const double bound = s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
                 return dz * bound > worst.second ? bound : -1.0;
             },
-            [&](std::uint32_t v, const Mesh::Point &, double bound) {
-                visit(std::int32_t(v), deviation(std::int32_t(v)), bound);
+            [&](std::uint32_t v, const Mesh::Point &p, double bound) {
+                visit(std::int32_t(v), deviation_at(to_glm(p)), bound);
                 return true;
             });
         return worst;
