@@ -495,42 +495,51 @@ Outcome retrieve_only(const Case &c, bool matched) {
     return o;
 }
 
-// The view-dependent pipeline: retrieve at tau, convert, erase at tau on the retrieved TIN.
+// The view-dependent pipeline, as `tinlod simplify DEM` runs it (erase_dem): retrieval at half of
+// tau, then node erase to tau over every sample of the grid; the quad-tree build is timed too.
 Outcome retrieve_erase(const Case &c) {
-    QuadTreeLod lod(*c.input->tree);
-    lod.retrieve(c.view, {c.tol, false});
     Outcome o;
     EraseOptions eo;
     eo.tolerance = c.tol;
-    double retrieve_ms = 0, to_mesh_ms = 0, erase_ms = 0;
+    DemEraseStats st;
     while (again(c, o.ms)) {
         o.mesh.reset();
         Timer clock;
-        const Retrieval &r = lod.retrieve(c.view, {c.tol, false});
-        retrieve_ms = clock.ms();
-        o.mesh = std::make_unique<Mesh>(to_mesh(r, c.input->tree->frame()));
-        to_mesh_ms = clock.ms() - retrieve_ms;
-        const EraseStats s = erase_nodes(*o.mesh, &c.view, eo);
+        const Mesh out = erase_dem(c.input->hf, &c.view, eo, {}, &st);
         clock.stop(o);
-        erase_ms = s.ms;
-        o.extra["retrieved_tris"] = s.input_triangles;
+        o.mesh = std::make_unique<Mesh>(out);
     }
-    o.extra["retrieve_ms"] = retrieve_ms;
-    o.extra["to_mesh_ms"] = to_mesh_ms;
-    o.extra["erase_ms"] = erase_ms;
+    o.extra["retrieved_nodes"] = st.retrieved_nodes;
+    o.extra["retrieve_ms"] = st.retrieve_ms;
+    o.extra["erase_ms"] = st.erase.ms;
     o.input_tris = std::int64_t(c.input->hf.width - 1) * (c.input->hf.height - 1) * 2;
     return o;
 }
 
-// Node erase on the whole input mesh: view-dependent (screen) or view-independent (vertical), to
-// c.target_nodes (tolerance unbounded) or, without a target, to the bound c.tol.
+// Node erase: view-dependent (screen) or view-independent (vertical), to c.target_nodes (tolerance
+// unbounded) or, without a target, to the bound c.tol. A terrain in the screen model goes through
+// erase_dem from the DEM as `tinlod simplify` does (the quad-tree build, the retrieval and its mesh
+// timed with the erase); otherwise the erase runs on the input mesh, built untimed.
 Outcome erase_grid(const Case &c, SpModel model) {
     Outcome o;
     EraseOptions eo;
     eo.significance.model = model;
     eo.tolerance = c.target_nodes > 0 ? INFINITY : c.tol;
     eo.max_nodes = c.target_nodes;
+    const bool dem = model == SpModel::screen && c.input->is_terrain();
     while (again(c, o.ms)) {
+        if (dem) {
+            o.mesh.reset();
+            o.input_tris = std::int64_t(c.input->hf.width - 1) * (c.input->hf.height - 1) * 2;
+            DemEraseStats st;
+            Timer clock;
+            const Mesh out = erase_dem(c.input->hf, &c.view, eo, {}, &st);
+            clock.stop(o);
+            o.mesh = std::make_unique<Mesh>(out);
+            o.extra["evaluations"] = st.erase.evaluations;
+            o.extra["retrieved_nodes"] = st.retrieved_nodes;
+            continue;
+        }
         o.mesh = input_mesh(*c.input);
         o.input_tris = std::int64_t(o.mesh->n_faces());
         Timer clock;

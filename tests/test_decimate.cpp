@@ -6,6 +6,7 @@
 #include "tinlod/decimate.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
+#include "tinlod/quadtree.hpp"
 #include "tinlod/refine.hpp"
 
 #include <gtest/gtest.h>
@@ -242,6 +243,53 @@ TEST_P(DemErase, VerticalBoundHoldsAndNodesFallAsBoundGrows) {
     }
 }
 
+// Both methods (erase_dem): the retrieval leaves samples out, and the erase of the retrieved TIN
+// must still bound every one of them, as an erase from the full grid does, with about as many
+// nodes; a node budget is met exactly, with the eraser's own bound being the measured error.
+TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
+    const Heightfield hf = load_cropped(GetParam());
+    const View view = corner_view(hf);
+    const Invariants grid = invariants(grid_tin(hf));
+    ErrorOptions eo;
+    eo.view = &view;
+    EraseOptions options;
+    options.tolerance = 1.0;
+    Mesh full = grid_tin(hf);
+    erase_nodes(full, &view, options);
+    for (double share : {0.5, 1.0}) {
+        DemEraseOptions dem;
+        dem.retrieve_share = share;
+        DemEraseStats stats;
+        const Mesh out = erase_dem(hf, &view, options, dem, &stats);
+        EXPECT_LT(stats.retrieved_nodes, hf.size()) << "share " << share;
+        EXPECT_EQ(stats.retrieve_tol, share * options.tolerance);
+        const TinError measured = measure_error(hf, out, eo);
+        EXPECT_EQ(measured.uncovered, 0);
+        EXPECT_LE(measured.max_screen_px, options.tolerance)
+            << "share " << share << ", worst sample " << measured.worst_sample;
+        EXPECT_NEAR(stats.erase.max_screen_px, measured.max_screen_px, 1e-3) << "share " << share;
+        const Invariants after = invariants(out);
+        EXPECT_EQ(after.euler, grid.euler);
+        EXPECT_EQ(after.non_manifold, 0);
+        EXPECT_NEAR(after.boundary_length, grid.boundary_length, 1e-6 * grid.boundary_length);
+        EXPECT_EQ(test::count_folded_faces(out), 0);
+        if (share == 0.5) {
+            EXPECT_NEAR(double(out.n_vertices()), double(full.n_vertices()),
+                        0.05 * double(full.n_vertices()));
+        }
+    }
+    EraseOptions budget;
+    budget.tolerance = INFINITY;
+    budget.max_nodes = std::max<std::int64_t>(16, std::int64_t(full.n_vertices()) / 2);
+    DemEraseOptions dem;
+    dem.budget_share = 2.0;
+    DemEraseStats stats;
+    const Mesh out = erase_dem(hf, &view, budget, dem, &stats);
+    EXPECT_EQ(std::int64_t(out.n_vertices()), budget.max_nodes);
+    EXPECT_GE(stats.retrieved_nodes, 2 * budget.max_nodes);
+    EXPECT_NEAR(stats.erase.max_screen_px, measure_error(hf, out, eo).max_screen_px, 1e-3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Assets, DemErase, ::testing::ValuesIn(k_dems), [](const auto &info) {
     std::string name = info.param.file;
     name = name.substr(0, name.find('.'));
@@ -297,6 +345,41 @@ TEST(Erase, LatticeScanAgreesWithSwallowedLists) {
         nodes[k++] = stats.output_nodes;
     }
     EXPECT_NEAR(double(nodes[0]), double(nodes[1]), 0.005 * double(nodes[1]));
+}
+
+// The retrieved TIN on the lattice is the eraser's input: recovering every erase gives it back
+// exactly, and the samples it never held stay out.
+TEST(Erase, RetrievedLatticeTinRecoversExactly) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 257});
+    const View view = corner_view(hf);
+    const QuadTree tree(hf);
+    const Retrieval retrieval = retrieve(tree, view, {0.5, false});
+    Mesh input = to_lattice_mesh(retrieval, hf);
+    ASSERT_LT(retrieval.nodes.size(), std::size_t(hf.size()));
+    const auto input_triangles = triangle_set(input);
+    EXPECT_EQ(input_triangles.size(), retrieval.triangles.size() / 3);
+    Mesh work = input;
+    NodeEraser eraser(work, &view, EraseOptions{});
+    EXPECT_EQ(eraser.live_nodes(), std::int64_t(retrieval.nodes.size()));
+    const EraseStats stats = eraser.erase();
+    EXPECT_GT(stats.erased, 0);
+    EXPECT_EQ(eraser.recover_all(), stats.erased);
+    EXPECT_EQ(eraser.live_nodes(), std::int64_t(retrieval.nodes.size()));
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(back.n_vertices(), retrieval.nodes.size());
+    EXPECT_EQ(triangle_set(back), input_triangles);
+}
+
+// Deleted vertices are samples a grid TIN never held: anything else is refused.
+TEST(Erase, DeletedVerticesOutsideAGridAreRefused) {
+    Mesh bunny = read_mesh(asset("bun_zipper_res4.ply"));
+    const auto isolated = bunny.add_vertex(bunny.point(Mesh::VertexHandle(0)));
+    bunny.status(isolated).set_deleted(true);
+    EXPECT_THROW(NodeEraser(bunny, nullptr, EraseOptions{}), std::invalid_argument);
+    Mesh grid = grid_tin(load_cropped({"dem_squared.tif", false, 0}));
+    grid.status(Mesh::VertexHandle(5)).set_deleted(true);
+    EXPECT_THROW(NodeEraser(grid, nullptr, EraseOptions{}), std::invalid_argument);
 }
 
 TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {

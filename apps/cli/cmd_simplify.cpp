@@ -26,7 +26,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         double tol = 1.0;
         double max_error = 0.0;
         std::int64_t max_nodes = 0;
-        double retrieve_share = 0.0;
+        double retrieve_share = DemEraseOptions{}.retrieve_share;
         CameraOptions camera;
         RasterOptions raster;
     };
@@ -48,8 +48,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         cmd.add_option("--max-error", args->max_error,
                        "view-independent: vertical error bound, world units (no camera)");
     cmd.add_option("--retrieve-share", args->retrieve_share,
-                   "DEM input: retrieve at share * tau first, erase at the rest (faster; the bound "
-                   "then holds at the retrieved nodes only, see the measured error)")
+                   "DEM input, screen model: the quad-tree retrieval first keeps share * tau (with "
+                   "--max-nodes: about 8 x the budget), the node erase the rest; the bound holds "
+                   "at every sample either way (0: erase from the full grid)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     args->camera.add(cmd, false);
@@ -88,30 +89,6 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         const double ms_load = clock.ms();
         std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
         std::int64_t input_triangles = std::int64_t(mesh.n_faces());
-        // A DEM is erased from its full grid, so every sample is a node and the erase bound is
-        // exact. With --retrieve-share it is first retrieved (method 1) at share * tau and the
-        // retrieved TIN erased (method 2) at the rest: faster, but the erase then bounds only the
-        // retrieved nodes, not the samples between them, so the sum is not a guarantee (the stats
-        // report the measured error).
-        double ms_retrieve = 0.0;
-        std::int64_t retrieved_nodes = 0;
-        const double share = view ? args->retrieve_share : 0.0;
-        if (hf) {
-            input_nodes = hf->size();
-            input_triangles = 2 * std::int64_t(hf->width - 1) * (hf->height - 1);
-            clock.reset();
-            if (view && share > 0.0) {
-                const QuadTree tree(*hf);
-                RetrieveOptions ro;
-                ro.tol_px = args->tol * share;
-                mesh = to_mesh(retrieve(tree, *view, ro), tree.frame());
-            } else {
-                mesh = grid_tin(*hf);
-            }
-            retrieved_nodes = std::int64_t(mesh.n_vertices());
-            ms_retrieve = clock.ms();
-        }
-
         EraseOptions options;
         options.max_nodes = args->max_nodes;
         if (vertical) {
@@ -119,12 +96,25 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             options.tolerance = args->max_error;
         } else {
             options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
-            options.tolerance =
-                args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol * (1.0 - share);
+            options.tolerance = args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol;
         }
-        clock.reset();
-        const EraseStats erased = erase_nodes(mesh, view ? &*view : nullptr, options);
-        const double ms_simplify = clock.ms();
+        // A DEM goes through both methods (erase_dem): the quad-tree retrieval, then the node erase
+        // of the retrieved TIN over every sample of the grid.
+        DemEraseStats dem;
+        EraseStats erased;
+        if (hf) {
+            input_nodes = hf->size();
+            input_triangles = 2 * std::int64_t(hf->width - 1) * (hf->height - 1);
+            DemEraseOptions dem_options;
+            dem_options.retrieve_share = args->retrieve_share;
+            if (args->retrieve_share == 0.0)
+                dem_options.budget_share = 0.0;
+            mesh = erase_dem(*hf, view ? &*view : nullptr, options, dem_options, &dem);
+            erased = dem.erase;
+        } else {
+            erased = erase_nodes(mesh, view ? &*view : nullptr, options);
+        }
+        const double ms_simplify = erased.ms;
 
         clock.reset();
         write_mesh(mesh, args->output);
@@ -145,9 +135,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
              {{"file", args->input}, {"nodes", input_nodes}, {"triangles", input_triangles}}},
             {"output",
              {{"file", args->output}, {"nodes", mesh.n_vertices()}, {"triangles", mesh.n_faces()}}},
-            {"time_ms", {{"load", ms_load}, {"retrieve", ms_retrieve}, {"simplify", ms_simplify},
-                         {"write", ms_write}}},
-            {"retrieve", {{"tol_px", args->tol * share}, {"nodes", retrieved_nodes}}},
+            {"time_ms", {{"load", ms_load}, {"retrieve", dem.retrieve_ms},
+                         {"simplify", ms_simplify}, {"write", ms_write}}},
+            {"retrieve", {{"tol_px", dem.retrieve_tol}, {"nodes", hf ? dem.retrieved_nodes : 0}}},
             {"error", {{"max_screen_px", max_screen}, {"max_vertical", max_vertical}}},
             {"simplify",
              {{"model", vertical ? "vertical" : args->model},

@@ -13,6 +13,7 @@
 #include "tinlod/decimate.hpp"
 
 #include "tinlod/focal.hpp"
+#include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
 
 #include <algorithm>
@@ -21,6 +22,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace tinlod {
@@ -442,6 +445,8 @@ constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh bound
 constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
 constexpr std::uint8_t k_recovered = 4; // recovered by the update under way
 
+constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN never held
+
 } // namespace
 
 struct NodeEraser::Impl {
@@ -477,8 +482,9 @@ struct NodeEraser::Impl {
     std::vector<std::int32_t> block_scratch; // build_blocks' scratch
     std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
-    // Per vertex: its erase record (>= 0), or for a live node -2 - its place in live_list (so an
-    // update visits the live nodes without walking the whole terrain).
+    // Per vertex: its erase record (>= 0), k_absent for a sample the input TIN never held (see
+    // the constructor), or for a live node -2 - its place in live_list (so an update visits the
+    // live nodes without walking the whole terrain).
     std::vector<std::int32_t> record_of;
     std::vector<LiveNode> live_list; // the live nodes, in no order
     // The update's grid: cells of side cell_side from grid_lo, grid_nx per row.
@@ -574,16 +580,17 @@ static void remove_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t recor
     s.record_of[x] = record;
 }
 
-// The fans of the live nodes among the hole's points h.p[0..count) (node ids `ids`) now hold faces
-// inside the hole whose swallowed nodes deviate at most `dev`: widens their bounds to cover them.
-static void widen_fans(NodeEraser::Impl &s, const Hole &h, const std::uint32_t *ids, int count,
-                       double dev) {
+// The fans of the live nodes among the points p[0..count) (node ids `ids`, a hole's or a face's)
+// now hold faces among those points whose swallowed nodes deviate at most `dev`: widens their
+// bounds to cover them.
+static void widen_fans(NodeEraser::Impl &s, const glm::dvec3 *p, const std::uint32_t *ids,
+                       int count, double dev) {
     for (int i = 0; i < count; ++i) {
         if (s.record_of[ids[i]] >= 0)
             continue;
         double far2 = 0.0;
         for (int j = 0; j < count; ++j) {
-            const glm::dvec3 d = h.p[j] - h.p[i];
+            const glm::dvec3 d = p[j] - p[i];
             far2 = std::max(far2, glm::dot(d, d));
         }
         LiveNode &l = live_node(s, ids[i]);
@@ -617,21 +624,31 @@ static glm::dvec2 project(const Hole &h, const glm::dvec3 &p) {
     return {glm::dot(d, h.ex), glm::dot(d, h.ey)};
 }
 
+// The frame of the triangle with projected corners qa, qb, qc; `xy`: its heights za, zb, zc too.
+static TriangleFrame triangle_frame(const glm::dvec2 &qa, const glm::dvec2 &qb,
+                                    const glm::dvec2 &qc, bool xy, double za = 0.0,
+                                    double zb = 0.0, double zc = 0.0) {
+    const double inv = 1.0 / orient(qa, qb, qc);
+    TriangleFrame f;
+    // w0 = orient(qb, qc, x) / area, w1 = orient(qc, qa, x) / area
+    f.w0 = glm::dvec3(qb.y - qc.y, qc.x - qb.x, qb.x * qc.y - qc.x * qb.y) * inv;
+    f.w1 = glm::dvec3(qc.y - qa.y, qa.x - qc.x, qc.x * qa.y - qa.x * qc.y) * inv;
+    if (xy) {
+        const glm::dvec3 w2 = glm::dvec3(0.0, 0.0, 1.0) - f.w0 - f.w1;
+        f.height = f.w0 * za + f.w1 * zb + w2 * zc;
+        f.slope = std::sqrt(f.height.x * f.height.x + f.height.y * f.height.y);
+    }
+    return f;
+}
+
 // Fills the affine frames of the hole's new triangles.
 static void frame_triangles(const NodeEraser::Impl &s, Hole &h) {
     for (int t = 0; t < h.ntri; ++t) {
         const RingTriangle &tri = h.tri[t];
-        const glm::dvec2 &qa = h.q[tri.a], &qb = h.q[tri.b], &qc = h.q[tri.c];
-        const double inv = 1.0 / orient(qa, qb, qc);
         TriangleFrame &f = h.frame[t];
-        // w0 = orient(qb, qc, x) / area, w1 = orient(qc, qa, x) / area
-        f.w0 = glm::dvec3(qb.y - qc.y, qc.x - qb.x, qb.x * qc.y - qc.x * qb.y) * inv;
-        f.w1 = glm::dvec3(qc.y - qa.y, qa.x - qc.x, qc.x * qa.y - qa.x * qc.y) * inv;
-        const glm::dvec3 w2 = glm::dvec3(0.0, 0.0, 1.0) - f.w0 - f.w1;
-        if (s.xy) {
-            f.height = f.w0 * h.p[tri.a].z + f.w1 * h.p[tri.b].z + w2 * h.p[tri.c].z;
-            f.slope = std::sqrt(f.height.x * f.height.x + f.height.y * f.height.y);
-        } else {
+        f = triangle_frame(h.q[tri.a], h.q[tri.b], h.q[tri.c], s.xy, h.p[tri.a].z, h.p[tri.b].z,
+                           h.p[tri.c].z);
+        if (!s.xy) {
             const glm::dvec3 n = glm::cross(h.p[tri.b] - h.p[tri.a], h.p[tri.c] - h.p[tri.a]);
             const double len = glm::length(n);
             f.height = len > 0.0 ? n / len : glm::dvec3(0.0);
@@ -836,6 +853,28 @@ static std::int64_t lattice_inside(const NodeEraser::Impl &s, const Hole &h) {
     return (std::abs(twice) - on_ring) / 2 + 1;
 }
 
+// The largest deviation (rounded up) of the samples a grid TIN's face with corner nodes a, b, c
+// (points pa, pb, pc, frame f) swallowed, and the sample that has it (-1 when none deviates).
+static std::pair<float, std::int32_t> face_worst(const NodeEraser::Impl &s, std::uint32_t a,
+                                                 std::uint32_t b, std::uint32_t c,
+                                                 const TriangleFrame &f, const glm::dvec3 &pa,
+                                                 const glm::dvec3 &pb, const glm::dvec3 &pc) {
+    const PlaneDev deviation(f, pa, pb, pc);
+    double maxdev = 0.0;
+    std::int32_t worst = -1;
+    scan_lattice(
+        s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
+        [&](std::uint32_t u, const Mesh::Point &p, double) {
+            const double dev = deviation(p);
+            if (dev > maxdev) {
+                maxdev = dev;
+                worst = std::int32_t(u);
+            }
+            return true;
+        });
+    return {float_up(maxdev), worst};
+}
+
 static HH find_halfedge(const Mesh &m, VH a, VH b) {
     const HH start = m.halfedge_handle(a);
     if (!start.is_valid())
@@ -923,6 +962,9 @@ static void classify_nodes(NodeEraser::Impl &s) {
         if (!he.is_valid() || (m.is_boundary(he) && (!s.xy || !s.options.erase_boundary)))
             s.flags[v.idx()] |= k_locked;
     }
+    for (std::size_t x = 0; x < s.record_of.size(); ++x)
+        if (s.record_of[x] == k_absent)
+            s.flags[x] |= k_locked;
     s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
     new_weights(s, true);
 }
@@ -1091,7 +1133,7 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     // deviation settles most evaluations that fail without walking the fan.
     const std::uint32_t last_star = live_node(s, std::uint32_t(v.idx())).star;
     if (s.xy && h.cost <= limit && last_star != std::uint32_t(v.idx()) &&
-        s.record_of[last_star] >= 0) {
+        s.record_of[last_star] >= k_absent) {
         bool inside = false;
         locate(s, h, to_glm(m.point(VH(int(last_star)))), dev, &inside);
         if (inside) {
@@ -1295,7 +1337,7 @@ static void retriangulate(NodeEraser::Impl &s) {
     for (int i = 0; i < n; ++i)
         ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = std::uint32_t(h.r[i].idx());
     remove_live(s, x, k);
-    widen_fans(s, h, ids.data(), n, double(hole_dev));
+    widen_fans(s, h.p.data(), ids.data(), n, double(hole_dev));
     --s.live;
     s.live_faces -= fans - h.ntri;
 }
@@ -1722,22 +1764,10 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     frame_triangles(s, h);
     if (s.grid_w > 0)
         for (int i = 0; i < fans; ++i) {
-            const PlaneDev deviation(h.frame[i], pv, h.p[i], h.p[(i + 1) % n]);
-            double maxdev = 0.0;
-            std::int32_t worst = -1;
-            scan_lattice(
-                s, x, ring[i], ring[(i + 1) % n],
-                [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
-                [&](std::uint32_t u, const Mesh::Point &p, double) {
-                    const double dev = deviation(p);
-                    if (dev > maxdev) {
-                        maxdev = dev;
-                        worst = std::int32_t(u);
-                    }
-                    return true;
-                });
+            const auto [maxdev, worst] =
+                face_worst(s, x, ring[i], ring[(i + 1) % n], h.frame[i], pv, h.p[i], h.p[(i + 1) % n]);
             s.face_head[face[i].idx()] = worst;
-            s.face_maxdev[face[i].idx()] = float_up(maxdev);
+            s.face_maxdev[face[i].idx()] = maxdev;
         }
     for (std::size_t k = swallowed_begin; k < swallowed.size(); ++k) {
         const std::uint32_t u = swallowed[k];
@@ -1753,7 +1783,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     std::array<std::uint32_t, k_max_ring + 1> ids;
     std::copy(ring, ring + n, ids.begin());
     ids[n] = x;
-    widen_fans(s, h, ids.data(), n + 1, double(hole_dev));
+    widen_fans(s, h.p.data(), ids.data(), n + 1, double(hole_dev));
     ++s.live;
     s.live_faces += fans - (n - 2);
 }
@@ -1788,12 +1818,43 @@ static void advise_huge(const NodeEraser::Impl &s) {
     whole(s.face_maxdev);
 }
 
+// A grid TIN that holds only some of its lattice's samples (a retrieval's): the faces swallowed the
+// others from the start, so each face gets its worst sample and deviation, and its corners' fan
+// bounds, as an erase would have left them.
+static void swallow_absent(NodeEraser::Impl &s) {
+    const Mesh &m = *s.mesh;
+    for (auto f : m.faces()) {
+        const HH he = m.halfedge_handle(f);
+        const std::array<std::uint32_t, 3> ids = {
+            std::uint32_t(m.from_vertex_handle(he).idx()),
+            std::uint32_t(m.to_vertex_handle(he).idx()),
+            std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx())};
+        std::array<glm::dvec3, 3> p;
+        for (int k = 0; k < 3; ++k)
+            p[k] = to_glm(m.point(VH(int(ids[k]))));
+        const TriangleFrame frame = triangle_frame(glm::dvec2(p[0]), glm::dvec2(p[1]),
+                                                   glm::dvec2(p[2]), true, p[0].z, p[1].z, p[2].z);
+        const auto [maxdev, worst] = face_worst(s, ids[0], ids[1], ids[2], frame, p[0], p[1], p[2]);
+        s.face_head[f.idx()] = worst;
+        s.face_maxdev[f.idx()] = maxdev;
+        if (worst >= 0)
+            widen_fans(s, p.data(), ids.data(), 3, double(maxdev));
+    }
+}
+
 NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
     : impl_(std::make_unique<Impl>()) {
     Impl &s = *impl_;
     s.mesh = &mesh;
     assert(s.mesh->is_trimesh());
-    s.live = std::int64_t(s.mesh->n_vertices());
+    std::int64_t absent = 0;
+    for (auto v : s.mesh->all_vertices())
+        if (s.mesh->status(v).deleted()) {
+            if (s.mesh->halfedge_handle(v).is_valid())
+                throw std::invalid_argument("NodeEraser: a deleted vertex still has edges");
+            ++absent;
+        }
+    s.live = std::int64_t(s.mesh->n_vertices()) - absent;
     s.live_faces = std::int64_t(s.mesh->n_faces());
     bool all_ccw = true;
     for (auto f : s.mesh->faces()) {
@@ -1809,6 +1870,8 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.xy = options.projection == Projection::xy ||
            (options.projection == Projection::automatic && all_ccw);
     s.grid_w = s.xy ? grid_width(*s.mesh) : 0;
+    if (absent > 0 && s.grid_w == 0)
+        throw std::invalid_argument("NodeEraser: deleted vertices in a mesh that is not a grid TIN");
     if (s.grid_w == 0)
         s.next_swallowed.assign(s.mesh->n_vertices(), -1);
     s.face_head.assign(s.mesh->n_faces(), -1);
@@ -1836,8 +1899,14 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
         s.grid_ny = int(extent.y / s.cell_side) + 1;
     }
     s.cells.assign(std::size_t(s.grid_nx) * std::size_t(s.grid_ny), Cell{});
-    for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
-        add_live(s, x, -1);
+    for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x) {
+        if (s.mesh->status(VH(int(x))).deleted())
+            s.record_of[x] = k_absent;
+        else
+            add_live(s, x, -1);
+    }
+    if (absent > 0)
+        swallow_absent(s);
     set_view(view, options);
 }
 
@@ -2409,6 +2478,54 @@ EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options
     mesh.garbage_collection();
     stats.ms += clock.ms();
     return stats;
+}
+
+Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
+               const DemEraseOptions &dem, DemEraseStats *stats) {
+    Stopwatch clock;
+    DemEraseStats out;
+    const bool budget = options.max_nodes > 0;
+    const bool retrieve =
+        view && options.significance.model == SpModel::screen &&
+        (budget ? dem.budget_share > 0.0 &&
+                      2.0 * dem.budget_share * double(options.max_nodes) <= double(hf.size())
+                : dem.retrieve_share > 0.0);
+    const auto build = [&]() -> Mesh {
+        if (!retrieve) {
+            out.retrieved_nodes = hf.size();
+            return grid_tin(hf);
+        }
+        std::optional<QuadTree> own;
+        if (!dem.tree)
+            own.emplace(hf);
+        QuadTreeLod lod(dem.tree ? *dem.tree : *own);
+        const View &eye = *view;
+        RetrieveOptions ro;
+        ro.tol_px = options.tolerance * dem.retrieve_share;
+        if (budget) {
+            // The least tolerance that keeps at most [1, 1.2] x the target, by bisection on its log.
+            const double target = dem.budget_share * double(options.max_nodes);
+            double lo = 1e-6, hi = 1e6;
+            for (int i = 0; i < 40; ++i) {
+                ro.tol_px = std::sqrt(lo * hi);
+                const double n = double(lod.retrieve(eye, ro).nodes.size());
+                (n > target ? lo : hi) = ro.tol_px;
+                if (n > target && n <= 1.2 * target)
+                    break;
+            }
+            ro.tol_px = lo;
+        }
+        const Retrieval &r = lod.retrieve(eye, ro);
+        out.retrieved_nodes = std::int64_t(r.nodes.size());
+        out.retrieve_tol = ro.tol_px;
+        return to_lattice_mesh(r, hf);
+    };
+    Mesh mesh = build();
+    out.retrieve_ms = clock.ms();
+    out.erase = erase_nodes(mesh, view, options);
+    if (stats)
+        *stats = out;
+    return mesh;
 }
 
 // ---- Public ring geometry ----------------------------------------------------------------------

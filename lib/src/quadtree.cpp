@@ -671,4 +671,19 @@ Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame) {
     return mesh;
 }
 
+Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
+    Mesh mesh = grid_vertices(hf);
+    std::vector<std::uint8_t> held(mesh.n_vertices(), 0);
+    for (const std::uint32_t id : retrieval.nodes)
+        held[id] = 1;
+    for (auto v : mesh.vertices())
+        if (!held[v.idx()])
+            mesh.status(v).set_deleted(true);
+    const auto& t = retrieval.triangles;
+    for (std::size_t n = 0; n + 2 < t.size(); n += 3)
+        mesh.add_face(Mesh::VertexHandle(int(t[n])), Mesh::VertexHandle(int(t[n + 1])),
+                      Mesh::VertexHandle(int(t[n + 2])));
+    return mesh;
+}
+
 } // namespace tinlod

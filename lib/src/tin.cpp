@@ -24,7 +24,7 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh) {
     return handle;
 }
 
-Mesh grid_tin(const Heightfield& hf) {
+Mesh grid_vertices(const Heightfield& hf) {
     assert(hf.width >= 2 && hf.height >= 2);
     Mesh mesh;
     const std::size_t n = static_cast<std::size_t>(hf.size());
@@ -35,6 +35,11 @@ Mesh grid_tin(const Heightfield& hf) {
             auto v = mesh.add_vertex(Mesh::Point(float(c * hf.dx), float(r * hf.dy), hf.at(c, r)));
             mesh.property(origin, v) = static_cast<std::int64_t>(r) * hf.width + c;
         }
+    return mesh;
+}
+
+Mesh grid_tin(const Heightfield& hf) {
+    Mesh mesh = grid_vertices(hf);
     const int w = hf.width;
     for (int r = 0; r + 1 < hf.height; ++r)
         for (int c = 0; c + 1 < w; ++c) {

@@ -180,4 +180,9 @@ Retrieval retrieve(const QuadTree& tree, const View& view, const RetrieveOptions
 // The OpenMesh TIN of a retrieval (origin property = sample id, vertices in `nodes` order).
 Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame);
 
+// The retrieval's TIN on the whole lattice of `hf`, the grid it was retrieved from: vertex
+// r * width + c for every sample (as grid_tin), the samples the retrieval left out deleted and
+// isolated. A NodeEraser on it bounds every sample of the grid, retrieved or not.
+Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf);
+
 } // namespace tinlod

@@ -35,6 +35,8 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh);
 // Full-resolution grid TIN: W*H nodes, 2(W-1)(H-1) triangles, every triangle counter-clockwise
 // seen from above, node i = grid sample i (origin property set).
 Mesh grid_tin(const Heightfield& hf);
+// grid_tin's nodes alone, with no triangle yet.
+Mesh grid_vertices(const Heightfield& hf);
 
 // Height of grid_tin(hf)'s surface at local (x, y) (its triangles, diagonals included), or
 // nothing outside the terrain. For "is this eye under the ground?" checks.
