@@ -1261,7 +1261,7 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
         if (!s.flight.is_null())
             md << "- flight: each path's updates stop after "
                << fmt("%.0f", s.flight["budget_s"].get<double>())
-               << " s (updates, rebuilds, error measurements): the Flight table says how many of "
+               << " s of updates (rebuilds and error measurements on top): the Flight table says how many of "
                   "each path's updates were flown\n";
     }
     md << "\n## Section times (wall)\n\n| section | s |\n|---|---|\n";

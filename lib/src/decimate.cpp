@@ -1764,8 +1764,9 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     frame_triangles(s, h);
     if (s.grid_w > 0)
         for (int i = 0; i < fans; ++i) {
+            const std::uint32_t a = ring[i], b = ring[(i + 1) % n];
             const auto [maxdev, worst] =
-                face_worst(s, x, ring[i], ring[(i + 1) % n], h.frame[i], pv, h.p[i], h.p[(i + 1) % n]);
+                face_worst(s, x, a, b, h.frame[i], pv, h.p[i], h.p[(i + 1) % n]);
             s.face_head[face[i].idx()] = worst;
             s.face_maxdev[face[i].idx()] = maxdev;
         }
@@ -1871,7 +1872,8 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
            (options.projection == Projection::automatic && all_ccw);
     s.grid_w = s.xy ? grid_width(*s.mesh) : 0;
     if (absent > 0 && s.grid_w == 0)
-        throw std::invalid_argument("NodeEraser: deleted vertices in a mesh that is not a grid TIN");
+        throw std::invalid_argument(
+            "NodeEraser: deleted vertices in a mesh that is not a grid TIN");
     if (s.grid_w == 0)
         s.next_swallowed.assign(s.mesh->n_vertices(), -1);
     s.face_head.assign(s.mesh->n_faces(), -1);
@@ -2485,11 +2487,13 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
     Stopwatch clock;
     DemEraseStats out;
     const bool budget = options.max_nodes > 0;
+    // With a budget: the retrieval's nodes, at most half of the samples, and then only when that
+    // leaves the erase at least twice the budget to choose from.
+    const double target =
+        std::min(dem.budget_share * double(options.max_nodes), 0.5 * double(hf.size()));
     const bool retrieve =
         view && options.significance.model == SpModel::screen &&
-        (budget ? dem.budget_share > 0.0 &&
-                      2.0 * dem.budget_share * double(options.max_nodes) <= double(hf.size())
-                : dem.retrieve_share > 0.0);
+        (budget ? target >= 2.0 * double(options.max_nodes) : dem.retrieve_share > 0.0);
     const auto build = [&]() -> Mesh {
         if (!retrieve) {
             out.retrieved_nodes = hf.size();
@@ -2504,7 +2508,6 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         ro.tol_px = options.tolerance * dem.retrieve_share;
         if (budget) {
             // The least tolerance that keeps at most [1, 1.2] x the target, by bisection on its log.
-            const double target = dem.budget_share * double(options.max_nodes);
             double lo = 1e-6, hi = 1e6;
             for (int i = 0; i < 40; ++i) {
                 ro.tol_px = std::sqrt(lo * hi);
