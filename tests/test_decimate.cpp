@@ -288,6 +288,12 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
     EXPECT_EQ(std::int64_t(out.n_vertices()), budget.max_nodes);
     EXPECT_GE(stats.retrieved_nodes, 2 * budget.max_nodes);
     EXPECT_NEAR(stats.erase.max_screen_px, measure_error(hf, out, eo).max_screen_px, 1e-3);
+    // A budget far below what the bound allows, with the bound: the bound wins.
+    budget.tolerance = options.tolerance;
+    budget.max_nodes = std::max<std::int64_t>(8, std::int64_t(full.n_vertices()) / 20);
+    const Mesh bounded = erase_dem(hf, &view, budget, dem, &stats);
+    EXPECT_LE(measure_error(hf, bounded, eo).max_screen_px, options.tolerance);
+    EXPECT_LE(stats.retrieve_tol, 0.5 * options.tolerance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Assets, DemErase, ::testing::ValuesIn(k_dems), [](const auto &info) {

@@ -2505,10 +2505,14 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         QuadTreeLod lod(dem.tree ? *dem.tree : *own);
         const View &eye = *view;
         RetrieveOptions ro;
-        ro.tol_px = options.tolerance * dem.retrieve_share;
+        const double shared = std::isfinite(options.tolerance)
+                                  ? options.tolerance * dem.retrieve_share
+                                  : INFINITY;
+        ro.tol_px = shared;
         if (budget) {
-            // The least tolerance that keeps at most [1, 1.2] x the target, by bisection on its log.
-            double lo = 1e-6, hi = 1e6;
+            // The least tolerance that keeps at most [1, 1.2] x the target, by bisection on its log,
+            // and never over the tolerance's share (a budget and a bound: the bound holds).
+            double lo = 1e-6, hi = std::min(1e6, shared);
             for (int i = 0; i < 40; ++i) {
                 ro.tol_px = std::sqrt(lo * hi);
                 const double n = double(lod.retrieve(eye, ro).nodes.size());
@@ -2516,7 +2520,7 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
                 if (n > target && n <= 1.2 * target)
                     break;
             }
-            ro.tol_px = lo;
+            ro.tol_px = std::min(lo, shared);
         }
         const Retrieval &r = lod.retrieve(eye, ro);
         out.retrieved_nodes = std::int64_t(r.nodes.size());

@@ -216,8 +216,9 @@ struct DemEraseOptions {
     // rest of the budget (0: the erase starts from the full grid).
     double retrieve_share = 0.5;
     // With a node budget: the retrieval keeps about this many times the budget, at most half of the
-    // samples (its tolerance is searched for), the erase the rest; 0, or a budget over a quarter of
-    // the samples: the full grid.
+    // samples (its tolerance is searched for, and kept <= retrieve_share * tolerance when both a
+    // budget and a tolerance are given), the erase the rest; 0, or a budget over a quarter of the
+    // samples: the full grid.
     double budget_share = 8.0;
     const QuadTree *tree = nullptr; // the DEM's quad-tree when one is built already
 };
