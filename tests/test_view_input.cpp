@@ -362,7 +362,7 @@ TEST(ViewWorker, GroundUnderTheEyeIsTheDemAtFullResolution) {
     EXPECT_FALSE(ground_height(*r, info, -10.0 * hf.dx, 5.0 * hf.dy).has_value());
 }
 
-TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTau) {
+TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTauAtEverySample) {
     SceneInfo info;
     auto engine = open_scene(test::asset("dem_squared.tif"), info);
     View v;
@@ -379,6 +379,13 @@ TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTau) {
     EXPECT_LT(erased->nodes, retrieved->nodes);
     EXPECT_GT(erased->erase_ms, 0.0);
     EXPECT_LE(erased->erase_max_px, s.tol_px + 1e-9);
+    // A DEM in memory: the bound holds at every sample, not only at the retrieved nodes.
+    ErrorOptions eo;
+    eo.view = &v;
+    const TinError measured =
+        measure_error(load_heightfield(test::asset("dem_squared.tif")), erased->mesh, eo);
+    EXPECT_LE(measured.max_screen_px, s.tol_px);
+    EXPECT_NEAR(measured.max_screen_px, erased->erase_max_px, 1e-3);
     // SP colours: one finite value per vertex (boundary nodes, SP = infinity, at the top); the
     // colour map tops out at the 95th percentile.
     ASSERT_EQ(erased->vertex_scalar.size(), erased->mesh.n_vertices());

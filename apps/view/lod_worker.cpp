@@ -184,11 +184,15 @@ class GridEngine final : public EngineBase {
             return refine(view, settings);
         Stopwatch total;
         auto result = std::make_unique<LodResult>();
+        // With the erase and the DEM in memory, both methods as `simplify` runs them (erase_dem):
+        // retrieval at half of tau on the whole lattice, so the erase bounds every sample. From a
+        // store (read partially) the erase bounds the retrieved nodes only.
+        const bool lattice = settings.stages == LodStages::retrieve_erase && hf_;
         RetrieveOptions ro;
-        ro.tol_px = settings.tol_px;
+        ro.tol_px = lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
         ro.cull = settings.cull;
         const Retrieval& r = lod_.retrieve(view, ro);
-        result->mesh = to_mesh(r, lod_.frame());
+        result->mesh = lattice ? to_lattice_mesh(r, *hf_) : to_mesh(r, lod_.frame());
         result->bound_px = r.bound_px;
         result->retrieve_ms = total.ms();
         const GridFrame& g = lod_.frame();

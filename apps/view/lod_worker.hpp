@@ -24,7 +24,8 @@ namespace tinlod::viewer {
 
 enum class LodStages {
     retrieve,       // the quad-tree retrieval only (DEM, store); a mesh input is shown whole
-    retrieve_erase, // then distance decay by node erase (erase_nodes) from the same view
+    retrieve_erase, // then distance decay by node erase from the same view (over every sample
+                    // for a DEM in memory, as erase_dem)
     refine,         // one TIN kept between views: erased and recovered incrementally (Refiner)
 };
 
