@@ -27,7 +27,7 @@ echo "== 2. quad-tree store on disk, and view-dependent retrieval from it (tau =
 "$BIN/tinlod" retrieve "$DEM" $CAM --tol 1 --check -o "$OUT/retrieved.ply" --stats "$OUT/retrieve.json"
 
 echo
-echo "== 3. distance decay: node erase from the same view (tau = 1 px)"
+echo "== 3. distance decay: retrieval at tau/2, then node erase bounded at every sample (tau = 1 px)"
 "$BIN/tinlod" simplify "$DEM" $CAM --tol 1 -o "$OUT/erased.ply" --stats "$OUT/erase.json"
 json "$OUT/erase.json" "'   retrieval alone %d nodes; node erase %d nodes (%.2f x fewer); measured max error %.3f px over every sample in view' % (json.load(open('$OUT/retrieve.json'))['output']['nodes'], d['output']['nodes'], json.load(open('$OUT/retrieve.json'))['output']['nodes'] / d['output']['nodes'], d['error']['max_screen_px'])"
 
