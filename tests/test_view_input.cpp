@@ -8,6 +8,7 @@
 #include "tinlod/camera_path.hpp"
 #include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/store.hpp"
 
 #include <gtest/gtest.h>
 
@@ -396,6 +397,30 @@ TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTauAtEverySample) {
     }
     EXPECT_GT(erased->scalar_max, 0.0f);
     EXPECT_LE(above, erased->vertex_scalar.size() / 20 + 1);
+}
+
+// From a store the erase stage reads the store whole and bounds every sample too.
+TEST(ViewWorker, EraseStageFromAStoreBoundsEverySample) {
+    const Heightfield hf = load_heightfield(test::asset("dem_squared.tif"));
+    const std::string path = test::temp_dir() + "/squared.tlq";
+    write_store(QuadTree(hf), path);
+    SceneInfo info;
+    auto engine = open_scene(path, info);
+    View v;
+    v.viewport_w = 800;
+    v.viewport_h = 600;
+    v.eye = {0.5 * info.hi.x, -0.1 * info.hi.y, info.hi.z + 0.3 * info.hi.x};
+    v.at = 0.5 * (info.lo + info.hi);
+    LodSettings s;
+    s.tol_px = 1.0;
+    s.stages = LodStages::retrieve_erase;
+    const auto erased = engine->compute(v, s);
+    ErrorOptions eo;
+    eo.view = &v;
+    const TinError measured = measure_error(hf, erased->mesh, eo);
+    EXPECT_EQ(measured.uncovered, 0);
+    EXPECT_LE(measured.max_screen_px, s.tol_px);
+    EXPECT_LT(std::size_t(erased->nodes), std::size_t(hf.size()) / 4);
 }
 
 TEST(ViewWorker, RefineStageKeepsOneTinThatFollowsTheEye) {

@@ -184,10 +184,12 @@ class GridEngine final : public EngineBase {
             return refine(view, settings);
         Stopwatch total;
         auto result = std::make_unique<LodResult>();
-        // With the erase and the DEM in memory, both methods as `simplify` runs them (erase_dem):
-        // retrieval at half of tau on the whole lattice, so the erase bounds every sample. From a
-        // store (read partially) the erase bounds the retrieved nodes only.
-        const bool lattice = settings.stages == LodStages::retrieve_erase && hf_;
+        // With the erase, both methods as `simplify` runs them (erase_dem): retrieval at half of
+        // tau on the whole lattice, so the erase bounds every sample (a store is then read whole,
+        // once, as for the refiner).
+        const bool lattice = settings.stages == LodStages::retrieve_erase;
+        if (lattice && !hf_)
+            hf_ = store_->heightfield();
         RetrieveOptions ro;
         ro.tol_px = lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
         ro.cull = settings.cull;

@@ -24,8 +24,8 @@ namespace tinlod::viewer {
 
 enum class LodStages {
     retrieve,       // the quad-tree retrieval only (DEM, store); a mesh input is shown whole
-    retrieve_erase, // then distance decay by node erase from the same view (over every sample
-                    // for a DEM in memory, as erase_dem)
+    retrieve_erase, // then distance decay by node erase from the same view, bounded at every
+                    // sample (as erase_dem; a store is read whole)
     refine,         // one TIN kept between views: erased and recovered incrementally (Refiner)
 };
 
