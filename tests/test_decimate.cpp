@@ -294,6 +294,11 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
     const Mesh bounded = erase_dem(hf, &view, budget, dem, &stats);
     EXPECT_LE(measure_error(hf, bounded, eo).max_screen_px, options.tolerance);
     EXPECT_LE(stats.retrieve_tol, 0.5 * options.tolerance);
+    // No share of the bound for the retrieval: the whole lattice, no search.
+    dem.retrieve_share = 0.0;
+    const Mesh whole = erase_dem(hf, &view, budget, dem, &stats);
+    EXPECT_EQ(stats.retrieved_nodes, hf.size());
+    EXPECT_LE(measure_error(hf, whole, eo).max_screen_px, options.tolerance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Assets, DemErase, ::testing::ValuesIn(k_dems), [](const auto &info) {

@@ -2509,7 +2509,7 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
                                   ? options.tolerance * dem.retrieve_share
                                   : INFINITY;
         ro.tol_px = shared;
-        if (budget) {
+        if (budget && shared > 1e-6) {
             // The least tolerance that keeps at most [1, 1.2] x the target, by bisection on its log,
             // and never over the tolerance's share (a budget and a bound: the bound holds).
             double lo = 1e-6, hi = std::min(1e6, shared);
