@@ -54,6 +54,34 @@ TEST(Cli, RetrieveFullWritesGridTinAndStats) {
     EXPECT_EQ(mesh.n_faces(), std::size_t(2 * 335 * 458));
 }
 
+// simplify on a DEM: retrieval, then erase; the error the command measures at every sample stays
+// within the bound with or without the retrieval, and with a node budget beside the bound.
+TEST(Cli, SimplifyDemRetrievesThenErasesWithinTheBound) {
+    const std::string dir = tinlod::test::temp_dir();
+    const std::string base = "simplify '" + asset("dem_squared.tif") +
+                             "' --eye -10,-10,500 --at 100,100,0 -o " + dir + "/out.ply --stats " +
+                             dir + "/stats.json ";
+    std::int64_t nodes[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        auto r = run_cli(base + (k == 0 ? "--tol 1" : "--tol 1 --retrieve-share 0"));
+        ASSERT_EQ(r.status, 0) << r.err;
+        const auto stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
+        EXPECT_LE(stats["error"]["max_screen_px"].get<double>(), 1.0);
+        nodes[k] = stats["output"]["nodes"].get<std::int64_t>();
+        if (k == 0) {
+            EXPECT_LT(stats["retrieve"]["nodes"], stats["input"]["nodes"]);
+        } else {
+            EXPECT_EQ(stats["retrieve"]["nodes"], stats["input"]["nodes"]);
+        }
+    }
+    EXPECT_NEAR(double(nodes[0]), double(nodes[1]), 0.05 * double(nodes[1]));
+    auto r = run_cli(base + "--tol 0.5 --max-nodes 100");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
+    EXPECT_LE(stats["error"]["max_screen_px"].get<double>(), 0.5);
+    EXPECT_GT(stats["output"]["nodes"].get<std::int64_t>(), 100);
+}
+
 struct BadCase {
     std::string name;
     std::string args; // {dir} is the temp folder
