@@ -495,12 +495,10 @@ Outcome retrieve_only(const Case &c, bool matched) {
     return o;
 }
 
-// The view-dependent pipeline, as `tinlod simplify DEM` runs it (erase_dem): retrieval at half of
-// tau, then node erase to tau over every sample of the grid; the quad-tree build is timed too.
-Outcome retrieve_erase(const Case &c) {
+// erase_dem from the terrain's DEM, as `tinlod simplify DEM` runs it: retrieval, then node erase
+// over every sample of the grid; the quad-tree build, the retrieval and its mesh are timed too.
+Outcome dem_erase(const Case &c, const EraseOptions &eo) {
     Outcome o;
-    EraseOptions eo;
-    eo.tolerance = c.tol;
     DemEraseStats st;
     while (again(c, o.ms)) {
         o.mesh.reset();
@@ -509,6 +507,7 @@ Outcome retrieve_erase(const Case &c) {
         clock.stop(o);
         o.mesh = std::make_unique<Mesh>(out);
     }
+    o.extra["evaluations"] = st.erase.evaluations;
     o.extra["retrieved_nodes"] = st.retrieved_nodes;
     o.extra["retrieve_ms"] = st.retrieve_ms;
     o.extra["erase_ms"] = st.erase.ms;
@@ -516,30 +515,25 @@ Outcome retrieve_erase(const Case &c) {
     return o;
 }
 
+// The view-dependent pipeline at tau (retrieval at half of tau, then erase to tau).
+Outcome retrieve_erase(const Case &c) {
+    EraseOptions eo;
+    eo.tolerance = c.tol;
+    return dem_erase(c, eo);
+}
+
 // Node erase: view-dependent (screen) or view-independent (vertical), to c.target_nodes (tolerance
 // unbounded) or, without a target, to the bound c.tol. A terrain in the screen model goes through
-// erase_dem from the DEM as `tinlod simplify` does (the quad-tree build, the retrieval and its mesh
-// timed with the erase); otherwise the erase runs on the input mesh, built untimed.
+// erase_dem (dem_erase); otherwise the erase runs on the input mesh, built untimed.
 Outcome erase_grid(const Case &c, SpModel model) {
-    Outcome o;
     EraseOptions eo;
     eo.significance.model = model;
     eo.tolerance = c.target_nodes > 0 ? INFINITY : c.tol;
     eo.max_nodes = c.target_nodes;
-    const bool dem = model == SpModel::screen && c.input->is_terrain();
+    if (model == SpModel::screen && c.input->is_terrain())
+        return dem_erase(c, eo);
+    Outcome o;
     while (again(c, o.ms)) {
-        if (dem) {
-            o.mesh.reset();
-            o.input_tris = std::int64_t(c.input->hf.width - 1) * (c.input->hf.height - 1) * 2;
-            DemEraseStats st;
-            Timer clock;
-            const Mesh out = erase_dem(c.input->hf, &c.view, eo, {}, &st);
-            clock.stop(o);
-            o.mesh = std::make_unique<Mesh>(out);
-            o.extra["evaluations"] = st.erase.evaluations;
-            o.extra["retrieved_nodes"] = st.retrieved_nodes;
-            continue;
-        }
         o.mesh = input_mesh(*c.input);
         o.input_tris = std::int64_t(o.mesh->n_faces());
         Timer clock;

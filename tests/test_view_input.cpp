@@ -363,14 +363,24 @@ TEST(ViewWorker, GroundUnderTheEyeIsTheDemAtFullResolution) {
     EXPECT_FALSE(ground_height(*r, info, -10.0 * hf.dx, 5.0 * hf.dy).has_value());
 }
 
-TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTauAtEverySample) {
-    SceneInfo info;
-    auto engine = open_scene(test::asset("dem_squared.tif"), info);
+namespace {
+
+// 800 x 600, from south of the scene and above it, looking at its centre.
+View oblique_view(const SceneInfo& info) {
     View v;
     v.viewport_w = 800;
     v.viewport_h = 600;
     v.eye = {0.5 * info.hi.x, -0.1 * info.hi.y, info.hi.z + 0.3 * info.hi.x};
     v.at = 0.5 * (info.lo + info.hi);
+    return v;
+}
+
+} // namespace
+
+TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTauAtEverySample) {
+    SceneInfo info;
+    auto engine = open_scene(test::asset("dem_squared.tif"), info);
+    const View v = oblique_view(info);
     LodSettings s;
     s.tol_px = 2.0;
     s.color = ColorBy::sp;
@@ -406,11 +416,7 @@ TEST(ViewWorker, EraseStageFromAStoreBoundsEverySample) {
     write_store(QuadTree(hf), path);
     SceneInfo info;
     auto engine = open_scene(path, info);
-    View v;
-    v.viewport_w = 800;
-    v.viewport_h = 600;
-    v.eye = {0.5 * info.hi.x, -0.1 * info.hi.y, info.hi.z + 0.3 * info.hi.x};
-    v.at = 0.5 * (info.lo + info.hi);
+    const View v = oblique_view(info);
     LodSettings s;
     s.tol_px = 1.0;
     s.stages = LodStages::retrieve_erase;

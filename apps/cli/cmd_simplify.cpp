@@ -6,7 +6,6 @@
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
-#include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
