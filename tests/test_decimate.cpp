@@ -380,6 +380,54 @@ TEST(Erase, RetrievedLatticeTinRecoversExactly) {
     back.garbage_collection();
     EXPECT_EQ(back.n_vertices(), retrieval.nodes.size());
     EXPECT_EQ(triangle_set(back), input_triangles);
+    // Without absent_history the samples left out cannot enter: following a view is refused.
+    EXPECT_THROW(eraser.update(view, 1.0, 0.75), std::logic_error);
+}
+
+// With absent_history the samples a retrieval left out are erased nodes like any other: they enter
+// by recover() in any order through a valid TIN, and recovering everything gives the whole lattice,
+// whatever the grid's size (2^k + 1, odd, even).
+TEST(Erase, AbsentSamplesEnterInAnyOrderUntilTheLatticeIsWhole) {
+    for (const DemAsset &a : {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201},
+                              DemAsset{"dem_srtm30.tif", false, 0}}) {
+        const Heightfield hf = load_cropped(a);
+        SCOPED_TRACE(std::to_string(hf.width) + "x" + std::to_string(hf.height));
+        const View view = corner_view(hf);
+        const Retrieval retrieval = retrieve(QuadTree(hf), view, {2.0, false});
+        ASSERT_LT(retrieval.nodes.size(), std::size_t(hf.size()) / 2);
+        Mesh work = to_lattice_mesh(retrieval, hf);
+        EraseOptions options;
+        options.tolerance = 4.0;
+        options.absent_history = true;
+        NodeEraser eraser(work, &view, options);
+        const EraseStats stats = eraser.erase();
+        EXPECT_LE(stats.max_screen_px, options.tolerance);
+        std::vector<int> out;
+        for (auto v : work.all_vertices())
+            if (eraser.is_erased(v))
+                out.push_back(v.idx());
+        EXPECT_EQ(std::int64_t(out.size()), hf.size() - eraser.live_nodes());
+        std::mt19937 rng(11);
+        std::shuffle(out.begin(), out.end(), rng);
+        const double perimeter = 2.0 * ((hf.width - 1) * hf.dx + (hf.height - 1) * hf.dy);
+        const auto check = [&](const char *stage) {
+            Mesh m = eraser.mesh();
+            m.garbage_collection();
+            const Invariants inv = invariants(m);
+            EXPECT_EQ(inv.euler, 1) << stage;
+            EXPECT_EQ(inv.non_manifold, 0) << stage;
+            EXPECT_NEAR(inv.boundary_length, perimeter, 1e-6 * perimeter) << stage;
+            EXPECT_EQ(test::count_folded_faces(m), 0) << stage;
+            EXPECT_EQ(std::int64_t(m.n_vertices()), eraser.live_nodes()) << stage;
+        };
+        for (std::size_t k = 0; k < out.size() / 4; ++k)
+            eraser.recover(Mesh::VertexHandle(out[k]));
+        check("a quarter recovered");
+        eraser.recover_all();
+        check("all recovered");
+        EXPECT_EQ(eraser.live_nodes(), hf.size());
+        EXPECT_EQ(eraser.live_triangles(), 2 * std::int64_t(hf.width - 1) * (hf.height - 1));
+    }
 }
 
 // Deleted vertices are samples a grid TIN never held: anything else is refused.

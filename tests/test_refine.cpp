@@ -5,6 +5,7 @@
 
 #include "tinlod/camera_path.hpp"
 #include "tinlod/metrics.hpp"
+#include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/refine.hpp"
 #include "tinlod/render.hpp"
@@ -101,6 +102,52 @@ TEST(Refiner, ApproachingRecoversThereRecedingErasesThere) {
     EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px);
 }
 
+// The first frame is a retrieval thinned by the erase: samples it left out come in by local edits
+// where the observer comes close, within tau at every sample, with about the nodes of a refiner
+// that started from the full grid.
+TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
+    const Heightfield hf = load_heightfield(asset("dem_srtm30.tif"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    const View high = look({-w, -h, hf.max_z() + 2 * w}, {w / 2, h / 2, hf.min_z()});
+    const View low = look({0.6 * w, 0.3 * h, hf.max_z() + 200}, {0.7 * w, 0.7 * h, hf.min_z()});
+    RefineOptions options;
+    Refiner refiner(hf, high, options);
+    RefineOptions whole = options;
+    whole.retrieve_share = 0.0;
+    Refiner from_grid(hf, high, whole);
+    EXPECT_GT(refiner.first_frame().ms_retrieve, 0.0);
+    EXPECT_EQ(from_grid.first_frame().ms_retrieve, 0.0);
+
+    // What the first frame retrieved, by RefineOptions' rule.
+    RetrieveOptions ro;
+    ro.tol_px = options.retrieve_share * options.tol_px * (1.0 - options.hysteresis);
+    const Retrieval first = retrieve(QuadTree(hf), high, ro);
+    std::vector<std::uint8_t> retrieved(std::size_t(hf.size()), 0);
+    for (std::uint32_t id : first.nodes)
+        retrieved[id] = 1;
+    ASSERT_LT(first.nodes.size(), std::size_t(hf.size()) / 4);
+
+    for (const View& view : {low, high, low}) {
+        const FrameStats f = refiner.update(view);
+        const FrameStats g = from_grid.update(view);
+        EXPECT_EQ(g.entered, 0);
+        std::int64_t new_live = 0;
+        for (auto v : refiner.mesh().vertices())
+            new_live += !retrieved[std::size_t(v.idx())];
+        if (&view != &high) { // close: samples the first retrieval did not take are live
+            EXPECT_GT(new_live, 0);
+        }
+        EXPECT_LE(f.entered, f.recovered);
+        ErrorOptions eo;
+        eo.view = &view;
+        const TinError e = measure_error(hf, refiner.mesh(), eo);
+        EXPECT_LE(e.max_screen_px, options.tol_px);
+        EXPECT_EQ(e.uncovered, 0);
+        EXPECT_EQ(tinlod::test::count_folded_faces(refiner.mesh()), 0);
+        EXPECT_NEAR(double(f.nodes), double(g.nodes), 0.1 * double(g.nodes));
+    }
+}
+
 TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
@@ -132,22 +179,26 @@ TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     std::string line;
     std::getline(in, line);
     EXPECT_EQ(line, "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,ms_erase,ms_recover,"
-                    "ms_total,max_screen_px");
+                    "ms_total,max_screen_px,entered");
     int frames = 0;
-    std::int64_t first_nodes = 0, last_nodes = 0;
+    std::int64_t first_nodes = 0, last_nodes = 0, entered = 0;
     while (std::getline(in, line)) {
         std::vector<std::string> f;
         std::stringstream ss(line);
         for (std::string cell; std::getline(ss, cell, ',');)
             f.push_back(cell);
-        ASSERT_EQ(f.size(), 11u) << line;
+        ASSERT_EQ(f.size(), 12u) << line;
         EXPECT_LE(std::stod(f[10]), 1.0) << line;
         last_nodes = std::stoll(f[1]);
-        if (frames++ == 0)
+        entered += std::stoll(f[11]);
+        if (frames++ == 0) {
             first_nodes = last_nodes;
+            EXPECT_GT(std::stod(f[6]), 0.0) << "the first frame retrieves";
+        }
     }
     EXPECT_EQ(frames, 11); // 20 s of path at 0.5 frames per second, both ends included
     EXPECT_GT(last_nodes, first_nodes) << "a descent to the ground ends with more nodes";
+    EXPECT_GT(entered, 0) << "on the ground, samples the first retrieval left out come in";
 }
 
 TEST(Refiner, FlyWritesOneRenderedFramePerStep) {

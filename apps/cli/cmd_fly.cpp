@@ -25,8 +25,10 @@ namespace tinlod::cli {
 
 namespace fs = std::filesystem;
 
+// tiles_read stays 0: the DEM is read whole. entered: recovered samples there for the first time
+// (the first frame's retrieval left them out).
 static const char* k_frame_header = "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
-                                    "ms_erase,ms_recover,ms_total,max_screen_px";
+                                    "ms_erase,ms_recover,ms_total,max_screen_px,entered";
 
 static double percentile(std::vector<double> v, double q) {
     if (v.empty())
@@ -40,7 +42,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                     "frame by frame");
     struct Args {
         std::string input, path, frames_dir, stats, model = "screen";
-        double tol = 1.0, fps = 4.0, hysteresis = 0.25;
+        double tol = 1.0, fps = 4.0, hysteresis = 0.25, retrieve_share = 0.5;
         bool check = false;
         std::string viewport = "1920x1080";
         double fov = 60.0;
@@ -54,6 +56,10 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
     cmd.add_option("--fps", args->fps, "frames per second of path time")->capture_default_str();
     cmd.add_option("--hysteresis", args->hysteresis,
                    "erase down to (1 - h) tau, recover above tau")
+        ->capture_default_str();
+    cmd.add_option("--retrieve-share", args->retrieve_share,
+                   "DEM, screen model: the first frame retrieves at this share of the erase's "
+                   "bound; the samples it leaves out enter later where needed (0: full grid)")
         ->capture_default_str();
     cmd.add_option("--model", args->model, "significance model: screen or paper")
         ->check(CLI::IsMember({"screen", "paper"}))
@@ -72,6 +78,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             throw Error("--fps", "must be in (0, 1000]");
         if (!(args->hysteresis >= 0.0 && args->hysteresis < 1.0))
             throw Error("--hysteresis", "must be in [0, 1)");
+        if (!(args->retrieve_share >= 0.0 && args->retrieve_share <= 1.0))
+            throw Error("--retrieve-share", "must be in [0, 1]");
         if (!args->frames_dir.empty() && !fs::is_directory(args->frames_dir))
             throw Error(args->frames_dir, "frames folder does not exist");
         const CameraPath path = read_camera_path(args->path);
@@ -89,6 +97,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         RefineOptions options;
         options.tol_px = args->tol;
         options.hysteresis = args->hysteresis;
+        options.retrieve_share = args->retrieve_share;
         options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
         if (is_mesh_path(args->input)) {
             if (args->check)
@@ -111,7 +120,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         csv << k_frame_header << '\n';
         std::vector<double> totals;
         double worst = 0.0;
-        std::int64_t recovered_all = 0, erased_all = 0, reerased_all = 0;
+        std::int64_t recovered_all = 0, erased_all = 0, reerased_all = 0, entered_all = 0;
         Progress progress("fly", frames);
         for (int i = 0; i < frames; ++i) {
             FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
@@ -120,6 +129,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             recovered_all += f.recovered;
             erased_all += f.erased;
             reerased_all += f.reerased;
+            entered_all += f.entered;
             double max_px = -1.0; // not measured
             if (args->check) {
                 ErrorOptions eo;
@@ -137,10 +147,11 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             }
             const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
-            std::snprintf(line, sizeof line, "%.3f,%lld,%lld,%lld,%lld,0,0,%.3f,%.3f,%.3f,%s", t,
-                          (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
-                          (long long)f.recovered, f.ms_erase + f.ms_weights, f.ms_recover,
-                          f.ms_total, max_px < 0 ? "" : std::to_string(max_px).c_str());
+            std::snprintf(line, sizeof line, "%.3f,%lld,%lld,%lld,%lld,0,%.3f,%.3f,%.3f,%.3f,%s,%lld",
+                          t, (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
+                          (long long)f.recovered, f.ms_retrieve, f.ms_erase + f.ms_weights,
+                          f.ms_recover, f.ms_total,
+                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered);
             csv << line << '\n';
             progress.update(i + 1);
         }
@@ -153,11 +164,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                     throw Error(args->stats, "cannot write: " + std::string(std::strerror(errno)));
             });
         const auto& m = refiner->mesh();
-        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + erase), then per frame p50 "
-                    "%.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all (%lld erased again by "
-                    "the update that recovered them); %.0f bytes per node (TIN + history)%s\n",
+        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), then per "
+                    "frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all (%lld there "
+                    "for the first time, %lld erased again by the update that recovered them); %.0f "
+                    "bytes per node (TIN + history)%s\n",
                     frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
-                    (long long)erased_all, (long long)recovered_all, (long long)reerased_all,
+                    (long long)erased_all, (long long)recovered_all, (long long)entered_all,
+                    (long long)reerased_all,
                     double(refiner->bytes()) / double(m.n_vertices()),
                     args->check ? (", measured max " + std::to_string(worst) + " px").c_str() : "");
     };

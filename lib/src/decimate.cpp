@@ -12,6 +12,7 @@
 // re-used by recover, so no library-side OpenMesh call (and no garbage collection) runs per erase.
 #include "tinlod/decimate.hpp"
 
+#include "lattice_rings.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
@@ -444,6 +445,7 @@ template <class T> class ChunkedPool {
 constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
 constexpr std::uint8_t k_recovered = 4; // recovered by the update under way
+constexpr std::uint8_t k_unread = 8; // a sample the input TIN left out, never live yet
 
 constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN never held
 
@@ -494,7 +496,7 @@ struct NodeEraser::Impl {
     double cell_side = 1.0;
     double area_per_node = 0.0; // xy: the input's bounding-box area over its nodes
     int grid_nx = 1, grid_ny = 1;
-    std::vector<std::uint8_t> flags;          // per vertex: k_locked, k_dirty, k_recovered
+    std::vector<std::uint8_t> flags; // per vertex: k_locked, k_dirty, k_recovered, k_unread
     std::vector<std::uint8_t> stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
     std::uint8_t pass = 0;
     NodeHeap heap;
@@ -505,6 +507,8 @@ struct NodeEraser::Impl {
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
     std::int64_t reerased = 0; // the update under way's erases of nodes it recovered
+    std::int64_t entered = 0;  // k_unread samples re-inserted so far
+    bool absent_for_good = false; // some samples are k_absent: they can never enter
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
@@ -954,7 +958,9 @@ static void new_weights(NodeEraser::Impl &s, bool keep) {
 // classify: which nodes may ever be erased, and each node's weight.
 static void classify_nodes(NodeEraser::Impl &s) {
     const Mesh &m = *s.mesh;
-    s.flags.assign(m.n_vertices(), 0);
+    s.flags.resize(m.n_vertices());
+    for (std::uint8_t &f : s.flags)
+        f &= k_unread;
     s.stamp.assign(m.n_vertices(), 0);
     s.pass = 0;
     for (auto v : m.vertices()) {
@@ -1732,6 +1738,10 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
             m.set_halfedge_handle(VH(int(ring[i])), ring_he[i]);
     }
     m.status(v).set_deleted(false);
+    if (s.flags[x] & k_unread) {
+        s.flags[x] &= std::uint8_t(~k_unread);
+        ++s.entered;
+    }
 
     // Swallowed nodes go back to the fan face that covers them.
     Hole &h = s.hole;
@@ -1906,6 +1916,22 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
             s.record_of[x] = k_absent;
         else
             add_live(s, x, -1);
+    }
+    s.absent_for_good = absent > 0 && !options.absent_history;
+    if (absent > 0 && options.absent_history) {
+        s.flags.assign(s.mesh->n_vertices(), 0);
+        absent_sample_rings(*s.mesh, s.grid_w,
+                            [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                                const std::size_t k = s.records.append(1);
+                                EraseRecord &record = s.records[k];
+                                record.node = x;
+                                record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
+                                record.ring_size = record.ring_capacity = std::uint8_t(n);
+                                record.boundary = boundary;
+                                std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
+                                s.record_of[x] = std::int32_t(k);
+                                s.flags[x] = k_unread;
+                            });
     }
     if (absent > 0)
         swallow_absent(s);
@@ -2293,7 +2319,11 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     Impl &s = *impl_;
     assert(s.options.significance.model != SpModel::vertical && erase_below <= recover_above);
     Mesh &m = *s.mesh;
+    if (s.absent_for_good)
+        throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
+                               "EraseOptions::absent_history to follow a view");
     UpdateStats stats;
+    const std::int64_t entered = s.entered;
 
     // New weights; the old ones tell how far each node's significance fell.
     Stopwatch clock;
@@ -2357,6 +2387,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         if (!m.status(f).deleted())
             work.push_back(f);
     }
+    stats.entered = s.entered - entered;
     stats.ms_recover = clock.ms();
 
     // erase: only nodes whose cost may have fallen to the bound are re-evaluated.

@@ -1,5 +1,6 @@
 // The refiner (refine.hpp): a NodeEraser kept alive between frames, moved view to view.
 #include "tinlod/refine.hpp"
+#include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
 
 #include <cassert>
@@ -16,6 +17,7 @@ struct Refiner::Impl {
 
 static EraseOptions erase_options(const RefineOptions& options) {
     EraseOptions eo;
+    eo.absent_history = true;
     eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
     eo.significance = options.significance;
     eo.max_valence = options.max_valence;
@@ -46,13 +48,23 @@ static void start(Refiner::Impl& s, const View& first) {
     s.first.nodes = s.eraser->live_nodes();
     s.first.triangles = s.eraser->live_triangles();
     s.first.bound_px = e.max_weighted;
-    s.first.ms_total = s.first.ms_weights + s.first.ms_erase;
+    s.first.ms_total = s.first.ms_retrieve + s.first.ms_weights + s.first.ms_erase;
 }
 
 Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& options)
     : impl_(std::make_unique<Impl>()) {
-    impl_->mesh = std::make_unique<Mesh>(grid_tin(hf));
     impl_->options = options;
+    const double share = options.significance.model == SpModel::screen ? options.retrieve_share : 0;
+    if (share > 0) {
+        Stopwatch clock;
+        const QuadTree tree(hf);
+        RetrieveOptions ro;
+        ro.tol_px = share * options.tol_px * (1.0 - options.hysteresis);
+        impl_->mesh = std::make_unique<Mesh>(to_lattice_mesh(retrieve(tree, first, ro), hf));
+        impl_->first.ms_retrieve = clock.ms();
+    } else {
+        impl_->mesh = std::make_unique<Mesh>(grid_tin(hf));
+    }
     start(*impl_, first);
 }
 
@@ -75,6 +87,7 @@ FrameStats Refiner::update(const View& view) {
     FrameStats f;
     f.erased = u.erased;
     f.recovered = u.recovered;
+    f.entered = u.entered;
     f.reerased = u.reerased;
     f.candidates = u.candidates;
     f.ms_weights = u.ms_weights;

@@ -86,6 +86,11 @@ struct EraseOptions {
     // recovered from (the refiner). Otherwise a pass may erase a node right after its neighbour,
     // which gives fewer nodes, faster, but chains along a row that a recover must undo whole.
     bool shallow_history = false;
+    // A grid TIN holding only some of its lattice's samples (to_lattice_mesh): give the samples
+    // it left out erase records, as if the erases had taken them from the whole grid in the
+    // quad-tree's order (absent_sample_rings, about 30 bytes each), so recover() and update()
+    // bring them in by local edits like any erased node. Otherwise they never enter.
+    bool absent_history = false;
 };
 
 struct EraseStats {
@@ -118,6 +123,8 @@ struct EraseRecord {
 // What one NodeEraser::update did.
 struct UpdateStats {
     std::int64_t recovered = 0;   // nodes re-inserted (dependency closures included)
+    std::int64_t entered = 0;     // of those, samples the input TIN left out, there for the first
+                                  // time (EraseOptions::absent_history)
     std::int64_t erased = 0;      // nodes erased
     std::int64_t reerased = 0;    // of those, nodes this update had recovered (a recovery another
                                   // node's waited on, undone once that node was back)
@@ -172,7 +179,8 @@ class NodeEraser {
     // input's size.
     // With erase_below < recover_above a node between the two keeps its state (hysteresis). After
     // the call the whole-output bound holds at `recover_above`: every swallowed node's weighted
-    // deviation is <= recover_above. Needs a view (not SpModel::vertical).
+    // deviation is <= recover_above. Needs a view (not SpModel::vertical). Throws std::logic_error
+    // for a TIN with samples left out but no EraseOptions::absent_history: they could not enter.
     UpdateStats update(const View &view, double recover_above, double erase_below);
 
     // Drops the erased edges and faces from the mesh's arrays (an erase from a grid keeps a few

@@ -22,6 +22,11 @@ struct RefineOptions {
                               // node near the threshold does not flicker; in [0, 1)
     SignificanceOptions significance; // SP model (screen or paper) and its parameters
     int max_valence = 24;    // nodes with more neighbours stay (bounds a hole's size)
+    // From a Heightfield with the screen model: the first frame retrieves the quad-tree's TIN at
+    // retrieve_share times the erase tolerance, (1 - hysteresis) tau, and erases from there. The
+    // samples the retrieval left out enter later by local edits, where the observer comes close
+    // (EraseOptions::absent_history). 0: the first frame erases from the full grid.
+    double retrieve_share = 0.5;
 };
 
 struct FrameStats {
@@ -29,8 +34,11 @@ struct FrameStats {
     std::int64_t triangles = 0;  // live triangles after the update
     std::int64_t erased = 0;     // nodes erased by this update
     std::int64_t recovered = 0;  // nodes recovered by this update
+    std::int64_t entered = 0;    // of those, samples there for the first time (left out by the
+                                 // first frame's retrieval)
     std::int64_t reerased = 0;   // nodes this update recovered and then erased again
     std::int64_t candidates = 0; // live nodes re-evaluated for erase
+    double ms_retrieve = 0.0;    // the first frame: quad-tree build and retrieval
     double ms_weights = 0.0;     // per-node weights for the new view
     double ms_recover = 0.0;
     double ms_erase = 0.0;
@@ -42,8 +50,8 @@ struct FrameStats {
 // Holds the current TIN and its erase history between frames.
 class Refiner {
   public:
-    // Starts from the full-resolution grid TIN of `hf` seen from `first` (the first frame's
-    // erase). `hf` must outlive the refiner.
+    // Starts from the grid TIN of `hf` seen from `first`: the quad-tree retrieval, then the erase
+    // (see RefineOptions::retrieve_share). `hf` must outlive the refiner.
     Refiner(const Heightfield& hf, const View& first, const RefineOptions& options = {});
     // Starts from a mesh (a TIN or a surface mesh).
     Refiner(Mesh mesh, const View& first, const RefineOptions& options = {});
