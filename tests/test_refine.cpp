@@ -201,6 +201,41 @@ TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     EXPECT_GT(entered, 0) << "on the ground, samples the first retrieval left out come in";
 }
 
+// A quad-tree store is flown as the DEM it was built from: the same nodes frame by frame.
+TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
+    const std::string dir = tinlod::test::temp_dir();
+    const std::string dem = asset("dem_squared.tif");
+    const Heightfield hf = load_heightfield(dem);
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    CameraPath path;
+    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
+                 {1, {w / 2, 0.2 * h, hf.max_z() + 200}, {w / 2, h, hf.min_z()}}};
+    write_camera_path(path, dir + "/path.csv");
+    ASSERT_EQ(tinlod::test::run_cli("build '" + dem + "' -o " + dir + "/dem.tlq").status, 0);
+    std::vector<std::vector<std::string>> runs;
+    for (const std::string& input : {"'" + dem + "'", dir + "/dem.tlq"}) {
+        const auto r = tinlod::test::run_cli("fly " + input + " --path " + dir +
+                                             "/path.csv --fps 4 --check --stats " + dir + "/f.csv");
+        ASSERT_EQ(r.status, 0) << r.err;
+        std::ifstream in(dir + "/f.csv");
+        std::vector<std::string> nodes;
+        std::string line;
+        std::getline(in, line);
+        while (std::getline(in, line)) {
+            std::vector<std::string> f;
+            std::stringstream ss(line);
+            for (std::string cell; std::getline(ss, cell, ',');)
+                f.push_back(cell);
+            ASSERT_EQ(f.size(), 12u) << line;
+            EXPECT_LE(std::stod(f[10]), 1.0) << input << ": " << line;
+            nodes.push_back(f[1] + "," + f[2] + "," + f[3] + "," + f[4]);
+        }
+        runs.push_back(nodes);
+    }
+    EXPECT_EQ(runs[0].size(), 5u);
+    EXPECT_EQ(runs[0], runs[1]);
+}
+
 TEST(Refiner, FlyWritesOneRenderedFramePerStep) {
     std::string why;
     if (!render_available(&why))

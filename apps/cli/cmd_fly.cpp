@@ -9,6 +9,7 @@
 #include "tinlod/raster.hpp"
 #include "tinlod/refine.hpp"
 #include "tinlod/render.hpp"
+#include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
 
 #include <algorithm>
@@ -49,7 +50,9 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         RasterOptions raster;
     };
     auto args = std::make_shared<Args>();
-    cmd.add_option("INPUT", args->input, "DEM (GeoTIFF, PNG, EXR, .hgt, ...) or mesh")->required();
+    cmd.add_option("INPUT", args->input,
+                   "DEM (GeoTIFF, PNG, EXR, .hgt, ...), quad-tree store (.tlq, read whole) or mesh")
+        ->required();
     cmd.add_option("--path", args->path, "camera path CSV: t,eye_x,eye_y,eye_z,at_x,at_y,at_z")
         ->required();
     cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")->capture_default_str();
@@ -105,7 +108,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             refiner.emplace(read_mesh(args->input), views.front(), options);
         } else {
             const LoadOptions lo = args->raster.load_options();
-            hf = load_heightfield(args->input, lo);
+            hf = is_store_file(args->input) ? TileStore(args->input).heightfield()
+                                            : load_heightfield(args->input, lo);
             for (const View& v : views)
                 check_eye_above(*hf, v.eye, args->path);
             refiner.emplace(*hf, views.front(), options);
