@@ -171,8 +171,8 @@ Mesh live_copy(const Mesh& tin) {
     return out;
 }
 
-// DEM (in memory) or store (read partially): retrieval with a QuadTreeLod, or the refiner over
-// the full grid (a store is then read whole, once).
+// DEM (in memory) or store (read partially): retrieval with a QuadTreeLod, or the refiner (its
+// first frame a retrieval on the whole lattice, then the erase; a store is then read whole, once).
 class GridEngine final : public EngineBase {
   public:
     explicit GridEngine(const Heightfield& hf) : hf_(hf), tree_(std::in_place, hf), lod_(*tree_) {}
