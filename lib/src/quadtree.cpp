@@ -679,10 +679,19 @@ Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
     for (auto v : mesh.vertices())
         if (!held[v.idx()])
             mesh.status(v).set_deleted(true);
+    // Faces in the order of their first sample (row-major), so the half-edges of nearby nodes lie
+    // near each other in memory: an erase sweeping the nodes row by row walked the retrieval's
+    // level order before, 16 % slower on N42E001.
     const auto& t = retrieval.triangles;
-    for (std::size_t n = 0; n + 2 < t.size(); n += 3)
-        mesh.add_face(Mesh::VertexHandle(int(t[n])), Mesh::VertexHandle(int(t[n + 1])),
-                      Mesh::VertexHandle(int(t[n + 2])));
+    std::vector<std::uint64_t> order(t.size() / 3);
+    for (std::size_t k = 0; k < order.size(); ++k)
+        order[k] = std::uint64_t{std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]})} << 32 | k;
+    std::sort(order.begin(), order.end());
+    for (const std::uint64_t key : order) {
+        const std::size_t k = key & 0xffffffffu;
+        mesh.add_face(Mesh::VertexHandle(int(t[3 * k])), Mesh::VertexHandle(int(t[3 * k + 1])),
+                      Mesh::VertexHandle(int(t[3 * k + 2])));
+    }
     return mesh;
 }
 
