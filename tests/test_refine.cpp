@@ -8,6 +8,7 @@
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/refine.hpp"
+#include "tinlod/store.hpp"
 #include "tinlod/render.hpp"
 
 #include <gtest/gtest.h>
@@ -213,6 +214,7 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
     write_camera_path(path, dir + "/path.csv");
     ASSERT_EQ(tinlod::test::run_cli("build '" + dem + "' -o " + dir + "/dem.tlq").status, 0);
     std::vector<std::vector<std::string>> runs;
+    std::vector<std::int64_t> tiles;
     for (const std::string& input : {"'" + dem + "'", dir + "/dem.tlq"}) {
         const auto r = tinlod::test::run_cli("fly " + input + " --path " + dir +
                                              "/path.csv --fps 4 --check --stats " + dir + "/f.csv");
@@ -221,6 +223,7 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
         std::vector<std::string> nodes;
         std::string line;
         std::getline(in, line);
+        tiles.push_back(0);
         while (std::getline(in, line)) {
             std::vector<std::string> f;
             std::stringstream ss(line);
@@ -229,11 +232,14 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
             ASSERT_EQ(f.size(), 12u) << line;
             EXPECT_LE(std::stod(f[10]), 1.0) << input << ": " << line;
             nodes.push_back(f[1] + "," + f[2] + "," + f[3] + "," + f[4]);
+            tiles.back() += std::stoll(f[5]);
         }
         runs.push_back(nodes);
     }
     EXPECT_EQ(runs[0].size(), 5u);
     EXPECT_EQ(runs[0], runs[1]);
+    EXPECT_EQ(tiles[0], 0) << "a DEM has no tiles";
+    EXPECT_EQ(tiles[1], TileStore(dir + "/dem.tlq").tile_count()) << "the store is read whole, once";
 }
 
 TEST(Refiner, FlyWritesOneRenderedFramePerStep) {

@@ -26,8 +26,8 @@ namespace tinlod::cli {
 
 namespace fs = std::filesystem;
 
-// tiles_read stays 0: the DEM is read whole. entered: recovered samples there for the first time
-// (the first frame's retrieval left them out).
+// tiles_read: a store's tiles, all on the first frame (fly reads a store whole), 0 for a DEM.
+// entered: recovered samples there for the first time (the first frame's retrieval left them out).
 static const char* k_frame_header = "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
                                     "ms_erase,ms_recover,ms_total,max_screen_px,entered";
 
@@ -97,6 +97,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         Stopwatch clock;
         std::optional<Heightfield> hf;
         std::optional<Refiner> refiner;
+        std::int64_t store_tiles = 0;
         RefineOptions options;
         options.tol_px = args->tol;
         options.hysteresis = args->hysteresis;
@@ -108,8 +109,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             refiner.emplace(read_mesh(args->input), views.front(), options);
         } else {
             const LoadOptions lo = args->raster.load_options();
-            hf = is_store_file(args->input) ? TileStore(args->input).heightfield()
-                                            : load_heightfield(args->input, lo);
+            if (is_store_file(args->input)) {
+                const TileStore store(args->input);
+                hf = store.heightfield();
+                store_tiles = store.tile_count();
+            } else {
+                hf = load_heightfield(args->input, lo);
+            }
             for (const View& v : views)
                 check_eye_above(*hf, v.eye, args->path);
             refiner.emplace(*hf, views.front(), options);
@@ -151,9 +157,11 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             }
             const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
-            std::snprintf(line, sizeof line, "%.3f,%lld,%lld,%lld,%lld,0,%.3f,%.3f,%.3f,%.3f,%s,%lld",
-                          t, (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
-                          (long long)f.recovered, f.ms_retrieve, f.ms_erase + f.ms_weights,
+            std::snprintf(line, sizeof line,
+                          "%.3f,%lld,%lld,%lld,%lld,%lld,%.3f,%.3f,%.3f,%.3f,%s,%lld", t,
+                          (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
+                          (long long)f.recovered, (long long)(i == 0 ? store_tiles : 0),
+                          f.ms_retrieve, f.ms_erase + f.ms_weights,
                           f.ms_recover, f.ms_total,
                           max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered);
             csv << line << '\n';
