@@ -400,6 +400,20 @@ TEST(Erase, AbsentSamplesEnterInAnyOrderUntilTheLatticeIsWhole) {
         options.tolerance = 4.0;
         options.absent_history = true;
         NodeEraser eraser(work, &view, options);
+        // Each sample's record is its insertion's ring: 3 nodes (inside a triangle), 4 (on an
+        // edge) or a chain of 3 (on the outline); on a 2^k + 1 grid every centre and midpoint lies
+        // on an edge of the restricted quad-tree's fans.
+        std::int64_t inside = 0;
+        for (auto v : work.all_vertices()) {
+            if (!eraser.is_erased(v))
+                continue;
+            const EraseRecord r = eraser.record(v);
+            EXPECT_TRUE(r.ring_size == 3 || (r.ring_size == 4 && !r.boundary)) << v.idx();
+            inside += !r.boundary && r.ring_size == 3;
+        }
+        if (hf.width == 257) {
+            EXPECT_EQ(inside, 0);
+        }
         const EraseStats stats = eraser.erase();
         EXPECT_LE(stats.max_screen_px, options.tolerance);
         std::vector<int> out;
