@@ -149,6 +149,33 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
     }
 }
 
+// Small steps (an interactive viewer's frames): most faces are cleared by their bound from an
+// earlier frame, which must stay sound as the eye closes in and as the view pans (nodes come in
+// from the periphery, where their weight was small).
+TEST(Refiner, SmallStepsTowardTheGroundAndPanningKeepTauAtEverySample) {
+    const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    View view = look({0.2 * w, 0.2 * h, hf.max_z() + 2000}, {0.5 * w, 0.5 * h, hf.min_z()});
+    Refiner refiner(hf, view, RefineOptions{});
+    std::int64_t recovered = 0;
+    for (int i = 0; i < 24; ++i) {
+        if (i < 12) {
+            view.eye += glm::dvec3(0.005 * w, 0.005 * h, -100.0);
+        } else { // pan: the axis turns 3 degrees a frame about the vertical
+            const glm::dvec3 d = view.at - view.eye;
+            const double a = 3.0 * M_PI / 180.0;
+            view.at = view.eye + glm::dvec3(d.x * std::cos(a) - d.y * std::sin(a),
+                                            d.x * std::sin(a) + d.y * std::cos(a), d.z);
+        }
+        const FrameStats f = refiner.update(view);
+        recovered += f.recovered;
+        ErrorOptions eo;
+        eo.view = &view;
+        EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0) << "frame " << i;
+    }
+    EXPECT_GT(recovered, 0);
+}
+
 TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
