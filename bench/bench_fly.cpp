@@ -1,9 +1,10 @@
 // The flight benchmark (issue 6, "Performance"): one TIN (tinlod::Refiner) follows three camera
 // paths, one after another, over a ~4k² terrain made from real data — a low drive along a valley, a
 // fly-over, a descent from high above to the ground — at 4 frames per second of path time. The
-// refiner is built once (the quad-tree retrieval at half the erase's bound, then the erase, from the
-// first view; the samples the retrieval left out enter later by local edits); the jump from one path's
-// end to the next one's start is an update kept apart from the frames. For each path, in one run:
+// refiner is built once (the quad-tree retrieval at half the erase's bound, then the erase, from
+// the first view; the samples the retrieval left out enter later by local edits); the jump from one
+// path's end to the next one's start is an update kept apart from the frames. For each path, in one
+// run:
 //   - the per-frame update time (Refiner::update), p50 and p99, as CPU time of the one thread;
 //   - the nodes each frame changed (erased + recovered), and how closely the time follows them
 //     against how closely it follows the TIN size (Pearson r over the frames), with the
@@ -426,7 +427,8 @@ std::int64_t entered(const PathResult &p) {
 
 void write_csv(const std::string &file, const std::vector<PathResult> &results) {
     std::ofstream out(file);
-    out << "path,frame,t,ms,cpu_ms,changed,erased,recovered,reerased,entered,candidates,nodes,triangles,"
+    out << "path,frame,t,ms,cpu_ms,changed,erased,recovered,reerased,entered,candidates,nodes,"
+           "triangles,"
            "bytes_per_node,rebuild_ms,rebuild_cpu_ms,rebuild_nodes,rebuild_triangles,"
            "rebuild_ratio,max_screen_px,rebuild_max_screen_px\n";
     for (const PathResult &p : results)
@@ -577,8 +579,8 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
                : std::string()) +
         ". Frame 0 of the first path builds it (the quad-tree retrieval at half the erase's bound, "
         "then the erase, from that view; the samples the retrieval left out enter by local edits "
-        "where the paths come close: *entered*); frame 0 of the others is the jump from the last path's end, one update; both are listed apart, "
-        "not among the frames. Update time = CPU time of the one thread inside `Refiner::update` "
+        "where the paths come close: *entered*); frame 0 of the others is the jump from the last "
+        "path's end, one update; both are listed apart, not among the frames. Update time = CPU time of the one thread inside `Refiner::update` "
         "(wall p50/p99 beside it: the machine is shared); changed = erased + recovered nodes; r = "
         "Pearson correlation of the update time with the nodes changed and with the TIN's live "
         "nodes over the frames; fixed ms + µs per changed node = the least-squares line of the "

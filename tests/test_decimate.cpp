@@ -388,8 +388,9 @@ TEST(Erase, RetrievedLatticeTinRecoversExactly) {
 // by recover() in any order through a valid TIN, and recovering everything gives the whole lattice,
 // whatever the grid's size (2^k + 1, odd, even).
 TEST(Erase, AbsentSamplesEnterInAnyOrderUntilTheLatticeIsWhole) {
-    for (const DemAsset &a : {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201},
-                              DemAsset{"dem_srtm30.tif", false, 0}}) {
+    for (const DemAsset &a :
+         {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201},
+          DemAsset{"dem_srtm30.tif", false, 0}}) {
         const Heightfield hf = load_cropped(a);
         SCOPED_TRACE(std::to_string(hf.width) + "x" + std::to_string(hf.height));
         const View view = corner_view(hf);

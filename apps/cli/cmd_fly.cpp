@@ -176,10 +176,10 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                     throw Error(args->stats, "cannot write: " + std::string(std::strerror(errno)));
             });
         const auto& m = refiner->mesh();
-        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), then per "
-                    "frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all (%lld there "
-                    "for the first time, %lld erased again by the update that recovered them); %.0f "
-                    "bytes per node (TIN + history)%s\n",
+        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), "
+                    "then per frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all "
+                    "(%lld there for the first time, %lld erased again by the update that "
+                    "recovered them); %.0f bytes per node (TIN + history)%s\n",
                     frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
                     (long long)erased_all, (long long)recovered_all, (long long)entered_all,
                     (long long)reerased_all,

@@ -1942,7 +1942,8 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
                                 const std::size_t k = s.records.append(1);
                                 EraseRecord &record = s.records[k];
                                 record.node = x;
-                                record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
+                                record.ring_begin =
+                                    std::uint32_t(s.ring_pool.append(std::size_t(n)));
                                 record.ring_size = record.ring_capacity = std::uint8_t(n);
                                 record.boundary = boundary;
                                 std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
@@ -2234,8 +2235,9 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         const double moved = glm::length(s.view.eye - then.eye);
         if (moved < nearest && then.fov_deg == s.view.fov_deg &&
             then.viewport_w == s.view.viewport_w && then.viewport_h == s.view.viewport_h) {
-            const double turn = std::acos(std::clamp(glm::dot(then.axis(), s.view.axis()), -1.0, 1.0)) +
-                                std::asin(moved / nearest);
+            const double turn =
+                std::acos(std::clamp(glm::dot(then.axis(), s.view.axis()), -1.0, 1.0)) +
+                std::asin(moved / nearest);
             const double falloff =
                 std::max(s.options.significance.falloff_deg, 1e-6) * M_PI / 180.0;
             const double bound = double(s.face_seen_dev[f.idx()]) * (1.0 + moved / nearest) *
@@ -2315,7 +2317,8 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         const glm::dvec3 q = to_glm(m.point(VH(u)));
         const double dev = deviation_at(q);
         visit(u, dev, weight_bound);
-        seen = std::max(seen, dev * s.weigher(q));
+        if (screen)
+            seen = std::max(seen, dev * s.weigher(q));
     }
     if (screen && worst.first < 0)
         remember_seen(s, f, seen);

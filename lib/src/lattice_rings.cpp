@@ -15,7 +15,7 @@ namespace tinlod {
 namespace {
 
 struct Tri {
-    std::array<std::uint32_t, 3> v; // sample ids, counter-clockwise
+    std::array<std::uint32_t, 3> v;  // sample ids, counter-clockwise
     std::array<std::int32_t, 3> adj; // the triangle across edge v[k] -> v[k+1], -1 on the outline
 };
 
