@@ -176,6 +176,37 @@ TEST(Refiner, SmallStepsTowardTheGroundAndPanningKeepTauAtEverySample) {
     EXPECT_GT(recovered, 0);
 }
 
+// Thin and odd-sized crops of a real DEM (nodes one cell wide, no centres): the retrieval's
+// records still bring its samples in, within tau at every sample of every frame.
+TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
+    const Heightfield n42 = load_heightfield(asset("N42E001.hgt"));
+    std::int64_t entered = 0;
+    for (const auto& [cw, ch] : {std::pair{100, 3}, {3, 100}, {9, 17}, {65, 40}, {200, 77}}) {
+        Heightfield hf = n42;
+        hf.width = cw;
+        hf.height = ch;
+        hf.z.resize(std::size_t(cw) * ch);
+        for (int r = 0; r < ch; ++r)
+            for (int c = 0; c < cw; ++c)
+                hf.at(c, r) = n42.at(600 + c, 600 + r);
+        hf.void_mask.clear();
+        const double w = (cw - 1) * hf.dx, h = (ch - 1) * hf.dy;
+        const double top = hf.max_z();
+        Refiner refiner(hf, look({-w, -h, top + 4 * std::max(w, h)}, {w / 2, h / 2, top}));
+        for (int i = 1; i <= 6; ++i) { // down to the ground, then along it
+            const double t = i / 6.0;
+            const View view = look({(t - 0.5) * w, 0.5 * h * t, top + 200 + 3000 * (1 - t)},
+                                   {w, h / 2, hf.min_z()});
+            entered += refiner.update(view).entered;
+            ErrorOptions eo;
+            eo.view = &view;
+            EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0)
+                << cw << "x" << ch << " frame " << i;
+        }
+    }
+    EXPECT_GT(entered, 0);
+}
+
 TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
