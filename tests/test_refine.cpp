@@ -39,6 +39,15 @@ std::pair<std::int64_t, std::int64_t> nodes_by_half(const Refiner& r, double spl
     return {west, east};
 }
 
+// The comma-separated cells of one line of `fly --stats`.
+std::vector<std::string> csv_cells(const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');)
+        cells.push_back(cell);
+    return cells;
+}
+
 } // namespace
 
 TEST(Refiner, EveryFrameWithinTauWhileFlyingAcrossARealDem) {
@@ -242,10 +251,7 @@ TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     int frames = 0;
     std::int64_t first_nodes = 0, last_nodes = 0, entered = 0;
     while (std::getline(in, line)) {
-        std::vector<std::string> f;
-        std::stringstream ss(line);
-        for (std::string cell; std::getline(ss, cell, ',');)
-            f.push_back(cell);
+        const std::vector<std::string> f = csv_cells(line);
         ASSERT_EQ(f.size(), 12u) << line;
         EXPECT_LE(std::stod(f[10]), 1.0) << line;
         last_nodes = std::stoll(f[1]);
@@ -283,10 +289,7 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
         std::getline(in, line);
         tiles.push_back(0);
         while (std::getline(in, line)) {
-            std::vector<std::string> f;
-            std::stringstream ss(line);
-            for (std::string cell; std::getline(ss, cell, ',');)
-                f.push_back(cell);
+            const std::vector<std::string> f = csv_cells(line);
             ASSERT_EQ(f.size(), 12u) << line;
             EXPECT_LE(std::stod(f[10]), 1.0) << input << ": " << line;
             nodes.push_back(f[1] + "," + f[2] + "," + f[3] + "," + f[4]);
