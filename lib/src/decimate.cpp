@@ -289,6 +289,8 @@ class Weigher {
         half_w_ = view->viewport_w / 2.0 + options.cone_margin_px;
         half_h_ = view->viewport_h / 2.0 + options.cone_margin_px;
         cone_ = std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
+        cos_cone_ = std::cos(cone_);
+        sin_cone_ = std::sin(cone_);
         falloff_ = std::max(options.falloff_deg, 1e-6) * M_PI / 180.0;
         floor_ = options.floor;
         // Beyond this cosine of the angle to the axis the factor is the floor (a hair inside, so
@@ -330,6 +332,21 @@ class Weigher {
         return beyond <= 0.0 ? k_ / dist : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
     }
 
+    // Whether the box [lo, hi] lies inside the view cone, where the peripheral factor is 1: the
+    // angle to the axis of its bounding sphere's centre is at most the cone's less the sphere's
+    // half angle, asin(rho), tested by cosines (cone < pi / 2).
+    bool in_cone(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
+        if (unit_)
+            return true;
+        const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
+        const double dc = glm::length(c);
+        const double rho = 0.5 * glm::length(hi - lo) / dc;
+        if (!(rho < sin_cone_))
+            return false;
+        const double cos_limit = cos_cone_ * std::sqrt(1.0 - rho * rho) + sin_cone_ * rho;
+        return glm::dot(c, f_) >= dc * cos_limit * (1.0 + 1e-9);
+    }
+
     // A lower bound of the weight anywhere in the box [lo, hi]: k over the distance to its farthest
     // corner, times the peripheral factor of the largest angle its bounding sphere makes with the
     // axis (the factor falls with the angle).
@@ -352,6 +369,7 @@ class Weigher {
     glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
     double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
     double floor_cos_ = -2.0;
+    double cos_cone_ = 1.0, sin_cone_ = 0.0;
 };
 
 // Weigher::bound times this bounds the stored weights too (rounded up to float).
@@ -367,6 +385,7 @@ struct Assignment {
 // What an update needs to know of a live node without walking its fan (see update()).
 struct LiveNode {
     std::uint32_t node;
+    Mesh::Point p; // its point (an update reads it for every node it visits)
     // The node whose deviation gave the last evaluated cost, and that deviation: the cost under
     // any later view is at least star_dev times the star's weight there while the fan stands.
     std::uint32_t star;
@@ -377,6 +396,16 @@ struct LiveNode {
     float fan_dev;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
     std::uint32_t cell;       // its cell of the update's grid (NodeEraser::Impl::cells)
+    // For the screen model's updates, as logarithms (see Impl::face_seen_dev for the motion
+    // factor that carries them to a later view): under the view of update seen_at, every node its
+    // fan swallowed had a weighted deviation <= exp(seen_log) (+inf: none known, dropped when the
+    // fan changes); under the view of update low_at, its erase cost was >= exp(low_log) (-inf:
+    // none known, dropped when it turns dirty).
+    float seen_log = INFINITY;
+    float low_log = -INFINITY;
+    std::uint32_t seen_at = 0;
+    std::uint32_t low_at = 0;
+    bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
 };
 
 // A run of a long swallowed list (see build_blocks).
@@ -495,6 +524,14 @@ struct NodeEraser::Impl {
     std::vector<std::uint32_t> face_seen;
     static constexpr std::uint32_t k_seen_views = 64;
     std::array<View, k_seen_views> seen_views;
+    // For the update under way, per slot of seen_views: how far the eye has moved and the axis
+    // turned since that view, and whether a bound made then carries over (the same lens).
+    struct Since {
+        double moved = 0.0, turn = 0.0;
+        bool ok = false;
+    };
+    std::array<Since, k_seen_views> since;
+    double falloff = 1.0; // the peripheral factor's falloff, radians
     std::uint32_t updates = 0; // update() calls so far
     // Per vertex: its erase record (>= 0), k_absent for a sample the input TIN never held (see
     // the constructor), or for a live node -2 - its place in live_list (so an update visits the
@@ -565,7 +602,13 @@ static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) 
     cell.star_dev = 0.0f;
     cell.dirty = true;
     s.record_of[x] = -2 - std::int32_t(s.live_list.size());
-    s.live_list.push_back({x, x, 0.0f, 0.0f, 0.0f, record, c});
+    LiveNode l{};
+    l.node = x;
+    l.p = s.mesh->point(VH(int(x)));
+    l.star = x;
+    l.last_record = record;
+    l.cell = c;
+    s.live_list.push_back(l);
 }
 
 static LiveNode &live_node(NodeEraser::Impl &s, std::uint32_t x) {
@@ -585,7 +628,9 @@ static void face_changed(NodeEraser::Impl &s, FH f) {
 // Marks live node x dirty (its key predates a change of its fan).
 static void mark_dirty(NodeEraser::Impl &s, std::uint32_t x) {
     s.flags[x] |= k_dirty;
-    s.cells[live_node(s, x).cell].dirty = true;
+    LiveNode &l = live_node(s, x);
+    l.low_log = -INFINITY;
+    s.cells[l.cell].dirty = true;
 }
 
 static void remove_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
@@ -611,6 +656,7 @@ static void widen_fans(NodeEraser::Impl &s, const glm::dvec3 *p, const std::uint
             far2 = std::max(far2, glm::dot(d, d));
         }
         LiveNode &l = live_node(s, ids[i]);
+        l.seen_log = INFINITY;
         l.reach = std::max(l.reach, float_up(std::sqrt(far2) + dev));
         l.fan_dev = std::max(l.fan_dev, float_up(dev));
         Cell &cell = s.cells[l.cell];
@@ -1466,6 +1512,17 @@ static double covered_estimate(const NodeEraser::Impl &s, std::uint32_t x) {
 static void park(NodeEraser::Impl &s, std::uint32_t x) {
     s.flags[x] &= std::uint8_t(~k_dirty);
     s.heap.store_key(x, INFINITY);
+    live_node(s, x).low_log = INFINITY;
+}
+
+// Live node x's erase cost under the current view is at least `cost` (see LiveNode::low_log).
+static void remember_low(NodeEraser::Impl &s, std::uint32_t x, double cost) {
+    LiveNode &l = live_node(s, x);
+    l.low_log = -INFINITY;
+    if (s.options.significance.model == SpModel::screen && s.updates > 0) {
+        l.low_log = float_down(std::log(cost) - 1e-6);
+        l.low_at = s.updates;
+    }
 }
 
 // One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
@@ -1500,6 +1557,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     s.flags[x] &= std::uint8_t(~k_dirty);
     if (!(s.hole.cost <= limit)) {
         s.heap.store_key(x, float(s.hole.cost));
+        remember_low(s, x, s.hole.cost);
         return false;
     }
     s.reerased += (s.flags[x] & k_recovered) != 0;
@@ -1956,6 +2014,14 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     set_view(view, options);
 }
 
+// Drops every live node's seen and low bounds (their keys may have changed without them).
+static void forget_nodes(NodeEraser::Impl &s) {
+    for (LiveNode &l : s.live_list) {
+        l.seen_log = INFINITY;
+        l.low_log = -INFINITY;
+    }
+}
+
 NodeEraser::~NodeEraser() = default;
 NodeEraser::NodeEraser(NodeEraser &&) noexcept = default;
 NodeEraser &NodeEraser::operator=(NodeEraser &&) noexcept = default;
@@ -1966,6 +2032,7 @@ void NodeEraser::set_view(const View *view, const EraseOptions &options) {
     s.options = options;
     s.has_view = view != nullptr;
     std::fill(s.face_seen_dev.begin(), s.face_seen_dev.end(), -1.0f); // the model may change
+    forget_nodes(s);
     if (view) {
         s.view = *view;
         if (options.significance.model == SpModel::paper)
@@ -1990,6 +2057,7 @@ EraseStats NodeEraser::erase() {
     }
     if (s.live_list.capacity() > 2 * s.live_list.size())
         s.live_list.shrink_to_fit(); // an update keeps the live nodes only
+    forget_nodes(s);
     const EraseStats now = measure();
     stats.output_nodes = s.live;
     stats.output_triangles = s.live_faces;
@@ -2190,11 +2258,82 @@ static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const 
     }
 }
 
-// Face f's swallowed nodes have weighted deviations <= seen under the current view: kept for the
-// updates that follow (see Impl::face_seen_dev).
-static void remember_seen(NodeEraser::Impl &s, FH f, double seen) {
+// The box face f's swallowed nodes lie in (f's corners a, b, c): within its largest deviation of it
+// (with a margin for the float rounding of that deviation), a TIN's inside it in xy, a surface
+// mesh's along its normal, so the box widens on every axis.
+static std::pair<glm::dvec3, glm::dvec3> swallowed_box(const NodeEraser::Impl &s, FH f,
+                                                       const glm::dvec3 &a, const glm::dvec3 &b,
+                                                       const glm::dvec3 &c) {
+    const double dz = 1.001 * double(s.face_maxdev[f.idx()]);
+    const glm::dvec3 margin = s.xy ? glm::dvec3(0.0, 0.0, dz) : glm::dvec3(dz);
+    return {glm::min(glm::min(a, b), c) - margin, glm::max(glm::max(a, b), c) + margin};
+}
+
+// The eye's move and the axis's turn since the view of update `at`, or null when a bound made under
+// that view does not carry over to the current one.
+static const NodeEraser::Impl::Since *since(const NodeEraser::Impl &s, std::uint32_t at) {
+    if (s.options.significance.model != SpModel::screen || at == 0 ||
+        s.updates - at >= NodeEraser::Impl::k_seen_views)
+        return nullptr;
+    const NodeEraser::Impl::Since &d = s.since[at % NodeEraser::Impl::k_seen_views];
+    return d.ok ? &d : nullptr;
+}
+
+// The factor by which the weight of a node at least `nearest` from the current eye may have grown
+// since `d` (see Impl::face_seen_dev); infinite when the eye moved that far. `cone`: the node was
+// inside the view cone then (peripheral factor 1, which no view exceeds): the distance's share
+// alone.
+static double weight_growth(const NodeEraser::Impl &s, const NodeEraser::Impl::Since &d,
+                            double nearest, bool cone) {
+    if (!(d.moved < nearest))
+        return INFINITY;
+    const double x = d.moved / nearest;
+    return cone ? 1.0 + x : (1.0 + x) * std::exp((d.turn + std::asin(x)) / s.falloff);
+}
+
+// The logarithms of that factor and of the one by which such a weight may have shrunk
+// ((1 - x) * exp(-(turn + asin x) / falloff) with x = moved / nearest, since the distance then was
+// at least nearest - moved; `cone`: the node is inside the view cone now, so only the distance's
+// share), over-estimated without transcendental functions: ln(1 + x) <= x, -ln(1 - x) <=
+// x / (1 - x) and asin x <= x / sqrt(1 - x²). For the per-node tests an update makes for every
+// live node it visits.
+static double log_growth(const NodeEraser::Impl &s, const NodeEraser::Impl::Since &d,
+                         double nearest, bool cone) {
+    if (!(d.moved < nearest))
+        return INFINITY;
+    const double x = d.moved / nearest;
+    return cone ? x : x + (d.turn + x / std::sqrt(1.0 - x * x)) / s.falloff;
+}
+
+static double log_shrink(const NodeEraser::Impl &s, const NodeEraser::Impl::Since &d,
+                         double nearest, bool cone) {
+    if (!(d.moved < nearest))
+        return INFINITY;
+    const double x = d.moved / nearest;
+    return x / (1.0 - x) + (cone ? 0.0 : (d.turn + x / std::sqrt(1.0 - x * x)) / s.falloff);
+}
+
+// The bound face f's seen bound gives under the current view for nodes in the box [lo, hi] (its
+// swallowed nodes' box), or infinity when it has none that carries over.
+static double seen_bound(const NodeEraser::Impl &s, FH f, const glm::dvec3 &lo,
+                         const glm::dvec3 &hi) {
+    if (s.face_seen_dev[f.idx()] < 0.0f)
+        return INFINITY;
+    const NodeEraser::Impl::Since *d = since(s, s.face_seen[f.idx()] >> 1);
+    if (!d)
+        return INFINITY;
+    const double nearest = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
+    return double(s.face_seen_dev[f.idx()]) *
+           weight_growth(s, *d, nearest, s.face_seen[f.idx()] & 1) * k_rounded_weight *
+           (1.0 + 1e-9);
+}
+
+// Face f's swallowed nodes, in the box [lo, hi], have weighted deviations <= seen under the
+// current view: kept for the updates that follow (see Impl::face_seen_dev).
+static void remember_seen(NodeEraser::Impl &s, FH f, double seen, const glm::dvec3 &lo,
+                          const glm::dvec3 &hi) {
     s.face_seen_dev[f.idx()] = float_up(seen * (1.0 + 1e-9));
-    s.face_seen[f.idx()] = s.updates;
+    s.face_seen[f.idx()] = s.updates << 1 | std::uint32_t(s.weigher.in_cone(lo, hi));
 }
 
 // The worst swallowed node of face f whose weighted deviation exceeds `above`, and that weighted
@@ -2223,29 +2362,9 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
             return worst;
     }
     const bool screen = s.options.significance.model == SpModel::screen && s.updates > 0;
-    if (screen && s.face_seen_dev[f.idx()] >= 0.0f &&
-        s.updates - s.face_seen[f.idx()] < NodeEraser::Impl::k_seen_views) {
-        // Swallowed nodes stand within the face's largest deviation of it (as seed_recover).
-        const double dz = 1.001 * double(s.face_maxdev[f.idx()]);
-        const glm::dvec3 margin = s.xy ? glm::dvec3(0.0, 0.0, dz) : glm::dvec3(dz);
-        const glm::dvec3 lo = glm::min(glm::min(a, b), c) - margin;
-        const glm::dvec3 hi = glm::max(glm::max(a, b), c) + margin;
-        const double nearest = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
-        const View &then = s.seen_views[s.face_seen[f.idx()] % NodeEraser::Impl::k_seen_views];
-        const double moved = glm::length(s.view.eye - then.eye);
-        if (moved < nearest && then.fov_deg == s.view.fov_deg &&
-            then.viewport_w == s.view.viewport_w && then.viewport_h == s.view.viewport_h) {
-            const double turn =
-                std::acos(std::clamp(glm::dot(then.axis(), s.view.axis()), -1.0, 1.0)) +
-                std::asin(moved / nearest);
-            const double falloff =
-                std::max(s.options.significance.falloff_deg, 1e-6) * M_PI / 180.0;
-            const double bound = double(s.face_seen_dev[f.idx()]) * (1.0 + moved / nearest) *
-                                 std::exp(turn / falloff) * k_rounded_weight * (1.0 + 1e-9);
-            if (!(bound > above))
-                return worst;
-        }
-    }
+    const auto [box_lo, box_hi] = swallowed_box(s, f, a, b, c);
+    if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
+        return worst;
     // The deviation from f of a swallowed node at p, computed the same way by every scan.
     auto deviation_at = [&](const glm::dvec3 &p) {
         if (!s.xy)
@@ -2296,7 +2415,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
                     seen = std::max(seen, deviation_at(q) * s.weigher(q));
                     return true;
                 });
-            remember_seen(s, f, seen);
+            remember_seen(s, f, seen, box_lo, box_hi);
         }
         return worst;
     }
@@ -2321,7 +2440,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
             seen = std::max(seen, dev * s.weigher(q));
     }
     if (screen && worst.first < 0)
-        remember_seen(s, f, seen);
+        remember_seen(s, f, seen, box_lo, box_hi);
     // A long list scanned whole gets blocks (when a weight bound can use them).
     if (std::isfinite(weight_bound) && length >= k_block_list)
         build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),
@@ -2329,48 +2448,71 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     return worst;
 }
 
-// Whether the swallowed nodes of live node l's fan may cost more than `recover_above` under the
-// current view, from its bounds alone: the largest deviation times the largest weight in the cube
-// they lie in.
-static bool fan_may_recover(const NodeEraser::Impl &s, const LiveNode &l, double recover_above) {
+// A bound on the weighted deviation of the swallowed nodes of live node l's fan under the current
+// view, from its bounds alone: the largest deviation times the largest weight in the cube they lie
+// in.
+static double fan_bound(const NodeEraser::Impl &s, const LiveNode &l) {
     if (l.fan_dev <= 0.0f)
-        return false;
-    const glm::dvec3 p = to_glm(s.mesh->point(VH(int(l.node))));
+        return 0.0;
+    const glm::dvec3 p = to_glm(l.p);
     const glm::dvec3 r(double(l.reach));
-    return double(l.fan_dev) * s.weigher.bound(p - r, p + r) * k_rounded_weight > recover_above;
+    return double(l.fan_dev) * s.weigher.bound(p - r, p + r) * k_rounded_weight;
 }
 
-// Puts live face f on the recover worklist when its swallowed nodes may cost more than
-// `recover_above` under the current view: their largest deviation times the largest weight in the
-// box they lie in says so, without visiting them.
-static void seed_recover(const NodeEraser::Impl &s, FH f, double recover_above,
-                         std::vector<FH> &work) {
+// A bound on the weighted deviation of live face f's swallowed nodes under the current view: the
+// smaller of its seen bound carried over and their largest deviation times the largest weight in
+// the box they lie in, without visiting them (0 when it swallowed none).
+static double face_bound(const NodeEraser::Impl &s, FH f) {
     const Mesh &m = *s.mesh;
-    const float dev = s.face_maxdev[f.idx()];
-    if (s.face_head[f.idx()] < 0 || dev <= 0.0f)
-        return;
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (auto v : m.fv_range(f)) {
-        lo = glm::min(lo, to_glm(m.point(v)));
-        hi = glm::max(hi, to_glm(m.point(v)));
+    if (s.face_head[f.idx()] < 0 || s.face_maxdev[f.idx()] <= 0.0f)
+        return 0.0;
+    const HH he = m.halfedge_handle(f);
+    const auto [lo, hi] =
+        swallowed_box(s, f, to_glm(m.point(m.from_vertex_handle(he))),
+                      to_glm(m.point(m.to_vertex_handle(he))),
+                      to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he)))));
+    return std::min(double(s.face_maxdev[f.idx()]) * s.weigher.bound(lo, hi) * k_rounded_weight,
+                    seen_bound(s, f, lo, hi));
+}
+
+// Live node l's fan's swallowed nodes have weighted deviations <= bound under the current view.
+static void remember_fan(const NodeEraser::Impl &s, LiveNode &l, double bound) {
+    if (s.options.significance.model == SpModel::screen && s.updates > 0) {
+        const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
+        l.seen_log = float_up(std::log(bound) + 1e-6);
+        l.seen_at = s.updates;
+        l.seen_cone = s.weigher.in_cone(p - r, p + r);
     }
-    // Swallowed nodes stand within their deviation of the face (a TIN's inside it in xy; a
-    // surface mesh's along its normal, so the box widens on every axis).
-    const glm::dvec3 margin = s.xy ? glm::dvec3(0.0, 0.0, dev) : glm::dvec3(dev);
-    if (double(dev) * s.weigher.bound(lo - margin, hi + margin) * k_rounded_weight > recover_above)
-        work.push_back(f);
+}
+
+// Whether the swallowed nodes of live node l's fan cost at most `recover_above` by the node's own
+// bounds: its seen bound carried over, then its box (remembered when it clears them).
+static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_above) {
+    if (l.seen_log < INFINITY) {
+        if (const NodeEraser::Impl::Since *d = since(s, l.seen_at)) {
+            const double nearest = glm::length(to_glm(l.p) - s.view.eye) - double(l.reach);
+            if (double(l.seen_log) + log_growth(s, *d, nearest, l.seen_cone) <=
+                std::log(recover_above))
+                return true;
+        }
+    }
+    const double box = fan_bound(s, l);
+    if (!(box > recover_above)) {
+        remember_fan(s, l, box);
+        return true;
+    }
+    return false;
 }
 
 // Seeds the recover worklist with the faces of live node l's fan whose swallowed nodes may cost
-// more than `recover_above`, tightening l's bounds from its fan as it stands on the way.
+// more than `recover_above` (l's own bounds did not clear them): tightens l's bounds from its fan
+// as it stands, which may clear them, else tries each face's. Each face is seeded by the node its
+// halfedge leaves from, so once.
 static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
                      std::vector<FH> &work) {
-    if (!fan_may_recover(s, l, recover_above))
-        return;
-    // Each face is tried by the node its halfedge leaves from, so once.
     const Mesh &m = *s.mesh;
     const VH x{int(l.node)};
-    const glm::dvec3 px = to_glm(m.point(x));
+    const glm::dvec3 px = to_glm(l.p);
     double far2 = 0.0;
     float fan_dev = 0.0f;
     for (auto he : m.voh_range(x)) {
@@ -2382,13 +2524,22 @@ static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
     }
     l.reach = float_up(std::sqrt(far2) + double(fan_dev));
     l.fan_dev = fan_dev;
-    if (!fan_may_recover(s, l, recover_above))
+    const double box = fan_bound(s, l);
+    if (!(box > recover_above)) {
+        remember_fan(s, l, box);
         return;
+    }
+    double most = 0.0;
     for (auto he : m.voh_range(x)) {
         const FH f = m.face_handle(he);
-        if (f.is_valid() && m.halfedge_handle(f) == he)
-            seed_recover(s, f, recover_above, work);
+        if (!f.is_valid())
+            continue;
+        const double bound = face_bound(s, f);
+        most = std::max(most, bound);
+        if (bound > recover_above && m.halfedge_handle(f) == he)
+            work.push_back(f);
     }
+    remember_fan(s, l, most);
 }
 
 UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
@@ -2410,6 +2561,15 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     s.weigher = Weigher(&s.view, s.options.significance);
     new_weights(s, false);
     s.seen_views[++s.updates % Impl::k_seen_views] = view;
+    s.falloff = std::max(s.options.significance.falloff_deg, 1e-6) * M_PI / 180.0;
+    for (std::uint32_t i = 0; i < Impl::k_seen_views; ++i) {
+        const View &then = s.seen_views[i];
+        Impl::Since &d = s.since[i];
+        d.ok = then.fov_deg == view.fov_deg && then.viewport_w == view.viewport_w &&
+               then.viewport_h == view.viewport_h;
+        d.moved = glm::length(view.eye - then.eye);
+        d.turn = std::acos(std::clamp(glm::dot(then.axis(), view.axis()), -1.0, 1.0));
+    }
     stats.ms_weights = clock.ms();
 
     // recover: a worklist of faces, seeded with every face whose swallowed nodes may exceed the
@@ -2433,7 +2593,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     std::vector<FH> work;
     std::vector<std::uint32_t> recovered;
     for (LiveNode &l : s.live_list) {
-        if (visit[l.cell])
+        if (visit[l.cell] && !fan_cleared(s, l, recover_above))
             seed_fan(s, l, recover_above, work);
         Cell &cell = s.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
@@ -2478,11 +2638,28 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         cell.star_dev = INFINITY;
     }
     std::vector<std::uint32_t> candidates;
-    for (const LiveNode &l : s.live_list) {
+    const double log_below = std::log(erase_below);
+    for (LiveNode &l : s.live_list) {
         const std::uint32_t x = l.node;
         Cell &cell = s.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
-        if (!visit[l.cell] || (s.flags[x] & k_locked))
+        if (!visit[l.cell])
+            continue;
+        // A node that is not dirty (mark_dirty drops low_log) and whose cost cannot have fallen
+        // to the bound since it was last known: the star lies within reach of the node.
+        if (l.low_log == INFINITY)
+            continue; // parked
+        if (l.low_log > -INFINITY) {
+            if (const Impl::Since *d = since(s, l.low_at)) {
+                const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
+                const double nearest = glm::length(p - s.view.eye) - r.x;
+                if (double(l.low_log) -
+                        log_shrink(s, *d, nearest, s.weigher.in_cone(p - r, p + r)) >
+                    log_below)
+                    continue;
+            }
+        }
+        if (s.flags[x] & k_locked)
             continue;
         const float key = s.heap.key(x);
         if (!std::isfinite(key))
@@ -2492,6 +2669,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
             const double least = double(l.star_dev) * weight_of(s, l.star);
             if (least > erase_below) {
                 s.heap.store_key(x, float_down(least));
+                remember_low(s, x, least);
                 continue;
             }
         }
