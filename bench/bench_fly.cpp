@@ -19,6 +19,10 @@
 // minutes; the rebuilds and error measurements come on top); the results say how many of the
 // path's frames were flown.
 //
+// Then the same refiner flies the three paths again at 30 frames per second, as an interactive
+// viewer samples them (the camera moves 7.5 times less per frame): the update time per frame,
+// p50 and p99, and the screen error measured exhaustively on every 150th frame; no rebuilds.
+//
 // The paths come from the terrain's bounds and heights, the way scripts/make_paths.py makes
 // meshes/paths/n42_*.csv: every keyframe's eye stands a clearance above the highest ground within
 // 1.5 km, so no frame is under the terrain (each frame is checked with check_eye_above).
@@ -67,6 +71,8 @@ struct FlyOptions {
 constexpr double k_tau = 1.0;           // pixels, the refiner's and the rebuild's
 constexpr double k_share = 0.5; // the rebuild retrieves at share * tau, erases to tau (erase_dem)
 constexpr double k_fps = 4.0;           // frames per second of path time
+constexpr double k_fps_interactive = 30.0; // the second flight's
+constexpr int k_check_every = 150;      // its frames whose error is measured (1, 151, ...)
 // The rebuild runs on every 20th frame: on 4097² it takes about 10 s (erase_dem's per-sample
 // arrays and its mesh span the whole grid).
 constexpr int k_rebuild_every = 20;
@@ -209,6 +215,7 @@ struct FrameRow {
     double cpu_ms = 0.0; // CPU time of the thread in it
     FrameStats stats;
     double bytes_per_node = 0.0;
+    bool checked = false; // max_px measured (the interactive flight's every k_check_every-th)
     bool rebuilt = false; // the rest only on the rebuild frames
     double rebuild_ms = 0.0, rebuild_cpu_ms = 0.0;
     std::int64_t rebuild_nodes = 0, rebuild_triangles = 0;
@@ -228,6 +235,7 @@ struct PathResult {
 
 struct Flight {
     std::vector<PathResult> paths;
+    std::vector<PathResult> interactive; // the same paths at k_fps_interactive
     double built_bytes_mb = 0.0; // Refiner::bytes() right after the constructor
     double built_rss_mb = 0.0;   // resident memory the constructor added
 };
@@ -238,10 +246,12 @@ double measured_px(const Heightfield &hf, const Mesh &tin, const View &view) {
     return measure_error(hf, tin, eo).max_screen_px;
 }
 
-// Flies path p; frame 0 builds `refiner` when it is null, else moves it there by one update.
+// Flies path p at `fps` frames per second of path time; frame 0 builds `refiner` when it is null,
+// else moves it there by one update. `rebuilds`: the paper's way on every k_rebuild_every-th frame,
+// else the error measured on every k_check_every-th.
 PathResult fly(const Heightfield &hf, const QuadTree &tree, const FlightPath &p, bool quick,
-               std::unique_ptr<Refiner> &refiner, Flight &flight) {
-    const int all = int(std::floor(p.path.duration() * k_fps + 1e-9)) + 1;
+               double fps, bool rebuilds, std::unique_ptr<Refiner> &refiner, Flight &flight) {
+    const int all = int(std::floor(p.path.duration() * fps + 1e-9)) + 1;
     std::vector<View> views = p.path.sample(all, View{});
     if (quick)
         views.resize(std::min<std::size_t>(views.size(), k_quick_frames));
@@ -293,7 +303,11 @@ PathResult fly(const Heightfield &hf, const QuadTree &tree, const FlightPath &p,
         row.cpu_ms = thread_cpu_ms() - cpu0;
         flying_ms += row.ms;
         row.bytes_per_node = double(refiner->bytes()) / double(hf.size());
-        if (i % k_rebuild_every == 1) {
+        if (!rebuilds && i % k_check_every == 1) {
+            row.checked = true;
+            row.max_px = measured_px(hf, refiner->mesh(), views[i]);
+            std::printf("m");
+        } else if (rebuilds && i % k_rebuild_every == 1) {
             const double rcpu0 = thread_cpu_ms();
             clock.reset();
             const Mesh rebuilt = erase_dem(hf, &views[i], eo, rebuild);
@@ -371,7 +385,8 @@ struct Summary {
     double bytes_per_node = 0;               // the largest over the frames
     int rebuilds = 0;
     double rebuild_cpu_median = 0, ratio_median = 0, ratio_min = 0;
-    double max_px = 0, rebuild_max_px = 0;
+    double max_px = 0, rebuild_max_px = 0; // over the rebuild (or checked) frames
+    int checks = 0;
 };
 
 Summary summarise(const std::vector<FrameRow> &rows) {
@@ -383,6 +398,10 @@ Summary summarise(const std::vector<FrameRow> &rows) {
         changed.push_back(double(r.changed()));
         nodes.push_back(double(r.stats.nodes));
         s.bytes_per_node = std::max(s.bytes_per_node, r.bytes_per_node);
+        if (r.checked) {
+            ++s.checks;
+            s.max_px = std::max(s.max_px, r.max_px);
+        }
         if (!r.rebuilt)
             continue;
         ++s.rebuilds;
@@ -425,15 +444,19 @@ std::int64_t entered(const PathResult &p) {
     return n;
 }
 
-void write_csv(const std::string &file, const std::vector<PathResult> &results) {
+// One line per frame of both flights (fps tells them apart).
+void write_csv(const std::string &file, const Flight &flight) {
     std::ofstream out(file);
-    out << "path,frame,t,ms,cpu_ms,changed,erased,recovered,reerased,entered,candidates,nodes,"
+    out << "path,fps,frame,t,ms,cpu_ms,changed,erased,recovered,reerased,entered,candidates,nodes,"
            "triangles,"
            "bytes_per_node,rebuild_ms,rebuild_cpu_ms,rebuild_nodes,rebuild_triangles,"
            "rebuild_ratio,max_screen_px,rebuild_max_screen_px\n";
-    for (const PathResult &p : results)
+    for (const auto &[fps, results] :
+         {std::pair{k_fps, &flight.paths}, std::pair{k_fps_interactive, &flight.interactive}})
+        for (const PathResult &p : *results)
         for (const FrameRow &r : p.rows) {
-            out << p.name << "," << r.frame << "," << fmt("%.3f", r.t) << "," << fmt("%.4f", r.ms)
+            out << p.name << "," << fmt("%.0f", fps) << "," << r.frame << "," << fmt("%.3f", r.t)
+                << "," << fmt("%.4f", r.ms)
                 << "," << fmt("%.4f", r.cpu_ms) << "," << r.changed() << "," << r.stats.erased
                 << "," << r.stats.recovered << "," << r.stats.reerased << "," << r.stats.entered
                 << "," << r.stats.candidates << "," << r.stats.nodes
@@ -443,6 +466,8 @@ void write_csv(const std::string &file, const std::vector<PathResult> &results) 
                     << r.rebuild_nodes << "," << r.rebuild_triangles << ","
                     << fmt("%.1f", r.rebuild_cpu_ms / std::max(1e-3, r.cpu_ms)) << ","
                     << fmt("%.4f", r.max_px) << "," << fmt("%.4f", r.rebuild_max_px);
+            else if (r.checked)
+                out << ",,,,," << fmt("%.4f", r.max_px) << ",";
             else
                 out << ",,,,,,";
             out << "\n";
@@ -471,9 +496,9 @@ std::string flown(const PathResult &p) {
                                           : "";
 }
 
-std::vector<Claim> claims(const std::vector<PathResult> &results, const std::vector<Summary> &sums,
-                          const Summary &pooled) {
-    std::vector<Claim> out;
+// The p99 ≤ 8 ms claim over one flight's paths.
+Claim p99_claim(const std::string &claim, const std::vector<PathResult> &results,
+                const std::vector<Summary> &sums) {
     std::string text;
     double worst = 0.0;
     for (std::size_t i = 0; i < results.size(); ++i) {
@@ -481,12 +506,24 @@ std::vector<Claim> claims(const std::vector<PathResult> &results, const std::vec
                 " ms, p99 " + fmt("%.2f", sums[i].p99) + " ms" + flown(results[i]);
         worst = std::max(worst, sums[i].p99);
     }
-    out.push_back({"flight p99 ≤ 8 ms (Refiner::update per frame, CPU time of one core, worst "
-                   "path)",
-                   text,
-                   worst <= 8 ? "ahead by " + fmt("%.1f×", 8 / worst)
-                              : "behind: p99 " + fmt("%.1f", worst) +
-                                    " ms = " + fmt("%.1f×", worst / 8) + " the goal"});
+    return {claim, text,
+            worst <= 8 ? "ahead by " + fmt("%.1f×", 8 / worst)
+                       : "behind: p99 " + fmt("%.1f", worst) + " ms = " +
+                             fmt("%.1f×", worst / 8) + " the goal"};
+}
+
+std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums,
+                          const Summary &pooled, const std::vector<Summary> &isums) {
+    const std::vector<PathResult> &results = flight.paths;
+    std::vector<Claim> out;
+    out.push_back(p99_claim("flight p99 ≤ 8 ms (Refiner::update per frame, CPU time of one core, "
+                            "worst path; " + fmt("%.0f", k_fps) + " frames per second of path time)",
+                            results, sums));
+    out.push_back(p99_claim("flight p99 ≤ 8 ms at " + fmt("%.0f", k_fps_interactive) +
+                                " frames per second (the same paths as an interactive viewer "
+                                "samples them)",
+                            flight.interactive, isums));
+    std::string text;
 
     text.clear();
     double lowest_median = 1e30, lowest = 1e30, flight_px = 0, rebuild_px = 0;
@@ -566,7 +603,7 @@ std::vector<Claim> claims(const std::vector<PathResult> &results, const std::vec
 }
 
 std::string section(const Flight &flight, const std::vector<Summary> &sums, const Summary &pooled,
-                    const std::string &terrain, bool quick) {
+                    const std::vector<Summary> &isums, const std::string &terrain, bool quick) {
     const std::vector<PathResult> &results = flight.paths;
     std::string md =
         "\n## Flight (flight.csv)\n\n![update time against nodes changed and TIN size](flight.png)"
@@ -645,6 +682,27 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               fmt("%.3f", s.max_px) + " | " + fmt("%.3f", s.rebuild_max_px) + " | " +
               fmt("%.3f", results[i].first_max_px) + " |\n";
     }
+    md += "\nThe same refiner then flies the three paths again at " +
+          fmt("%.0f", k_fps_interactive) +
+          " frames per second of path time, as an interactive viewer samples them: the camera "
+          "moves " + fmt("%.1f", k_fps_interactive / k_fps) +
+          " times less per frame. The jump to each path's start is not counted; the screen error "
+          "is measured exhaustively over every DEM sample on every " +
+          std::to_string(k_check_every) + "th frame (frames 1, " +
+          std::to_string(k_check_every + 1) + ", ...).\n\n"
+          "| path | updates | update CPU ms p50 / p99 / max | changed per frame median (max) | "
+          "fixed ms + µs per changed node | frames measured | max px |\n"
+          "|---|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < flight.interactive.size(); ++i) {
+        const Summary &s = isums[i];
+        const PathResult &p = flight.interactive[i];
+        md += "| " + p.name + " | " + std::to_string(p.rows.size()) + " of " +
+              std::to_string(p.planned) + " | " + fmt("%.2f", s.p50) + " / " + fmt("%.2f", s.p99) +
+              " / " + fmt("%.2f", s.max) + " | " + fmt("%.0f", s.changed_median) + " (" +
+              fmt("%.0f", s.changed_max) + ") | " + fmt("%.1f", s.fixed_ms) + " + " +
+              fmt("%.2f", s.us_per_changed) + " | " + std::to_string(s.checks) + " | " +
+              fmt("%.3f", s.max_px) + " |\n";
+    }
     return md;
 }
 
@@ -676,8 +734,13 @@ void run(const FlyOptions &options) {
 
     Flight flight;
     std::unique_ptr<Refiner> refiner;
-    for (const FlightPath &p : flight_paths(hf))
-        flight.paths.push_back(fly(hf, tree, p, options.quick, refiner, flight));
+    const std::vector<FlightPath> paths = flight_paths(hf);
+    for (const FlightPath &p : paths)
+        flight.paths.push_back(fly(hf, tree, p, options.quick, k_fps, true, refiner, flight));
+    std::printf("  again at %.0f frames per second:\n", k_fps_interactive);
+    for (const FlightPath &p : paths)
+        flight.interactive.push_back(
+            fly(hf, tree, p, options.quick, k_fps_interactive, false, refiner, flight));
     refiner.reset();
     const std::vector<PathResult> &results = flight.paths;
 
@@ -694,15 +757,23 @@ void run(const FlyOptions &options) {
                     s.ratio_median, s.ratio_min, s.max_px, s.rebuild_max_px);
     }
     const Summary pooled = summarise(all);
+    std::vector<Summary> isums;
+    for (const PathResult &p : flight.interactive) {
+        isums.push_back(summarise(p.rows));
+        const Summary &s = isums.back();
+        std::printf("  %-8s at %.0f fps: p50 %.2f ms, p99 %.2f ms (CPU); max px %.3f on %d "
+                    "frames\n",
+                    p.name.c_str(), k_fps_interactive, s.p50, s.p99, s.max_px, s.checks);
+    }
 
-    write_csv(options.out + "/flight.csv", results);
+    write_csv(options.out + "/flight.csv", flight);
     write_series(options.tmp + "/flight.dat", results);
     json doc;
     doc["claims"] = json::array();
-    for (const Claim &c : claims(results, sums, pooled))
+    for (const Claim &c : claims(flight, sums, pooled, isums))
         doc["claims"].push_back(
             {{"claim", c.claim}, {"measured", c.measured}, {"verdict", c.verdict}});
-    doc["section"] = section(flight, sums, pooled, terrain, options.quick);
+    doc["section"] = section(flight, sums, pooled, isums, terrain, options.quick);
     doc["seconds"] = total.ms() / 1e3;
     doc["budget_s"] = options.quick ? k_quick_budget_s : k_budget_s;
     std::ofstream(options.tmp + "/flight.json") << doc.dump(1);
