@@ -1965,7 +1965,7 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
     s.face_seen.assign(s.mesh->n_faces(), 0);
     s.record_of.resize(s.mesh->n_vertices());
-    s.live_list.reserve(s.mesh->n_vertices());
+    s.live_list.reserve(std::size_t(s.live));
     // The update's grid: about k_nodes_per_cell input nodes per cell.
     glm::dvec2 lo(INFINITY), hi(-INFINITY);
     for (auto v : s.mesh->vertices()) {
