@@ -397,10 +397,10 @@ struct LiveNode {
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
     std::uint32_t cell;       // its cell of the update's grid (NodeEraser::Impl::cells)
     // For the screen model's updates, as logarithms (see Impl::face_seen_dev for the motion
-    // factor that carries them to a later view): under the view of update seen_at, every node its
-    // fan swallowed had a weighted deviation <= exp(seen_log) (+inf: none known, dropped when the
-    // fan changes); under the view of update low_at, its erase cost was >= exp(low_log) (-inf:
-    // none known, dropped when it turns dirty).
+    // factor that carries them to a later view): under the view of update seen_at, every node the
+    // faces it seeds (see seed_fan) swallowed had a weighted deviation <= exp(seen_log) (+inf:
+    // none known, dropped when the fan changes); under the view of update low_at, its erase cost
+    // was >= exp(low_log) (-inf: none known, dropped when it turns dirty).
     float seen_log = INFINITY;
     float low_log = -INFINITY;
     std::uint32_t seen_at = 0;
@@ -2475,7 +2475,8 @@ static double face_bound(const NodeEraser::Impl &s, FH f) {
                     seen_bound(s, f, lo, hi));
 }
 
-// Live node l's fan's swallowed nodes have weighted deviations <= bound under the current view.
+// The nodes swallowed by the faces live node l seeds have weighted deviations <= bound under the
+// current view.
 static void remember_fan(const NodeEraser::Impl &s, LiveNode &l, double bound) {
     if (s.options.significance.model == SpModel::screen && s.updates > 0) {
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
@@ -2485,8 +2486,9 @@ static void remember_fan(const NodeEraser::Impl &s, LiveNode &l, double bound) {
     }
 }
 
-// Whether the swallowed nodes of live node l's fan cost at most `recover_above` by the node's own
-// bounds: its seen bound carried over, then its box (remembered when it clears them).
+// Whether the nodes swallowed by the faces live node l seeds cost at most `recover_above` by the
+// node's own bounds: its seen bound carried over, then its fan's box (remembered when it clears
+// them).
 static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_above) {
     if (l.seen_log < INFINITY) {
         if (const NodeEraser::Impl::Since *d = since(s, l.seen_at)) {
@@ -2507,7 +2509,8 @@ static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_a
 // Seeds the recover worklist with the faces of live node l's fan whose swallowed nodes may cost
 // more than `recover_above` (l's own bounds did not clear them): tightens l's bounds from its fan
 // as it stands, which may clear them, else tries each face's. Each face is seeded by the node its
-// halfedge leaves from, so once.
+// halfedge leaves from, so once, and l's seen bound need only cover the faces it seeds: a face
+// near the bound makes one node walk its fan each update, not three.
 static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
                      std::vector<FH> &work) {
     const Mesh &m = *s.mesh;
@@ -2532,11 +2535,11 @@ static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
     double most = 0.0;
     for (auto he : m.voh_range(x)) {
         const FH f = m.face_handle(he);
-        if (!f.is_valid())
-            continue;
+        if (!f.is_valid() || m.halfedge_handle(f) != he)
+            continue; // another corner's to seed
         const double bound = face_bound(s, f);
         most = std::max(most, bound);
-        if (bound > recover_above && m.halfedge_handle(f) == he)
+        if (bound > recover_above)
             work.push_back(f);
     }
     remember_fan(s, l, most);
