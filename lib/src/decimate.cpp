@@ -400,7 +400,7 @@ struct LiveNode {
     // factor that carries them to a later view): under the view of update seen_at, every node the
     // faces it seeds (see seed_fan) swallowed had a weighted deviation <= exp(seen_log) (+inf:
     // none known, dropped when the fan changes); under the view of update low_at, its erase cost
-    // was >= exp(low_log) (-inf: none known, dropped when it turns dirty).
+    // was >= exp(low_log) (-inf: none known, dropped when it turns dirty; +inf: parked, see park).
     float seen_log = INFINITY;
     float low_log = -INFINITY;
     std::uint32_t seen_at = 0;
@@ -514,7 +514,8 @@ struct NodeEraser::Impl {
     std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
     // Per face, for the screen model's updates: a bound on its swallowed nodes' weighted deviation
-    // under the view of update face_seen[f] (negative: none since the face last changed). When the
+    // under the view of update face_seen[f] >> 1 (negative: none since the face last changed; the
+    // low bit of face_seen[f]: they lay inside the view cone then, see weight_growth). When the
     // eye moves by d and the axis turns by a, a node's weight k / distance * peripheral(angle to
     // the axis) grows by at most (1 + d / distance') * exp((a + asin(d / distance')) / falloff), so
     // a face whose nodes were within the bound by that much is cleared without a scan (a still or
