@@ -524,8 +524,6 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
                                 "samples them)",
                             flight.interactive, isums));
     std::string text;
-
-    text.clear();
     double lowest_median = 1e30, lowest = 1e30, flight_px = 0, rebuild_px = 0;
     int below = 0, frames = 0;
     for (std::size_t i = 0; i < results.size(); ++i) {

@@ -364,6 +364,8 @@ class Weigher {
                              : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
     }
 
+    double falloff() const { return falloff_; } // the peripheral factor's e-folding, radians
+
   private:
     bool unit_ = true;
     glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
@@ -532,7 +534,6 @@ struct NodeEraser::Impl {
         bool ok = false;
     };
     std::array<Since, k_seen_views> since;
-    double falloff = 1.0; // the peripheral factor's falloff, radians
     std::uint32_t updates = 0; // update() calls so far
     // Per vertex: its erase record (>= 0), k_absent for a sample the input TIN never held (see
     // the constructor), or for a live node -2 - its place in live_list (so an update visits the
@@ -1516,11 +1517,16 @@ static void park(NodeEraser::Impl &s, std::uint32_t x) {
     live_node(s, x).low_log = INFINITY;
 }
 
-// Live node x's erase cost under the current view is at least `cost` (see LiveNode::low_log).
-static void remember_low(NodeEraser::Impl &s, std::uint32_t x, double cost) {
-    LiveNode &l = live_node(s, x);
+// Whether the bounds an update makes carry over to the updates that follow (the screen model's, see
+// Impl::face_seen_dev and LiveNode::seen_log).
+static bool keeps_bounds(const NodeEraser::Impl &s) {
+    return s.options.significance.model == SpModel::screen && s.updates > 0;
+}
+
+// Live node l's erase cost under the current view is at least `cost` (see LiveNode::low_log).
+static void remember_low(const NodeEraser::Impl &s, LiveNode &l, double cost) {
     l.low_log = -INFINITY;
-    if (s.options.significance.model == SpModel::screen && s.updates > 0) {
+    if (keeps_bounds(s)) {
         l.low_log = float_down(std::log(cost) - 1e-6);
         l.low_at = s.updates;
     }
@@ -1558,7 +1564,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     s.flags[x] &= std::uint8_t(~k_dirty);
     if (!(s.hole.cost <= limit)) {
         s.heap.store_key(x, float(s.hole.cost));
-        remember_low(s, x, s.hole.cost);
+        remember_low(s, live_node(s, x), s.hole.cost);
         return false;
     }
     s.reerased += (s.flags[x] & k_recovered) != 0;
@@ -2273,8 +2279,7 @@ static std::pair<glm::dvec3, glm::dvec3> swallowed_box(const NodeEraser::Impl &s
 // The eye's move and the axis's turn since the view of update `at`, or null when a bound made under
 // that view does not carry over to the current one.
 static const NodeEraser::Impl::Since *since(const NodeEraser::Impl &s, std::uint32_t at) {
-    if (s.options.significance.model != SpModel::screen || at == 0 ||
-        s.updates - at >= NodeEraser::Impl::k_seen_views)
+    if (!keeps_bounds(s) || at == 0 || s.updates - at >= NodeEraser::Impl::k_seen_views)
         return nullptr;
     const NodeEraser::Impl::Since &d = s.since[at % NodeEraser::Impl::k_seen_views];
     return d.ok ? &d : nullptr;
@@ -2289,7 +2294,7 @@ static double weight_growth(const NodeEraser::Impl &s, const NodeEraser::Impl::S
     if (!(d.moved < nearest))
         return INFINITY;
     const double x = d.moved / nearest;
-    return cone ? 1.0 + x : (1.0 + x) * std::exp((d.turn + std::asin(x)) / s.falloff);
+    return cone ? 1.0 + x : (1.0 + x) * std::exp((d.turn + std::asin(x)) / s.weigher.falloff());
 }
 
 // The logarithms of that factor and of the one by which such a weight may have shrunk
@@ -2303,7 +2308,7 @@ static double log_growth(const NodeEraser::Impl &s, const NodeEraser::Impl::Sinc
     if (!(d.moved < nearest))
         return INFINITY;
     const double x = d.moved / nearest;
-    return cone ? x : x + (d.turn + x / std::sqrt(1.0 - x * x)) / s.falloff;
+    return cone ? x : x + (d.turn + x / std::sqrt(1.0 - x * x)) / s.weigher.falloff();
 }
 
 static double log_shrink(const NodeEraser::Impl &s, const NodeEraser::Impl::Since &d,
@@ -2311,7 +2316,8 @@ static double log_shrink(const NodeEraser::Impl &s, const NodeEraser::Impl::Sinc
     if (!(d.moved < nearest))
         return INFINITY;
     const double x = d.moved / nearest;
-    return x / (1.0 - x) + (cone ? 0.0 : (d.turn + x / std::sqrt(1.0 - x * x)) / s.falloff);
+    const double angle = cone ? 0.0 : (d.turn + x / std::sqrt(1.0 - x * x)) / s.weigher.falloff();
+    return x / (1.0 - x) + angle;
 }
 
 // The bound face f's seen bound gives under the current view for nodes in the box [lo, hi] (its
@@ -2362,7 +2368,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         if (!(1.001 * double(s.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
     }
-    const bool screen = s.options.significance.model == SpModel::screen && s.updates > 0;
+    const bool screen = keeps_bounds(s);
     const auto [box_lo, box_hi] = swallowed_box(s, f, a, b, c);
     if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
         return worst;
@@ -2479,7 +2485,7 @@ static double face_bound(const NodeEraser::Impl &s, FH f) {
 // The nodes swallowed by the faces live node l seeds have weighted deviations <= bound under the
 // current view.
 static void remember_fan(const NodeEraser::Impl &s, LiveNode &l, double bound) {
-    if (s.options.significance.model == SpModel::screen && s.updates > 0) {
+    if (keeps_bounds(s)) {
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::log(bound) + 1e-6);
         l.seen_at = s.updates;
@@ -2490,12 +2496,12 @@ static void remember_fan(const NodeEraser::Impl &s, LiveNode &l, double bound) {
 // Whether the nodes swallowed by the faces live node l seeds cost at most `recover_above` by the
 // node's own bounds: its seen bound carried over, then its fan's box (remembered when it clears
 // them).
-static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_above) {
+static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_above,
+                        double log_recover) {
     if (l.seen_log < INFINITY) {
         if (const NodeEraser::Impl::Since *d = since(s, l.seen_at)) {
             const double nearest = glm::length(to_glm(l.p) - s.view.eye) - double(l.reach);
-            if (double(l.seen_log) + log_growth(s, *d, nearest, l.seen_cone) <=
-                std::log(recover_above))
+            if (double(l.seen_log) + log_growth(s, *d, nearest, l.seen_cone) <= log_recover)
                 return true;
         }
     }
@@ -2565,7 +2571,6 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     s.weigher = Weigher(&s.view, s.options.significance);
     new_weights(s, false);
     s.seen_views[++s.updates % Impl::k_seen_views] = view;
-    s.falloff = std::max(s.options.significance.falloff_deg, 1e-6) * M_PI / 180.0;
     for (std::uint32_t i = 0; i < Impl::k_seen_views; ++i) {
         const View &then = s.seen_views[i];
         Impl::Since &d = s.since[i];
@@ -2596,8 +2601,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     }
     std::vector<FH> work;
     std::vector<std::uint32_t> recovered;
+    const double log_recover = std::log(recover_above);
     for (LiveNode &l : s.live_list) {
-        if (visit[l.cell] && !fan_cleared(s, l, recover_above))
+        if (visit[l.cell] && !fan_cleared(s, l, recover_above, log_recover))
             seed_fan(s, l, recover_above, work);
         Cell &cell = s.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
@@ -2673,7 +2679,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
             const double least = double(l.star_dev) * weight_of(s, l.star);
             if (least > erase_below) {
                 s.heap.store_key(x, float_down(least));
-                remember_low(s, x, least);
+                remember_low(s, l, least);
                 continue;
             }
         }
