@@ -138,6 +138,27 @@ TEST(Hausdorff, ParallelRectanglesAreTheirSeparationApart) {
     EXPECT_NEAR(r.max_b_to_a, 0.5, 1e-6);
 }
 
+TEST(Hausdorff, ScreenSpaceDistanceIsSeenFromWhereEachSampleLies) {
+    // Looking straight down from 10 above the lower rectangle: its points are 0.5 from the upper
+    // one, seen at no less than 10 away; the upper one's at no less than 9.5.
+    View view;
+    view.eye = {1.0, 0.5, 10.0};
+    view.at = {1.0, 0.5, 0.0};
+    HausdorffOptions options;
+    options.view = &view;
+    const HausdorffResult r = hausdorff(rectangle(2, 1, 0), rectangle(2, 1, 0.5), options);
+    EXPECT_LE(r.max_screen_px_a_to_b, 0.5 * view.k() / 10.0 * (1.0 + 1e-12));
+    EXPECT_NEAR(r.max_screen_px_a_to_b, 0.5 * view.k() / 10.0, 1e-4 * view.k());
+    EXPECT_LE(r.max_screen_px_b_to_a, 0.5 * view.k() / 9.5 * (1.0 + 1e-12));
+    EXPECT_NEAR(r.max_screen_px_b_to_a, 0.5 * view.k() / 9.5, 1e-4 * view.k());
+    EXPECT_EQ(r.max_screen_px, r.max_screen_px_b_to_a);
+    // Looking away, no sample is inside the frustum.
+    view.at = {1.0, 0.5, 20.0};
+    EXPECT_EQ(hausdorff(rectangle(2, 1, 0), rectangle(2, 1, 0.5), options).max_screen_px, 0.0);
+    // Without a view there is no screen measure.
+    EXPECT_EQ(hausdorff(rectangle(2, 1, 0), rectangle(2, 1, 0.5)).max_screen_px, 0.0);
+}
+
 TEST(Hausdorff, SubsetIsOneSided) {
     // a = [0,1]x[0,1] lies inside b = [0,2]x[0,1]; b's far half is up to 1 away from a, and a
     // uniform point of b is on average 0.25 away.

@@ -324,6 +324,25 @@ TEST(RenderCli, CompareMeshesByHausdorffAndImage) {
     EXPECT_GT(j["image"]["differing_share"].get<double>(), 0.0);
 }
 
+// simplify on a surface mesh bounds every input vertex's screen-space distance to the output
+// surface; compare, measuring only the vertices (--samples 0), finds the same bound.
+TEST(RenderCli, SimplifiedMeshKeepsEveryReferenceVertexWithinTheBound) {
+    REQUIRE_RENDER();
+    const std::string dir = test::temp_dir(), fine = asset("bun_zipper_res2.ply");
+    // From the front, 2.5 bounding radii away (bench/ sees the bunny so).
+    const std::string camera = " --eye 0.0207,0.1602,0.3112 --at -0.01685,0.11015,-0.00155";
+    auto r = test::run_cli("simplify '" + fine + "'" + camera + " --tol 1 -o '" + dir + "/s.ply'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = test::run_cli("compare '" + dir + "/s.ply' '" + fine + "'" + camera +
+                      " --samples 0 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto g = nlohmann::json::parse(r.out)["geometry"];
+    EXPECT_LE(g["max_screen_px_reference_to_mesh"].get<double>(), 1.0 + 1e-9);
+    EXPECT_GT(g["max_screen_px_reference_to_mesh"].get<double>(), 0.5);
+    EXPECT_EQ(g["max_screen_px_mesh_to_reference"].get<double>(), 0.0); // its vertices are the
+                                                                        // reference's
+}
+
 TEST(RenderCli, BadRequestsFailWithOneLineAndNoFile) {
     const std::string dir = test::temp_dir();
     const std::string bunny = asset("bun_zipper_res4.ply");

@@ -90,12 +90,16 @@ static Register compare("compare", 70, [](CLI::App& cmd) {
         } else {
             HausdorffOptions ho;
             ho.samples = args->samples;
+            ho.view = &view;
             const HausdorffResult h = hausdorff(mesh, reference, ho);
             out["geometry"] = {{"hausdorff_max", h.max},
                                {"hausdorff_mean", h.mean},
                                {"hausdorff_rms", h.rms},
                                {"max_mesh_to_reference", h.max_a_to_b},
                                {"max_reference_to_mesh", h.max_b_to_a},
+                               {"max_screen_px", h.max_screen_px},
+                               {"max_screen_px_mesh_to_reference", h.max_screen_px_a_to_b},
+                               {"max_screen_px_reference_to_mesh", h.max_screen_px_b_to_a},
                                {"samples", h.samples}};
         }
 
@@ -150,10 +154,13 @@ static Register compare("compare", 70, [](CLI::App& cmd) {
         else
             std::printf(
                 "  Hausdorff: max %.4g, mean %.4g, RMS %.4g (mesh->ref %.4g, ref->mesh %.4g; "
-                "%lld samples)\n",
+                "%lld samples); screen-space max %.3g px (mesh->ref %.3g, ref->mesh %.3g)\n",
                 g["hausdorff_max"].get<double>(), g["hausdorff_mean"].get<double>(),
                 g["hausdorff_rms"].get<double>(), g["max_mesh_to_reference"].get<double>(),
-                g["max_reference_to_mesh"].get<double>(), g["samples"].get<long long>());
+                g["max_reference_to_mesh"].get<double>(), g["samples"].get<long long>(),
+                g["max_screen_px"].get<double>(),
+                g["max_screen_px_mesh_to_reference"].get<double>(),
+                g["max_screen_px_reference_to_mesh"].get<double>());
         std::printf("  image %dx%d: PSNR %s dB, %.4f%% of pixels differ by > %g grey levels, max "
                     "%g, mean %.4g\n",
                     image.width, image.height,

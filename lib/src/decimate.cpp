@@ -12,6 +12,7 @@
 // re-used by recover, so no library-side OpenMesh call (and no garbage collection) runs per erase.
 #include "tinlod/decimate.hpp"
 
+#include "closest_point.hpp"
 #include "lattice_rings.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/quadtree.hpp"
@@ -243,7 +244,7 @@ class NodeHeap {
 // A new triangle's barycentric weights and height as affine functions of the projected point.
 struct TriangleFrame {
     glm::dvec3 w0, w1;  // weight of corners a and b: dot(w, (x, y, 1)); c gets the rest
-    glm::dvec3 height;  // xy: z = dot(height, (x, y, 1)); else: the unit normal
+    glm::dvec3 height;  // xy: z = dot(height, (x, y, 1))
     double slope = 0.0; // xy: |grad z|
 };
 
@@ -713,11 +714,6 @@ static void frame_triangles(const NodeEraser::Impl &s, Hole &h) {
         TriangleFrame &f = h.frame[t];
         f = triangle_frame(h.q[tri.a], h.q[tri.b], h.q[tri.c], s.xy, h.p[tri.a].z, h.p[tri.b].z,
                            h.p[tri.c].z);
-        if (!s.xy) {
-            const glm::dvec3 n = glm::cross(h.p[tri.b] - h.p[tri.a], h.p[tri.c] - h.p[tri.a]);
-            const double len = glm::length(n);
-            f.height = len > 0.0 ? n / len : glm::dvec3(0.0);
-        }
     }
 }
 
@@ -756,7 +752,9 @@ class PlaneDev {
 };
 
 // The new triangle covering p (the one where p's smallest weight is largest), and p's deviation
-// from it: vertical for a TIN, from its plane otherwise. `inside`, if given, tells whether that
+// from it: vertical for a TIN, its distance to the triangle otherwise (a bound of its distance to
+// the surface; the distance to the triangle's plane is not, where the triangle is steep in the
+// projection plane). `inside`, if given, tells whether that
 // triangle covers p (projected, edges included) or is only the nearest.
 static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::dvec3 &p,
                            double &dev, bool *inside = nullptr) {
@@ -776,11 +774,9 @@ static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::
     }
     if (inside)
         *inside = best_min >= 0.0;
-    const TriangleFrame &f = h.frame[best];
-    if (s.xy)
-        dev = vertical_dev(f, p.x, p.y, p.z);
-    else
-        dev = std::abs(glm::dot(p - h.p[h.tri[best].a], f.height));
+    const RingTriangle &t = h.tri[best];
+    dev = s.xy ? vertical_dev(h.frame[best], p.x, p.y, p.z)
+               : triangle_distance(p, h.p[t.a], h.p[t.b], h.p[t.c]);
     return std::uint8_t(best);
 }
 
@@ -2375,7 +2371,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     // The deviation from f of a swallowed node at p, computed the same way by every scan.
     auto deviation_at = [&](const glm::dvec3 &p) {
         if (!s.xy)
-            return std::abs(glm::dot(p - a, normal)) / glm::length(normal);
+            return triangle_distance(p, a, b, c);
         const glm::dvec2 x(p.x, p.y);
         const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / normal.z;
         const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / normal.z;

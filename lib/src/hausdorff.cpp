@@ -2,8 +2,9 @@
 // Rocchini and Scopigno, "Metro: measuring error on simplified surfaces" (1998): area-weighted
 // samples on one surface, exact point-to-surface distance to the other. The nearest triangle is
 // found in a bounding-volume hierarchy (median split on the longest axis, best-first descent);
-// the point-triangle distance is Ericson's, "Real-Time Collision Detection" (2005), 5.1.5.
+// the point-triangle distance is Ericson's (closest_point.hpp).
 #include "tinlod/hausdorff.hpp"
+#include "closest_point.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
 
@@ -35,35 +36,6 @@ std::vector<Triangle> live_triangles(const Mesh& mesh) {
     return out;
 }
 
-glm::dvec3 closest_on_triangle(const glm::dvec3& p, const Triangle& t) {
-    const glm::dvec3 ab = t.b - t.a, ac = t.c - t.a, ap = p - t.a;
-    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0)
-        return t.a;
-    const glm::dvec3 bp = p - t.b;
-    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3)
-        return t.b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-        return t.a + ab * (d1 / (d1 - d3));
-    const glm::dvec3 cp = p - t.c;
-    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6)
-        return t.c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-        return t.a + ac * (d2 / (d2 - d6));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-        return t.b + (t.c - t.b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    const double denom = va + vb + vc;
-    // A degenerate (zero-area) triangle that reaches here is handled by its edges above.
-    if (!(denom > 0.0))
-        return t.a;
-    return t.a + ab * (vb / denom) + ac * (vc / denom);
-}
-
 double squared(const glm::dvec3& v) { return glm::dot(v, v); }
 
 class TriangleBvh {
@@ -84,8 +56,10 @@ class TriangleBvh {
             if (box_distance(node, p) >= best)
                 continue;
             if (node.count > 0) {
-                for (std::size_t i = node.first; i < node.first + node.count; ++i)
-                    best = std::min(best, squared(p - closest_on_triangle(p, triangles_[i])));
+                for (std::size_t i = node.first; i < node.first + node.count; ++i) {
+                    const Triangle& t = triangles_[i];
+                    best = std::min(best, squared(p - closest_on_triangle(p, t.a, t.b, t.c)));
+                }
                 continue;
             }
             const std::size_t near = node.first, far = node.right;
@@ -215,16 +189,20 @@ std::vector<double> distances(const std::vector<glm::dvec3>& points, const Trian
 }
 
 struct OneWay {
-    double max = 0.0, sum = 0.0, sum_squares = 0.0;
+    double max = 0.0, sum = 0.0, sum_squares = 0.0, max_screen_px = 0.0;
     std::size_t count = 0;
 };
 
-OneWay one_way(const std::vector<glm::dvec3>& points, const TriangleBvh& target) {
+OneWay one_way(const std::vector<glm::dvec3>& points, const TriangleBvh& target,
+               const View* view) {
     OneWay r;
-    for (double d : distances(points, target)) {
-        r.max = std::max(r.max, d);
-        r.sum += d;
-        r.sum_squares += d * d;
+    const std::vector<double> d = distances(points, target);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        r.max = std::max(r.max, d[i]);
+        r.sum += d[i];
+        r.sum_squares += d[i] * d[i];
+        if (view && view->in_frustum(points[i]))
+            r.max_screen_px = std::max(r.max_screen_px, view->screen_px(d[i], points[i]));
     }
     r.count = points.size();
     return r;
@@ -238,12 +216,15 @@ HausdorffResult hausdorff(const Mesh& a, const Mesh& b, const HausdorffOptions& 
         throw Error("hausdorff", "a mesh has no faces");
     const std::vector<glm::dvec3> pa = sample_surface(a, ta, options.samples, options.seed);
     const std::vector<glm::dvec3> pb = sample_surface(b, tb, options.samples, options.seed + 1);
-    const OneWay ab = one_way(pa, TriangleBvh(std::move(tb)));
-    const OneWay ba = one_way(pb, TriangleBvh(std::move(ta)));
+    const OneWay ab = one_way(pa, TriangleBvh(std::move(tb)), options.view);
+    const OneWay ba = one_way(pb, TriangleBvh(std::move(ta)), options.view);
     HausdorffResult r;
     r.max_a_to_b = ab.max;
     r.max_b_to_a = ba.max;
     r.max = std::max(ab.max, ba.max);
+    r.max_screen_px_a_to_b = ab.max_screen_px;
+    r.max_screen_px_b_to_a = ba.max_screen_px;
+    r.max_screen_px = std::max(ab.max_screen_px, ba.max_screen_px);
     r.mean_a_to_b = ab.count ? ab.sum / double(ab.count) : 0.0;
     r.mean_b_to_a = ba.count ? ba.sum / double(ba.count) : 0.0;
     r.samples = std::int64_t(ab.count + ba.count);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "tinlod/tin.hpp"
+#include "tinlod/view.hpp"
 
 #include <cstdint>
 
@@ -13,6 +14,9 @@ struct HausdorffOptions {
     std::int64_t samples = 200000; // points per mesh spread over its faces by area (its vertices
                                    // are added to these)
     std::uint64_t seed = 1;        // the same seed gives the same points, so the same result
+    // With a view: the screen-space distance too, each sample's distance seen from where it lies
+    // (d * k / OD, View::screen_px), over the samples of both directions inside the frustum.
+    const View* view = nullptr;
 };
 
 struct HausdorffResult {
@@ -24,6 +28,9 @@ struct HausdorffResult {
     double mean_a_to_b = 0.0;
     double mean_b_to_a = 0.0;
     std::int64_t samples = 0; // points measured, both directions together
+    double max_screen_px = 0.0; // with a view: the largest screen-space distance, pixels
+    double max_screen_px_a_to_b = 0.0; // of a's samples to b's surface
+    double max_screen_px_b_to_a = 0.0;
 };
 
 // Faces with the deleted status are ignored. Throws Error("hausdorff", ...) when a mesh has no
