@@ -754,8 +754,8 @@ class PlaneDev {
 // The new triangle covering p (the one where p's smallest weight is largest), and p's deviation
 // from it: vertical for a TIN, its distance to the triangle otherwise (a bound of its distance to
 // the surface; the distance to the triangle's plane is not, where the triangle is steep in the
-// projection plane). `inside`, if given, tells whether that
-// triangle covers p (projected, edges included) or is only the nearest.
+// projection plane). `inside`, if given, tells whether that triangle covers p (projected, edges
+// included) or is only the nearest.
 static std::uint8_t locate(const NodeEraser::Impl &s, const Hole &h, const glm::dvec3 &p,
                            double &dev, bool *inside = nullptr) {
     const glm::dvec2 x2 = project(h, p);
