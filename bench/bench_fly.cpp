@@ -478,10 +478,11 @@ void write_csv(const std::string &file, const Flight &flight) {
 void write_series(const std::string &file, const std::vector<PathResult> &results) {
     std::ofstream out(file);
     for (const PathResult &p : results) {
+        if (&p != &results.front())
+            out << "\n\n"; // between blocks only: a trailing one would count as an empty block
         out << "\"" << p.name << "\" \"\" \"\"\n";
         for (const FrameRow &r : p.rows)
             out << r.changed() << " " << r.stats.nodes << " " << r.cpu_ms << "\n";
-        out << "\n\n";
     }
 }
 

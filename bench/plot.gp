@@ -45,7 +45,7 @@ set key inside right bottom
 set title 'against the nodes the frame changed'
 set xlabel 'nodes changed (erased + recovered)'
 set ylabel 'update CPU ms'
-stats tmp.'/flight.dat' nooutput
+stats tmp.'/flight.dat' using 1 nooutput # one column: the title lines are no data
 plot for [i=0:STATS_blocks-1] tmp.'/flight.dat' index i using 1:3 with points pointsize 0.8 \
      title columnheader(1)
 set title 'against the TIN size'
