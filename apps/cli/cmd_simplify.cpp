@@ -148,10 +148,13 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             {"peak_rss_mb", peak_rss_mb()}};
         if (!args->stats.empty())
             write_json(args->stats, stats);
+        // A mesh's deviation is vertical only when it is a TIN (a node's distance to the surface
+        // otherwise, see EraseStats::max_vertical).
         std::printf("%s: %zu nodes, %zu triangles (from %lld nodes) in %.0f ms; max error %.3g px, "
-                    "%.3g vertical\n",
+                    "%.3g %s\n",
                     args->output.c_str(), mesh.n_vertices(), mesh.n_faces(),
-                    static_cast<long long>(input_nodes), ms_simplify, max_screen, max_vertical);
+                    static_cast<long long>(input_nodes), ms_simplify, max_screen, max_vertical,
+                    hf ? "vertical" : "deviation");
     };
 });
 

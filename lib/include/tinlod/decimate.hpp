@@ -104,7 +104,8 @@ struct EraseStats {
         0.0; // the bound reached: max over swallowed nodes of deviation * weight (tolerance units)
     double max_screen_px =
         0.0; // max over swallowed nodes inside the frustum of deviation * k / OD (0 without a view)
-    double max_vertical = 0.0; // max deviation over all swallowed nodes, world units
+    double max_vertical = 0.0; // max deviation over all swallowed nodes, world units: vertical in
+                               // a TIN, the distance to the covering triangle on a surface mesh
     double ms = 0.0;           // wall time of the erase
 };
 
