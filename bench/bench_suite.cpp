@@ -12,6 +12,8 @@
 //   scaling    retrieval and erase time against input size and output size (scaling.csv)
 //   max_error  view-independent erase (--max-error) against delatin at the same bound
 //              (max_error.csv)
+//   mesh_taus  the bunny at several tau: tinlod's erase and meshoptimizer at its node count, by
+//              the screen-space Hausdorff distance (mesh_taus.csv)
 // then RESULTS.md (headline claims, tables, the time each section took), and the series the plots
 // read (into --tmp). The flight benchmark runs apart (bench_fly); --flight hands its summary in, so
 // its claims and section join RESULTS.md.
@@ -670,7 +672,7 @@ bool martini_fits(const Heightfield &hf) {
 
 struct Suite {
     SuiteOptions options;
-    std::vector<json> compare, frontier, scaling, max_error;
+    std::vector<json> compare, frontier, scaling, max_error, mesh_taus;
     std::string frontier_input;
     json flight;                                         // bench_fly's summary, or null
     std::vector<std::pair<std::string, double>> seconds; // wall time of each section
@@ -752,6 +754,23 @@ struct Suite {
               std::pair{"OM McDecimater+Quadric", Stock::mc_quadric},
               std::pair{"OM Decimater+tinlod DistanceDecay", Stock::distance_decay}})
             compare.push_back(run_case(name, [kind](const Case &k) { return openmesh(k, kind); }, c));
+        // The same against the strongest peer at several tau: one node count is one sample of a
+        // maximum over the surface.
+        const std::vector<double> taus = options.quick ? std::vector<double>{0.5, 2.0}
+                                                       : std::vector<double>{0.5, 1, 2, 4};
+        for (const double tau : taus) {
+            Case t = make_case(in, "front", c.view);
+            t.tol = tau;
+            t.reps = 1;
+            const json &ours = mesh_taus.emplace_back(run_case("tinlod erase (view)", [](const Case &k) {
+                return erase_grid(k, SpModel::screen);
+            }, t));
+            if (ours.contains("error"))
+                continue;
+            t.target_nodes = ours["nodes"];
+            t.target_tris = ours["tris"];
+            mesh_taus.push_back(run_case("meshopt_simplify", meshopt, t));
+        }
     }
 
     // Error against triangle count: tinlod's pipeline at several tau, every other contender to
@@ -957,16 +976,21 @@ std::string machine() {
            " (shared machine: other work ran beside the suite)";
 }
 
-// One markdown table of a compare case.
+// One markdown table of a compare case; `by_tau`: a first column with each row's tau, and no
+// title (the rows of several tau).
 void compare_table(std::ostream &md, const std::vector<json> &rows, const std::string &input,
-                   const std::string &view) {
-    md << "\n**" << input << ", view " << view << "**\n\n"
+                   const std::string &view, bool by_tau = false) {
+    if (!by_tau)
+        md << "\n**" << input << ", view " << view << "**\n";
+    md << "\n" << (by_tau ? "| τ px " : "")
        << "| contender | wall ms median (min–max) | CPU ms | M input tris/s (CPU) | × OM Quadric | peak MB (+ over "
           "input) | nodes | tris | L∞ m | RMS m | max px | folded | PSNR dB |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << (by_tau ? "|---" : "") << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const json &r : rows) {
         if (r["input"] != input || r["view"] != view)
             continue;
+        if (by_tau)
+            md << "| " << cell(r, "tol") << " ";
         if (r.contains("error")) {
             md << "| " << cell(r, "contender") << " | failed: " << cell(r, "error")
                << " ||||||||||||\n";
@@ -1112,6 +1136,38 @@ std::vector<Claim> claims(const Suite &s) {
                                  : "behind: " + worse + " has " + fmt("%.2f×", worst) +
                                        " tinlod's error"});
     }
+    // The bunny at several tau against meshoptimizer at the same node count.
+    {
+        std::string text;
+        int ahead = 0, measured = 0;
+        for (const json &r : s.mesh_taus) {
+            if (r["contender"] != "tinlod erase (view)" || r.contains("error"))
+                continue;
+            const json *peer = nullptr;
+            for (const json &q : s.mesh_taus)
+                if (q["contender"] == "meshopt_simplify" && q["tol"] == r["tol"] &&
+                    !q.contains("error"))
+                    peer = &q;
+            if (!peer)
+                continue;
+            const double x = (*peer)["max_screen_px"].get<double>() /
+                             std::max(1e-9, r["max_screen_px"].get<double>());
+            text += (text.empty() ? "" : "; ") + std::string("τ ") + cell(r, "tol") + ": " +
+                    fmt("%.2f", r["max_screen_px"]) + " px against " +
+                    fmt("%.2f", (*peer)["max_screen_px"]) + " px (" + fmt("%.2f×", x) + ")";
+            ++measured;
+            ahead += x > 1;
+        }
+        if (measured > 0)
+            out.push_back({"surface mesh: lower screen error than meshopt_simplify at equal node "
+                           "count, at several τ (bunny, front; screen-space Hausdorff, tinlod "
+                           "against meshopt, meshopt's as × tinlod's)",
+                           text,
+                           ahead == measured ? "ahead at every τ"
+                           : ahead == 0      ? "behind at every τ"
+                                             : "ahead at " + std::to_string(ahead) + " of " +
+                                                   std::to_string(measured) + " τ"});
+    }
     // tau = 1: retrieve + erase against retrieval alone.
     for (const auto &[in, view] : cases) {
         const json *a = find_row(s.compare, in, view, "tinlod retrieve");
@@ -1194,6 +1250,9 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
             cases.push_back(case_of(r));
     for (const auto &[in, view] : cases)
         compare_table(md, s.compare, in, view);
+    md << "\n**bunny, view front, at several τ (mesh_taus.csv)**: tinlod's erase at each τ, "
+          "meshoptimizer to its node count; one repetition each.\n";
+    compare_table(md, s.mesh_taus, "bunny", "front", true);
     md << "\n## Quality frontier (frontier.csv)\n\n![error against triangle count](frontier.png)\n\n"
           "Max screen error (px, log) against output triangles (log) on "
        << s.frontier_input << " from the low view: tinlod's retrieve+erase at τ ∈ {"
@@ -1406,10 +1465,12 @@ void run(const SuiteOptions &options) {
     derive(s.frontier);
     derive(s.scaling);
     derive(s.max_error);
+    derive(s.mesh_taus);
     write_csv(options.out + "/compare.csv", s.compare);
     write_csv(options.out + "/frontier.csv", s.frontier);
     write_csv(options.out + "/scaling.csv", s.scaling);
     write_csv(options.out + "/max_error.csv", s.max_error);
+    write_csv(options.out + "/mesh_taus.csv", s.mesh_taus);
     std::ofstream(options.tmp + "/frontier_input.txt") << s.frontier_input;
     write_series(options.tmp + "/frontier.dat", s.frontier,
                  [](const json &r) { return r["contender"].get<std::string>(); }, "tris",
