@@ -918,7 +918,8 @@ void write_csv(const std::string &path, const std::vector<json> &rows) {
     }
 }
 
-// gnuplot series: one block per group (title line first), blocks two blank lines apart.
+// gnuplot series: one block per group (title line first), blocks two blank lines apart (between
+// blocks only: a trailing pair would count as an empty block).
 void write_series(const std::string &path, const std::vector<json> &rows,
                   const std::function<std::string(const json &)> &group, const std::string &x,
                   const std::string &y) {
@@ -938,10 +939,11 @@ void write_series(const std::string &path, const std::vector<json> &rows,
     for (const auto &g : order) {
         auto &points = series[g];
         std::sort(points.begin(), points.end());
+        if (&g != &order.front())
+            out << "\n\n";
         out << "\"" << g << "\" \"\"\n";
         for (auto [px, py] : points)
             out << px << " " << py << "\n";
-        out << "\n\n";
     }
 }
 

@@ -17,7 +17,7 @@ set output out.'/frontier.png'
 set title 'Quality frontier: '.frontier.', low oblique view'
 set xlabel 'output triangles'
 set ylabel 'max screen-space error (px, exhaustive over the DEM)'
-stats tmp.'/frontier.dat' nooutput
+stats tmp.'/frontier.dat' using 1 nooutput # one column: the title lines are no data
 plot for [i=0:STATS_blocks-1] tmp.'/frontier.dat' index i using 1:2 with linespoints \
      pointsize 0.8 title columnheader(1)
 
@@ -27,7 +27,7 @@ set key inside left top
 set title 'retrieval (τ = 0.5 … 4 px, low oblique view)'
 set xlabel 'output triangles'
 set ylabel 'CPU ms per view'
-stats tmp.'/scaling_retrieve.dat' nooutput
+stats tmp.'/scaling_retrieve.dat' using 1 nooutput
 plot for [i=0:STATS_blocks-1] tmp.'/scaling_retrieve.dat' index i using 1:2 with linespoints \
      title columnheader(1)
 set title 'node erase of the whole grid TIN (τ = 1 px)'
