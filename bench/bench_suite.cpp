@@ -762,9 +762,8 @@ struct Suite {
             Case t = make_case(in, "front", c.view);
             t.tol = tau;
             t.reps = 1;
-            const json &ours = mesh_taus.emplace_back(run_case("tinlod erase (view)", [](const Case &k) {
-                return erase_grid(k, SpModel::screen);
-            }, t));
+            const auto erase = [](const Case &k) { return erase_grid(k, SpModel::screen); };
+            const json &ours = mesh_taus.emplace_back(run_case("tinlod erase (view)", erase, t));
             if (ours.contains("error"))
                 continue;
             t.target_nodes = ours["nodes"];
