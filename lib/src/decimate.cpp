@@ -2262,8 +2262,9 @@ static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const 
 }
 
 // The box face f's swallowed nodes lie in (f's corners a, b, c): within its largest deviation of it
-// (with a margin for the float rounding of that deviation), a TIN's inside it in xy, a surface
-// mesh's along its normal, so the box widens on every axis.
+// (with a margin for the float rounding of that deviation), a TIN's inside it in xy and vertically
+// off it, a surface mesh's at that distance of it in any direction, so the box widens on every
+// axis.
 static std::pair<glm::dvec3, glm::dvec3> swallowed_box(const NodeEraser::Impl &s, FH f,
                                                        const glm::dvec3 &a, const glm::dvec3 &b,
                                                        const glm::dvec3 &c) {
