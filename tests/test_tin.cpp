@@ -119,3 +119,126 @@ TEST(GridTin, SurfaceHeightMatchesTheTinAndRefusesEyesInside) {
     EXPECT_NO_THROW(check_eye_above(hf, {x, y, z + 1.0}, "--eye"));
     EXPECT_NO_THROW(check_eye_above(hf, {-500.0, y, 0.0}, "--eye")); // outside, beside the terrain
 }
+
+namespace {
+
+// Every face's corners from its half-edge (face order and rotation kept), each vertex's ring as
+// the sorted list of its neighbours, and the boundary vertices: what add_face and add_triangles
+// must agree on, whatever order they give the edges in.
+struct Topology {
+    std::vector<std::array<int, 3>> faces;
+    std::vector<std::vector<int>> rings;
+    std::vector<bool> boundary;
+    bool operator==(const Topology&) const = default;
+};
+
+Topology topology(const Mesh& mesh) {
+    Topology t;
+    for (auto f : mesh.faces()) {
+        auto h = mesh.halfedge_handle(f);
+        std::array<int, 3> c{};
+        for (int& k : c) {
+            k = mesh.from_vertex_handle(h).idx();
+            h = mesh.next_halfedge_handle(h);
+        }
+        EXPECT_EQ(h, mesh.halfedge_handle(f)); // a triangle's half-edges close after three
+        t.faces.push_back(c);
+    }
+    for (auto v : mesh.vertices()) {
+        std::vector<int> ring;
+        for (auto w : mesh.vv_range(v))
+            ring.push_back(w.idx());
+        const std::size_t walked = ring.size();
+        std::sort(ring.begin(), ring.end());
+        // The circulator walks the whole fan from the vertex's outgoing half-edge: each neighbour
+        // once, none missed because the walk started inside a boundary fan.
+        EXPECT_EQ(std::unique(ring.begin(), ring.end()), ring.end());
+        EXPECT_EQ(walked, ring.size());
+        t.rings.push_back(ring);
+        t.boundary.push_back(mesh.is_boundary(v));
+    }
+    return t;
+}
+
+Mesh with_vertices_of(const Mesh& mesh) {
+    Mesh out;
+    for (auto v : mesh.vertices())
+        out.add_vertex(mesh.point(v));
+    return out;
+}
+
+} // namespace
+
+TEST(AddTriangles, BuildsTheMeshAddFaceBuilds) {
+    // A real DEM's grid (boundary all round), then the same with a hole: a second boundary loop,
+    // and vertices on it whose first face in the list is not next to the hole.
+    const Heightfield hf = load_heightfield(asset("crater_u16.png"));
+    const Mesh grid = grid_tin(hf);
+    for (const bool hole : {false, true}) {
+        SCOPED_TRACE(hole ? "with a hole" : "whole");
+        Mesh by_face = with_vertices_of(grid), by_array = with_vertices_of(grid);
+        std::vector<std::uint32_t> corners;
+        for (auto f : grid.faces()) {
+            const glm::dvec3 c = (face_corners(grid, f)[0] + face_corners(grid, f)[1] +
+                                  face_corners(grid, f)[2]) / 3.0;
+            if (hole && std::abs(c.x / hf.dx - hf.width / 2.0) < hf.width / 5.0 &&
+                std::abs(c.y / hf.dy - hf.height / 2.0) < hf.height / 7.0)
+                continue;
+            for (auto v : grid.fv_range(f))
+                corners.push_back(std::uint32_t(v.idx()));
+        }
+        for (std::size_t i = 0; i < corners.size(); i += 3)
+            by_face.add_face(Mesh::VertexHandle(int(corners[i])),
+                             Mesh::VertexHandle(int(corners[i + 1])),
+                             Mesh::VertexHandle(int(corners[i + 2])));
+        add_triangles(by_array, corners);
+        ASSERT_EQ(by_array.n_faces(), by_face.n_faces());
+        EXPECT_EQ(by_array.n_edges(), by_face.n_edges());
+        EXPECT_TRUE(topology(by_array) == topology(by_face));
+        // Every boundary vertex leaves by a boundary half-edge, as OpenMesh's edits expect (those
+        // in the hole have none).
+        for (auto v : by_array.vertices()) {
+            if (!by_array.is_isolated(v) && by_array.is_boundary(v)) {
+                EXPECT_TRUE(by_array.is_boundary(by_array.halfedge_handle(v)));
+            }
+        }
+        // Boundary loops are linked: next and prev of a boundary half-edge follow the loop.
+        for (auto h : by_array.halfedges()) {
+            const auto next = by_array.next_halfedge_handle(h);
+            EXPECT_EQ(by_array.prev_halfedge_handle(next), h);
+            EXPECT_EQ(by_array.from_vertex_handle(next), by_array.to_vertex_handle(h));
+            EXPECT_EQ(by_array.is_boundary(next), by_array.is_boundary(h));
+        }
+        // OpenMesh's own edits then agree: the same face deleted in both, garbage collected.
+        for (Mesh* m : {&by_face, &by_array}) {
+            m->request_face_status();
+            m->request_edge_status();
+            m->request_vertex_status();
+            m->delete_face(Mesh::FaceHandle(0));
+            m->garbage_collection();
+        }
+        EXPECT_TRUE(topology(by_array) == topology(by_face));
+    }
+}
+
+TEST(AddTriangles, RefusesWhatIsNotAnOrientedManifold) {
+    Mesh square;
+    for (const auto& p : {Mesh::Point(0, 0, 0), Mesh::Point(1, 0, 0), Mesh::Point(1, 1, 0),
+                          Mesh::Point(0, 1, 0), Mesh::Point(2, 2, 0), Mesh::Point(2, 1, 0)})
+        square.add_vertex(p);
+    const auto fails = [&](std::vector<std::uint32_t> corners) {
+        Mesh m = square;
+        EXPECT_THROW(add_triangles(m, corners), std::invalid_argument);
+    };
+    fails({0, 1, 2, 0, 2, 3, 3, 2, 0});      // edge 0 -> 2... used twice in the same direction
+    fails({0, 1, 2, 0, 3, 2});               // a face flipped against its neighbour
+    fails({0, 1, 2, 2, 5, 4});               // two fans meet at vertex 2 only (a bow-tie)
+    fails({0, 1, 6});                        // a corner out of range
+    fails({0, 1, 1});                        // a repeated corner
+    fails({0, 1});                           // a partial triangle
+    Mesh m = square;
+    add_triangles(m, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
+    EXPECT_EQ(m.n_faces(), 2u);
+    EXPECT_EQ(m.n_edges(), 5u);
+    EXPECT_THROW(add_triangles(m, std::vector<std::uint32_t>{0, 1, 2}), std::invalid_argument);
+}

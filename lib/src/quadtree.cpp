@@ -665,9 +665,10 @@ Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame) {
         assert(it != index.end() && it->first == id);
         return Mesh::VertexHandle(it->second);
     };
-    const auto& t = retrieval.triangles;
-    for (std::size_t n = 0; n + 2 < t.size(); n += 3)
-        mesh.add_face(handle(t[n]), handle(t[n + 1]), handle(t[n + 2]));
+    std::vector<std::uint32_t> corners(retrieval.triangles.size());
+    for (std::size_t n = 0; n < corners.size(); ++n)
+        corners[n] = std::uint32_t(handle(retrieval.triangles[n]).idx());
+    add_triangles(mesh, corners);
     return mesh;
 }
 
@@ -687,11 +688,13 @@ Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
     for (std::size_t k = 0; k < order.size(); ++k)
         order[k] = std::uint64_t{std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]})} << 32 | k;
     std::sort(order.begin(), order.end());
+    std::vector<std::uint32_t> corners;
+    corners.reserve(t.size());
     for (const std::uint64_t key : order) {
         const std::size_t k = key & 0xffffffffu;
-        mesh.add_face(Mesh::VertexHandle(int(t[3 * k])), Mesh::VertexHandle(int(t[3 * k + 1])),
-                      Mesh::VertexHandle(int(t[3 * k + 2])));
+        corners.insert(corners.end(), {t[3 * k], t[3 * k + 1], t[3 * k + 2]});
     }
+    add_triangles(mesh, corners);
     return mesh;
 }
 

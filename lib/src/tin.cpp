@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace tinlod {
@@ -24,6 +26,84 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh) {
     return handle;
 }
 
+void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
+    using HH = Mesh::HalfedgeHandle;
+    if (corners.size() % 3 != 0 || mesh.n_edges() != 0 || mesh.n_faces() != 0)
+        throw std::invalid_argument("add_triangles: a mesh with faces, or a partial triangle");
+    const std::size_t n = mesh.n_vertices(), sides = corners.size(), faces = sides / 3;
+    if (sides >= std::size_t(std::numeric_limits<std::int32_t>::max()) / 2)
+        throw std::invalid_argument("add_triangles: too many triangles");
+    // Side i of face i / 3 runs from corners[i] to the next corner of its face.
+    const auto to = [&](std::size_t i) { return corners[i % 3 == 2 ? i - 2 : i + 1]; };
+    // The sides leaving each vertex (counting sort by origin), to find each side's twin.
+    std::vector<std::uint32_t> first(n + 1, 0);
+    for (std::size_t i = 0; i < sides; ++i) {
+        if (corners[i] >= n || corners[i] == to(i))
+            throw std::invalid_argument("add_triangles: a corner out of range or repeated");
+        ++first[corners[i] + 1];
+    }
+    for (std::size_t v = 0; v < n; ++v)
+        first[v + 1] += first[v];
+    std::vector<std::uint32_t> leaving(sides), ends(sides), fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < sides; ++i) {
+        const std::uint32_t k = fill[corners[i]]++;
+        leaving[k] = std::uint32_t(i);
+        ends[k] = to(i);
+    }
+    // Each side's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the
+    // boundary half-edge running the other way when it has none).
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> half(sides, none);
+    std::vector<std::uint32_t> open; // sides without a twin, by edge
+    std::uint32_t edges = 0;
+    for (std::size_t i = 0; i < sides; ++i) {
+        const std::uint32_t a = corners[i], b = to(i);
+        for (std::uint32_t k = first[a]; k < first[a + 1]; ++k)
+            if (ends[k] == b && leaving[k] != i)
+                throw std::invalid_argument("add_triangles: a directed edge used twice");
+        if (half[i] != none)
+            continue;
+        half[i] = 2 * edges;
+        std::uint32_t twin = none;
+        for (std::uint32_t k = first[b]; k < first[b + 1]; ++k)
+            if (ends[k] == a)
+                twin = leaving[k];
+        if (twin != none)
+            half[twin] = 2 * edges + 1;
+        else
+            open.push_back(std::uint32_t(i));
+        ++edges;
+    }
+    mesh.resize(n, edges, faces);
+    for (std::size_t f = 0; f < faces; ++f) {
+        const Mesh::FaceHandle fh{int(f)};
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t i = 3 * f + std::size_t(k);
+            const HH h{int(half[i])};
+            mesh.set_vertex_handle(h, Mesh::VertexHandle(int(to(i))));
+            mesh.set_face_handle(h, fh);
+            mesh.set_next_halfedge_handle(h, HH(int(half[k == 2 ? i - 2 : i + 1])));
+            mesh.set_halfedge_handle(Mesh::VertexHandle(int(corners[i])), h);
+        }
+        mesh.set_halfedge_handle(fh, HH(int(half[3 * f + 2]))); // as add_face: the last side
+    }
+    // Boundary half-edges (no face) leave the ends of the sides without a twin; each boundary
+    // vertex keeps its one boundary half-edge as its outgoing one and links the next to it.
+    std::vector<std::uint8_t> boundary_out(n, 0);
+    for (const std::uint32_t i : open) {
+        const HH h(int(half[i] ^ 1u));
+        const std::uint32_t b = to(i);
+        mesh.set_vertex_handle(h, Mesh::VertexHandle(int(corners[i])));
+        if (boundary_out[b]++)
+            throw std::invalid_argument("add_triangles: a vertex joins two boundary fans");
+        mesh.set_halfedge_handle(Mesh::VertexHandle(int(b)), h);
+    }
+    for (const std::uint32_t i : open) {
+        const HH h(int(half[i] ^ 1u));
+        mesh.set_next_halfedge_handle(h, mesh.halfedge_handle(Mesh::VertexHandle(int(corners[i]))));
+    }
+}
+
 Mesh grid_vertices(const Heightfield& hf) {
     assert(hf.width >= 2 && hf.height >= 2);
     Mesh mesh;
@@ -40,20 +120,19 @@ Mesh grid_vertices(const Heightfield& hf) {
 
 Mesh grid_tin(const Heightfield& hf) {
     Mesh mesh = grid_vertices(hf);
-    const int w = hf.width;
-    for (int r = 0; r + 1 < hf.height; ++r)
-        for (int c = 0; c + 1 < w; ++c) {
-            const Mesh::VertexHandle a(r * w + c), b(r * w + c + 1), d(r * w + w + c),
-                e(r * w + w + c + 1);
+    const std::uint32_t w = std::uint32_t(hf.width);
+    std::vector<std::uint32_t> corners;
+    corners.reserve(6 * std::size_t(w - 1) * std::size_t(hf.height - 1));
+    for (std::uint32_t r = 0; r + 1 < std::uint32_t(hf.height); ++r)
+        for (std::uint32_t c = 0; c + 1 < w; ++c) {
+            const std::uint32_t a = r * w + c, b = a + 1, d = a + w, e = d + 1;
             // Alternate the diagonal so the grid has no preferred direction.
-            if ((r + c) % 2 == 0) {
-                mesh.add_face(a, b, e);
-                mesh.add_face(a, e, d);
-            } else {
-                mesh.add_face(a, b, d);
-                mesh.add_face(b, e, d);
-            }
+            if ((r + c) % 2 == 0)
+                corners.insert(corners.end(), {a, b, e, a, e, d});
+            else
+                corners.insert(corners.end(), {a, b, d, b, e, d});
         }
+    add_triangles(mesh, corners);
     return mesh;
 }
 
@@ -104,8 +183,10 @@ Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& t
         }
         return it->second;
     };
-    for (std::size_t i = 0; i < triangles.size(); i += 3)
-        mesh.add_face(vertex(triangles[i]), vertex(triangles[i + 1]), vertex(triangles[i + 2]));
+    std::vector<std::uint32_t> corners(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+        corners[i] = std::uint32_t(vertex(triangles[i]).idx());
+    add_triangles(mesh, corners);
     return mesh;
 }
 
