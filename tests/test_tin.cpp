@@ -242,3 +242,17 @@ TEST(AddTriangles, RefusesWhatIsNotAnOrientedManifold) {
     EXPECT_EQ(m.n_edges(), 5u);
     EXPECT_THROW(add_triangles(m, std::vector<std::uint32_t>{0, 1, 2}), std::invalid_argument);
 }
+
+TEST(AddTriangles, IndexListsThatAreNotManifoldsGoInFaceByFace) {
+    // A peer's output may repeat a directed edge: tin_from_indices keeps what OpenMesh's add_face
+    // accepts, here the first two of three triangles over a 3x2 grid (the third reuses 0 -> 1).
+    Heightfield hf;
+    hf.width = 3;
+    hf.height = 2;
+    hf.z = {0, 1, 2, 3, 4, 5};
+    const Mesh mesh = tin_from_indices(hf, {0, 1, 4, 0, 4, 3, 0, 1, 3});
+    EXPECT_EQ(mesh.n_faces(), 2u);
+    EXPECT_EQ(mesh.n_vertices(), 4u);
+    const Mesh clean = tin_from_indices(hf, {0, 1, 4, 0, 4, 3});
+    EXPECT_EQ(topology(mesh), topology(clean));
+}

@@ -74,6 +74,12 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
             open.push_back(std::uint32_t(i));
         ++edges;
     }
+    // Each boundary vertex must have one boundary half-edge leaving it (checked before the mesh
+    // changes, so a refused list leaves it as it was).
+    std::vector<std::uint8_t> boundary_out(n, 0);
+    for (const std::uint32_t i : open)
+        if (boundary_out[to(i)]++)
+            throw std::invalid_argument("add_triangles: a vertex joins two boundary fans");
     mesh.resize(n, edges, faces);
     for (std::size_t f = 0; f < faces; ++f) {
         const Mesh::FaceHandle fh{int(f)};
@@ -89,14 +95,10 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
     }
     // Boundary half-edges (no face) leave the ends of the sides without a twin; each boundary
     // vertex keeps its one boundary half-edge as its outgoing one and links the next to it.
-    std::vector<std::uint8_t> boundary_out(n, 0);
     for (const std::uint32_t i : open) {
         const HH h(int(half[i] ^ 1u));
-        const std::uint32_t b = to(i);
         mesh.set_vertex_handle(h, Mesh::VertexHandle(int(corners[i])));
-        if (boundary_out[b]++)
-            throw std::invalid_argument("add_triangles: a vertex joins two boundary fans");
-        mesh.set_halfedge_handle(Mesh::VertexHandle(int(b)), h);
+        mesh.set_halfedge_handle(Mesh::VertexHandle(int(to(i))), h);
     }
     for (const std::uint32_t i : open) {
         const HH h(int(half[i] ^ 1u));
@@ -186,7 +188,15 @@ Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& t
     std::vector<std::uint32_t> corners(triangles.size());
     for (std::size_t i = 0; i < triangles.size(); ++i)
         corners[i] = std::uint32_t(vertex(triangles[i]).idx());
-    add_triangles(mesh, corners);
+    try {
+        add_triangles(mesh, corners);
+    } catch (const std::invalid_argument&) {
+        // Not an oriented manifold (a peer's output may not be): face by face, as OpenMesh takes
+        // them.
+        for (std::size_t i = 0; i < corners.size(); i += 3)
+            mesh.add_face(Mesh::VertexHandle(int(corners[i])), Mesh::VertexHandle(int(corners[i + 1])),
+                          Mesh::VertexHandle(int(corners[i + 2])));
+    }
     return mesh;
 }
 

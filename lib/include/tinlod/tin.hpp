@@ -37,9 +37,10 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh);
 // yet, building the half-edge arrays in one pass instead of add_face per triangle (which searches
 // each corner's fan and reallocates as it goes: about 10x slower for a grid TIN). The result is
 // the mesh add_face would give, up to the order of edges and each vertex's first outgoing
-// half-edge (a boundary one on the boundary, as OpenMesh requires). Throws std::invalid_argument
-// unless the triangles are consistently oriented and form a manifold: a corner out of range, a
-// repeated corner, a directed edge used twice or a vertex joining two boundary fans.
+// half-edge (a boundary one on the boundary, as OpenMesh requires). Throws std::invalid_argument,
+// leaving the mesh as it was, unless the triangles are consistently oriented and form a manifold:
+// a corner out of range, a repeated corner, a directed edge used twice or a vertex joining two
+// boundary fans.
 void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners);
 
 // Full-resolution grid TIN: W*H nodes, 2(W-1)(H-1) triangles, every triangle counter-clockwise
@@ -59,7 +60,8 @@ void check_eye_above(const Heightfield& hf, const glm::dvec3& eye, const std::st
 std::array<glm::dvec3, 3> face_corners(const Mesh& mesh, Mesh::FaceHandle f);
 
 // Triangles from a compact index list (3 node ids per triangle) over the heightfield samples;
-// only the referenced samples become nodes (origin property = sample id).
+// only the referenced samples become nodes (origin property = sample id). A list that is not an
+// oriented manifold (add_triangles) is added face by face, less the faces OpenMesh refuses.
 Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& triangles);
 
 } // namespace tinlod
