@@ -1,6 +1,7 @@
 // Google Benchmark micro-benchmarks of tinlod's hot paths: SP evaluation (significance.hpp), ring
-// re-triangulation (triangulate_ring), quad-tree traversal (QuadTreeLod::retrieve), node erase and
-// recovery (NodeEraser), on the real SRTM tile N42E001 (meshes/) and its 513² crop.
+// re-triangulation (triangulate_ring), quad-tree traversal (QuadTreeLod::retrieve), the grid TIN's
+// mesh (grid_tin), node erase and recovery (NodeEraser), on the real SRTM tile N42E001 (meshes/)
+// and its 513² crop.
 #include "tinlod/decimate.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
@@ -108,6 +109,34 @@ void BM_Traversal(benchmark::State &state, double tau) {
     state.SetItemsProcessed(state.iterations() * std::int64_t(r->triangles.size() / 3));
 }
 
+// The 1201² grid TIN's half-edge mesh (items: triangles): grid_tin (add_triangles, all sides
+// paired at once) against OpenMesh's add_face per triangle, the way grid_tin built it before.
+void BM_GridTin(benchmark::State &state, bool per_face) {
+    const Heightfield &hf = n42();
+    const std::uint32_t w = std::uint32_t(hf.width);
+    for (auto _ : state) {
+        if (!per_face) {
+            benchmark::DoNotOptimize(grid_tin(hf).n_faces());
+            continue;
+        }
+        Mesh mesh = grid_vertices(hf);
+        for (std::uint32_t r = 0; r + 1 < std::uint32_t(hf.height); ++r)
+            for (std::uint32_t c = 0; c + 1 < w; ++c) {
+                const Mesh::VertexHandle a(int(r * w + c)), b(int(r * w + c + 1)),
+                    d(int(r * w + w + c)), e(int(r * w + w + c + 1));
+                if ((r + c) % 2 == 0) {
+                    mesh.add_face(a, b, e);
+                    mesh.add_face(a, e, d);
+                } else {
+                    mesh.add_face(a, b, d);
+                    mesh.add_face(b, e, d);
+                }
+            }
+        benchmark::DoNotOptimize(mesh.n_faces());
+    }
+    state.SetItemsProcessed(state.iterations() * 2 * std::int64_t(w - 1) * (hf.height - 1));
+}
+
 // Node erase at tau = 1 px of the 513² grid TIN (items: input triangles).
 void BM_Erase(benchmark::State &state) {
     const Mesh grid = grid_tin(n42_513());
@@ -145,6 +174,8 @@ BENCHMARK(BM_NodeWeights)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TriangulateRing)->Arg(4)->Arg(6)->Arg(8)->Arg(12)->Arg(24)->Arg(48);
 BENCHMARK_CAPTURE(BM_Traversal, n42_tau1, 1.0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Traversal, n42_tau4, 4.0)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GridTin, add_triangles, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GridTin, add_face, true)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Erase)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Recover)->Unit(benchmark::kMillisecond);
 
