@@ -3,6 +3,7 @@
 // distance, on the real DEMs of meshes/.
 #include "assets.hpp"
 
+#include "tinlod/decimate.hpp"
 #include "tinlod/metrics.hpp"
 #include "tinlod/quadtree.hpp"
 
@@ -277,6 +278,41 @@ TEST(Retrieve, NodesShrinkAsToleranceGrowsAndEyeRises) {
             const std::size_t n = lod.retrieve(v, {1.0, false}).nodes.size();
             EXPECT_LE(n, prev) << a.name << " rise " << rise;
             prev = n;
+        }
+    }
+}
+
+TEST(Retrieve, PeripheralWeightsBoundTheErasesWeightedErrorAtEverySample) {
+    // With the screen model's peripheral factor the retrieval bounds the error the node erase
+    // bounds: the screen error inside the frustum, relaxed by the factor outside it. Checked at
+    // every sample: the erase's own exact measure of the retrieved TIN over all of them.
+    const SignificanceOptions screen;
+    for (const Asset& a : dem_assets()) {
+        const Heightfield& hf = dem(a);
+        const QuadTree tree(hf);
+        for (const NamedView& nv : views_of(hf)) {
+            const std::string what = a.name + " " + nv.name;
+            RetrieveOptions ro;
+            const Retrieval plain = retrieve(tree, nv.view, ro);
+            ro.peripheral = &screen;
+            const Retrieval weighed = retrieve(tree, nv.view, ro);
+            EXPECT_LE(weighed.nodes.size(), plain.nodes.size()) << what;
+            // From the low view, a tenth into the terrain, some of it lies behind the observer.
+            if (nv.name == "low") {
+                EXPECT_LT(weighed.nodes.size(), plain.nodes.size()) << what;
+            }
+            expect_crack_free(hf, weighed, what);
+            ErrorOptions eo;
+            eo.view = &nv.view;
+            EXPECT_LE(measure_error(hf, weighed.triangles, eo).max_screen_px, 1.0 + 1e-9) << what;
+            Mesh mesh = to_lattice_mesh(weighed, hf);
+            EraseOptions erase;
+            erase.significance = screen;
+            const NodeEraser eraser(mesh, &nv.view, erase);
+            const EraseStats bound = eraser.measure();
+            // Within the tolerance, and within the bound the retrieval reports.
+            EXPECT_LE(bound.max_weighted, 1.0 + 1e-6) << what;
+            EXPECT_LE(bound.max_weighted, weighed.bound_px * (1.0 + 1e-6)) << what;
         }
     }
 }

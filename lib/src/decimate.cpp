@@ -14,6 +14,7 @@
 
 #include "closest_point.hpp"
 #include "lattice_rings.hpp"
+#include "weigher.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
@@ -270,109 +271,6 @@ struct Hole {
     // samples it swallows and the sample that has it (-1 when none deviates).
     std::array<float, k_max_ring> tri_maxdev;
     std::array<std::int32_t, k_max_ring> tri_worst;
-};
-
-// Pixels per unit of deviation at a point for one view: k / OD * peripheral(OA), the
-// significance.hpp screen_weight with the view's frame computed once; 1 without a view.
-class Weigher {
-  public:
-    Weigher() = default;
-    Weigher(const View *view, const SignificanceOptions &options) {
-        if (!view || options.model == SpModel::vertical)
-            return;
-        unit_ = false;
-        eye_ = view->eye;
-        f_ = view->axis();
-        const glm::dvec3 up = std::abs(f_.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-        r_ = glm::normalize(glm::cross(f_, up));
-        u_ = glm::cross(r_, f_);
-        k_ = view->k();
-        half_w_ = view->viewport_w / 2.0 + options.cone_margin_px;
-        half_h_ = view->viewport_h / 2.0 + options.cone_margin_px;
-        cone_ = std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
-        cos_cone_ = std::cos(cone_);
-        sin_cone_ = std::sin(cone_);
-        falloff_ = std::max(options.falloff_deg, 1e-6) * M_PI / 180.0;
-        floor_ = options.floor;
-        // Beyond this cosine of the angle to the axis the factor is the floor (a hair inside, so
-        // rounding never takes the shortcut where the formula is above the floor).
-        const double floored = cone_ + falloff_ * std::log(1.0 / std::max(floor_, 1e-300));
-        floor_cos_ = floored < M_PI ? std::cos(floored) - 1e-9 : -2.0;
-    }
-    double operator()(const glm::dvec3 &p) const {
-        if (unit_)
-            return 1.0;
-        const glm::dvec3 d = p - eye_;
-        const double od = glm::length(d);
-        if (!(od > 0.0))
-            return INFINITY;
-        const double depth = glm::dot(d, f_);
-        if (depth > 0.0 && std::abs(glm::dot(d, r_)) * k_ <= half_w_ * depth &&
-            std::abs(glm::dot(d, u_)) * k_ <= half_h_ * depth)
-            return k_ / od; // inside the frustum
-        if (depth < floor_cos_ * od)
-            return k_ / od * floor_; // far outside the view cone: no arc cosine
-        const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
-        return beyond <= 0.0 ? k_ / od : k_ / od * std::max(floor_, std::exp(-beyond / falloff_));
-    }
-    // An upper bound of the weight anywhere in the box [lo, hi]: k over the box's distance to the
-    // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the axis.
-    double bound(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
-        if (unit_)
-            return 1.0;
-        const double dist = glm::length(glm::clamp(eye_, lo, hi) - eye_);
-        if (!(dist > 0.0))
-            return INFINITY;
-        const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
-        const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
-        if (dc <= radius)
-            return k_ / dist;
-        const double angle = std::acos(std::clamp(glm::dot(c, f_) / dc, -1.0, 1.0)) -
-                             std::asin(radius / dc);
-        const double beyond = angle - cone_;
-        return beyond <= 0.0 ? k_ / dist : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
-    }
-
-    // Whether the box [lo, hi] lies inside the view cone, where the peripheral factor is 1: the
-    // angle to the axis of its bounding sphere's centre is at most the cone's less the sphere's
-    // half angle, asin(rho), tested by cosines (cone < pi / 2).
-    bool in_cone(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
-        if (unit_)
-            return true;
-        const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
-        const double dc = glm::length(c);
-        const double rho = 0.5 * glm::length(hi - lo) / dc;
-        if (!(rho < sin_cone_))
-            return false;
-        const double cos_limit = cos_cone_ * std::sqrt(1.0 - rho * rho) + sin_cone_ * rho;
-        return glm::dot(c, f_) >= dc * cos_limit * (1.0 + 1e-9);
-    }
-
-    // A lower bound of the weight anywhere in the box [lo, hi]: k over the distance to its farthest
-    // corner, times the peripheral factor of the largest angle its bounding sphere makes with the
-    // axis (the factor falls with the angle).
-    double lower(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
-        if (unit_)
-            return 1.0;
-        const double dist = glm::length(glm::max(glm::abs(lo - eye_), glm::abs(hi - eye_)));
-        const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
-        const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
-        const double angle = dc <= radius ? M_PI
-                                          : std::acos(std::clamp(glm::dot(c, f_) / dc, -1.0, 1.0)) +
-                                                std::asin(radius / dc);
-        const double beyond = angle - cone_;
-        return beyond <= 0.0 ? k_ / dist
-                             : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
-    }
-
-    double falloff() const { return falloff_; } // the peripheral factor's e-folding, radians
-
-  private:
-    bool unit_ = true;
-    glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
-    double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
-    double floor_cos_ = -2.0;
-    double cos_cone_ = 1.0, sin_cone_ = 0.0;
 };
 
 // Weigher::bound times this bounds the stored weights too (rounded up to float).
@@ -2799,6 +2697,7 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         QuadTreeLod lod(dem.tree ? *dem.tree : *own);
         const View &eye = *view;
         RetrieveOptions ro;
+        ro.peripheral = &options.significance;
         const double shared = std::isfinite(options.tolerance)
                                   ? options.tolerance * dem.retrieve_share
                                   : INFINITY;

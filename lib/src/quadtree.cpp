@@ -4,6 +4,7 @@
 // paper's method 1), kept restricted as in Röttger et al. 1998 / Pajarola 1998 so the per-node
 // triangle fans meet without cracks.
 #include "tinlod/quadtree.hpp"
+#include "weigher.hpp"
 
 #include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
@@ -331,6 +332,8 @@ struct QuadTreeLod::Impl {
     glm::dvec3 eye{0.0};
     double k = 1.0, tol = 1.0, dx = 1.0, dy = 1.0;
     bool cull = false;
+    bool weigh = false; // RetrieveOptions::peripheral given
+    Weigher weigher;
     glm::dvec3 planes[5]; // the frustum: p is inside when dot(plane, p - eye) <= 0 for all
 
     explicit Impl(std::unique_ptr<NodeSource> src) : source(std::move(src)) {
@@ -354,6 +357,9 @@ struct QuadTreeLod::Impl {
         k = view.k();
         tol = options.tol_px;
         cull = options.cull;
+        weigh = options.peripheral != nullptr;
+        if (weigh)
+            weigher = Weigher(&view, *options.peripheral);
         const glm::dvec3 f = view.axis();
         const glm::dvec3 up = std::abs(f.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
         const glm::dvec3 r = glm::normalize(glm::cross(f, up));
@@ -386,6 +392,13 @@ struct QuadTreeLod::Impl {
         const glm::dvec3 hi(lay->x.hi(d, i) * dx, lay->y.hi(d, j) * dy, b.zmax);
         if (cull && outside_frustum(lo, hi))
             return false;
+        if (weigh) {
+            const double px = b.error * weigher.bound(lo, hi);
+            if (!(px <= tol))
+                return true;
+            out.bound_px = std::max(out.bound_px, px);
+            return false;
+        }
         const glm::dvec3 gap = glm::max(glm::max(lo - eye, eye - hi), glm::dvec3(0.0));
         const double dist = glm::length(gap);
         const double px = b.error * k;

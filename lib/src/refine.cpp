@@ -60,6 +60,7 @@ Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& 
         const QuadTree tree(hf);
         RetrieveOptions ro;
         ro.tol_px = share * options.tol_px * (1.0 - options.hysteresis);
+        ro.peripheral = &options.significance;
         impl_->mesh = std::make_unique<Mesh>(to_lattice_mesh(retrieve(tree, first, ro), hf));
         impl_->first.ms_retrieve = clock.ms();
     } else {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "tinlod/raster.hpp"
+#include "tinlod/significance.hpp"
 #include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
 
@@ -135,6 +136,11 @@ class QuadTree {
 struct RetrieveOptions {
     double tol_px = 1.0; // screen-space error the output may show, pixels; 0 gives the full grid
     bool cull = false;   // nodes wholly outside the view frustum are not split
+    // With the screen model's options: a node splits when its bound times the largest weight over
+    // its box (k over the distance, times the peripheral factor; significance.hpp) exceeds
+    // tol_px, the weighted error the node erase bounds, which relaxes the screen bound outside the
+    // view. Null: the screen bound everywhere.
+    const SignificanceOptions* peripheral = nullptr;
 };
 
 // The compact TIN of one view.
@@ -146,7 +152,8 @@ struct Retrieval {
     std::int64_t leaves = 0;      // leaves of the retrieved tree
     std::int64_t forced = 0;      // splits made only to keep neighbours within one level
     double bound_px = 0.0;        // the guaranteed screen error: max over unsplit, unculled leaves
-                                  // of bound * k / distance(eye, leaf box), pixels
+                                  // of bound * k / distance(eye, leaf box), pixels (with
+                                  // RetrieveOptions::peripheral, times the peripheral factor)
 };
 
 // A traversal with its state kept between views: the status of every node of the last view stays
