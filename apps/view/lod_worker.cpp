@@ -156,18 +156,18 @@ Mesh live_copy(const Mesh& tin) {
     Mesh out;
     const auto from = find_origin_property(tin);
     const auto to = get_origin_property(out);
-    std::vector<Mesh::VertexHandle> map(tin.n_vertices());
+    std::vector<std::uint32_t> map(tin.n_vertices());
     for (auto v : tin.vertices()) {
-        map[v.idx()] = out.add_vertex(tin.point(v));
-        out.property(to, map[v.idx()]) = from.is_valid() ? tin.property(from, v) : v.idx();
+        const auto w = out.add_vertex(tin.point(v));
+        map[v.idx()] = std::uint32_t(w.idx());
+        out.property(to, w) = from.is_valid() ? tin.property(from, v) : v.idx();
     }
-    for (auto f : tin.faces()) {
-        Mesh::VertexHandle c[3];
-        int i = 0;
+    std::vector<std::uint32_t> corners;
+    corners.reserve(3 * tin.n_faces());
+    for (auto f : tin.faces())
         for (auto v : f.vertices())
-            c[i++] = map[v.idx()];
-        out.add_face(c[0], c[1], c[2]);
-    }
+            corners.push_back(map[v.idx()]);
+    add_triangles(out, corners);
     return out;
 }
 
@@ -193,6 +193,8 @@ class GridEngine final : public EngineBase {
         RetrieveOptions ro;
         ro.tol_px = lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
         ro.cull = settings.cull;
+        if (lattice && settings.significance.model == SpModel::screen)
+            ro.peripheral = &settings.significance; // the erase's weighted bound, as erase_dem
         const Retrieval& r = lod_.retrieve(view, ro);
         result->mesh = lattice ? to_lattice_mesh(r, *hf_) : to_mesh(r, lod_.frame());
         result->bound_px = r.bound_px;
