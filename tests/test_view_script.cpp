@@ -40,9 +40,15 @@ std::string slurp(const fs::path& p) {
 }
 
 // Runs the viewer with `args` (each passed as one word); under xvfb-run when `display` is true.
+// In sanitizer builds (`make test SANITIZE=...`) the windowed viewer's leak check is off: Mesa's
+// driver under Xvfb leaks 112 bytes that LeakSanitizer reports from the driver once it is
+// unloaded, with no name a suppression could match. ASan and UBSan still check it, and the viewer's
+// core is leak-checked in process by the ViewWorker tests.
 ViewRun run_view(const std::vector<std::string>& args, bool display) {
     const fs::path dir = test::temp_dir();
     std::ostringstream cmd;
+    if (display)
+        cmd << "LSAN_OPTIONS=\"${LSAN_OPTIONS}:detect_leaks=0\" ";
     cmd << (display ? "timeout 300 xvfb-run -a -s '-screen 0 1280x720x24' " : "timeout 300 ")
         << '\'' << TINLOD_VIEW << '\'';
     for (const std::string& a : args)
