@@ -233,6 +233,17 @@ TEST(AddTriangles, RefusesWhatIsNotAnOrientedManifold) {
     fails({0, 1, 2, 0, 2, 3, 3, 2, 0});      // edge 0 -> 2... used twice in the same direction
     fails({0, 1, 2, 0, 3, 2});               // a face flipped against its neighbour
     fails({0, 1, 2, 2, 5, 4});               // two fans meet at vertex 2 only (a bow-tie)
+    // Two closed fans at one vertex: two tetrahedra sharing vertex 0, no boundary at all.
+    Mesh apex;
+    for (int i = 0; i < 7; ++i)
+        apex.add_vertex(Mesh::Point(float(i), float(i * i % 5), float(i % 3)));
+    const std::vector<std::uint32_t> tetrahedra = {0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2,
+                                                   0, 4, 5, 0, 5, 6, 0, 6, 4, 4, 6, 5};
+    EXPECT_THROW(add_triangles(apex, tetrahedra), std::invalid_argument);
+    EXPECT_EQ(apex.n_faces(), 0u);
+    add_triangles(apex, std::span(tetrahedra).first(12)); // one tetrahedron alone is closed
+    EXPECT_EQ(apex.n_faces(), 4u);
+    EXPECT_EQ(apex.n_edges(), 6u);
     fails({0, 1, 6});                        // a corner out of range
     fails({0, 1, 1});                        // a repeated corner
     fails({0, 1});                           // a partial triangle

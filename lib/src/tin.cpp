@@ -53,7 +53,7 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
     // Each side's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the
     // boundary half-edge running the other way when it has none).
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> half(sides, none);
+    std::vector<std::uint32_t> half(sides, none), twin_of(sides, none);
     std::vector<std::uint32_t> open; // sides without a twin, by edge
     std::uint32_t edges = 0;
     for (std::size_t i = 0; i < sides; ++i) {
@@ -68,10 +68,13 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
         for (std::uint32_t k = first[b]; k < first[b + 1]; ++k)
             if (ends[k] == a)
                 twin = leaving[k];
-        if (twin != none)
+        if (twin != none) {
             half[twin] = 2 * edges + 1;
-        else
+            twin_of[i] = twin;
+            twin_of[twin] = std::uint32_t(i);
+        } else {
             open.push_back(std::uint32_t(i));
+        }
         ++edges;
     }
     // Each boundary vertex must have one boundary half-edge leaving it (checked before the mesh
@@ -80,6 +83,26 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
     for (const std::uint32_t i : open)
         if (boundary_out[to(i)]++)
             throw std::invalid_argument("add_triangles: a vertex joins two boundary fans");
+    // And each vertex one fan: turning from side to side around it (the twin of the side before in
+    // the same face) from its open side, or from any side, meets every side leaving it.
+    std::vector<std::uint32_t> start(n, none);
+    for (const std::uint32_t i : open)
+        start[corners[i]] = i;
+    for (std::size_t v = 0; v < n; ++v) {
+        const std::uint32_t degree = first[v + 1] - first[v];
+        if (degree == 0)
+            continue;
+        const std::uint32_t from = start[v] != none ? start[v] : leaving[first[v]];
+        std::uint32_t met = 0;
+        for (std::uint32_t i = from; i != none && met <= degree;) {
+            ++met;
+            i = twin_of[i % 3 == 0 ? i + 2 : i - 1];
+            if (i == from)
+                break;
+        }
+        if (met != degree)
+            throw std::invalid_argument("add_triangles: a vertex joins two fans");
+    }
     mesh.resize(n, edges, faces);
     for (std::size_t f = 0; f < faces; ++f) {
         const Mesh::FaceHandle fh{int(f)};

@@ -40,7 +40,7 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh);
 // half-edge (a boundary one on the boundary, as OpenMesh requires). Throws std::invalid_argument,
 // leaving the mesh as it was, unless the triangles are consistently oriented and form a manifold:
 // a corner out of range, a repeated corner, a directed edge used twice or a vertex joining two
-// boundary fans.
+// fans.
 void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners);
 
 // Full-resolution grid TIN: W*H nodes, 2(W-1)(H-1) triangles, every triangle counter-clockwise
