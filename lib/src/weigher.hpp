@@ -51,6 +51,8 @@ class Weigher {
         if (depth > 0.0 && std::abs(glm::dot(d, r_)) * k_ <= half_w_ * depth &&
             std::abs(glm::dot(d, u_)) * k_ <= half_h_ * depth)
             return k_ / od; // inside the frustum
+        if (depth >= cos_cone_ * od)
+            return k_ / od; // inside the view cone
         if (depth < floor_cos_ * od)
             return k_ / od * floor_; // far outside the view cone: no arc cosine
         const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
@@ -68,8 +70,12 @@ class Weigher {
         const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
         if (dc <= radius)
             return k_ / dist;
-        const double angle = std::acos(std::clamp(glm::dot(c, f_) / dc, -1.0, 1.0)) -
-                             std::asin(radius / dc);
+        // Inside the cone widened by the sphere's half angle asin(rho), tested by cosines (cone +
+        // asin(rho) <= pi, where the cosine falls): the factor is 1, which bounds any angle.
+        const double rho = radius / dc, cos_axis = glm::dot(c, f_) / dc;
+        if (cos_axis >= cos_cone_ * std::sqrt(1.0 - rho * rho) - sin_cone_ * rho)
+            return k_ / dist;
+        const double angle = std::acos(std::clamp(cos_axis, -1.0, 1.0)) - std::asin(rho);
         const double beyond = angle - cone_;
         return beyond <= 0.0 ? k_ / dist : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
     }
