@@ -1367,13 +1367,12 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
 
 // The sweep: passes over the nodes in index order (spatially coherent, so the half-edge arrays and
 // the swallowed lists stay in cache, unlike a queue that jumps across the terrain), each erasing
-// every node whose cost is within the pass's limit. Cheap erases go first because the limits rise
-// in rungs. A node is re-evaluated only when its ring changed or its last cost (a lower bound of
-// the true one) is within the rung. Measured on N42E001 (1.44 M nodes) from the demo view, against
-// the queue alone in the same run:
-//  - tolerance only: rungs tau / 64, tau / 8, then passes at tau until one erases nothing; 3.4-4x
-//    faster and 4 % fewer nodes at tau = 1 px (42,087 against 43,897: the queue's strict order does
-//    not pay at a fixed bound);
+// every node whose cost is within the pass's limit. A node is re-evaluated only when its ring
+// changed or its last cost (a lower bound of the true one) is within the pass's limit. Measured on
+// N42E001 (1.44 M nodes) from the demo view, against the queue alone in the same run:
+//  - tolerance only: passes at tau until one erases nothing; 3.4-4x faster and 4 % fewer nodes at
+//    tau = 1 px (42,087 against 43,897: the queue's strict order does not pay at a fixed bound).
+//    Cheap erases may go first, in passes at lower limits (tau_rungs);
 //  - node budget: the order decides the error there, so the sweep only erases while more than
 //    twice the budget remains (rungs doubling, each exhausted before the next) and the queue does
 //    the rest; 1.2-1.6x faster at a lower error (40 k nodes: 1.22 px against 1.26). The first rung
@@ -1381,8 +1380,18 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
 //    the first costs: 2.1x faster again on N42E001 to 35 k nodes (7.3 M evaluations to 2.4 M) at
 //    the same error (1.27 px against 1.30), 1.7-2.5x on its 513² crop (1.26 against 1.24 px, 1.35
 //    against 1.36).
-constexpr int k_tau_rungs = 2;
 constexpr double k_tau_rung_ratio = 8.0;
+// The passes at tau / 8^k, k = tau_rungs(s) .. 1, before those at tau. A grid TIN's one-off erase
+// has none: on N42E001 and Rainier, at tau = 1 px from the benchmark's views and at 1, 5, 10 and 20
+// m in the vertical model, they cost 16-24 % more time for -1 % to +0.7 % nodes. A mesh with
+// swallowed lists has one (the bunny at 0.5-4 px: none took 2 % more nodes, two 11-16 % more time
+// for the same nodes). A refiner's history (shallow) has two: its updates recovered 8 % fewer
+// nodes on the N42E001 descent than after none, p99 10 % lower.
+static int tau_rungs(const NodeEraser::Impl &s) {
+    if (s.options.shallow_history)
+        return 2;
+    return s.grid_w > 0 ? 0 : 1;
+}
 constexpr double k_budget_rung_ratio = 2.0;
 constexpr std::int64_t k_queue_share = 2; // the queue erases from this many times the budget
 constexpr std::size_t k_chain_swallowed = 32; // see sweep_pass
@@ -1541,7 +1550,7 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     auto sweep = [&](double limit, std::int64_t stop_at) { return sweep_pass(s, limit, stop_at); };
     std::int64_t erased = 0;
     if (s.options.max_nodes <= 0) {
-        for (int rung = k_tau_rungs; rung > 0; --rung)
+        for (int rung = tau_rungs(s); rung > 0; --rung)
             erased += sweep(tau * std::pow(k_tau_rung_ratio, -rung), 0);
         for (std::int64_t made = 1; made > 0;) {
             made = sweep(tau, 0);
