@@ -151,26 +151,6 @@ class EngineBase : public LodEngine {
     }
 };
 
-// The live part of the refiner's TIN as a compact mesh (origin property kept).
-Mesh live_copy(const Mesh& tin) {
-    Mesh out;
-    const auto from = find_origin_property(tin);
-    const auto to = get_origin_property(out);
-    std::vector<std::uint32_t> map(tin.n_vertices());
-    for (auto v : tin.vertices()) {
-        const auto w = out.add_vertex(tin.point(v));
-        map[v.idx()] = std::uint32_t(w.idx());
-        out.property(to, w) = from.is_valid() ? tin.property(from, v) : v.idx();
-    }
-    std::vector<std::uint32_t> corners;
-    corners.reserve(3 * tin.n_faces());
-    for (auto f : tin.faces())
-        for (auto v : f.vertices())
-            corners.push_back(map[v.idx()]);
-    add_triangles(out, corners);
-    return out;
-}
-
 // DEM (in memory) or store (read partially): retrieval with a QuadTreeLod, or the refiner (its
 // first frame a retrieval on the whole lattice, then the erase; a store is then read whole, once).
 class GridEngine final : public EngineBase {

@@ -2786,10 +2786,13 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
     };
     Mesh mesh = build();
     out.retrieve_ms = clock.ms();
-    out.erase = erase_nodes(mesh, view, options);
+    out.erase = NodeEraser(mesh, view, options).erase();
+    clock.reset();
+    Mesh tin = live_copy(mesh);
+    out.erase.ms += clock.ms();
     if (stats)
         *stats = out;
-    return mesh;
+    return tin;
 }
 
 // ---- Public ring geometry ----------------------------------------------------------------------

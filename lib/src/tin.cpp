@@ -143,6 +143,25 @@ Mesh grid_vertices(const Heightfield& hf) {
     return mesh;
 }
 
+Mesh live_copy(const Mesh& mesh) {
+    Mesh out;
+    const auto from = find_origin_property(mesh);
+    const auto to = get_origin_property(out);
+    std::vector<std::uint32_t> map(mesh.n_vertices());
+    for (auto v : mesh.vertices()) {
+        const auto w = out.add_vertex(mesh.point(v));
+        map[v.idx()] = std::uint32_t(w.idx());
+        out.property(to, w) = from.is_valid() ? mesh.property(from, v) : v.idx();
+    }
+    std::vector<std::uint32_t> corners;
+    corners.reserve(3 * mesh.n_faces());
+    for (auto f : mesh.faces())
+        for (auto v : f.vertices())
+            corners.push_back(map[v.idx()]);
+    add_triangles(out, corners);
+    return out;
+}
+
 Mesh grid_tin(const Heightfield& hf) {
     Mesh mesh = grid_vertices(hf);
     const std::uint32_t w = std::uint32_t(hf.width);
