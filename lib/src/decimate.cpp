@@ -2647,10 +2647,39 @@ EraseStats NodeEraser::measure() const {
     stats.output_nodes = s.live;
     stats.output_triangles = s.live_faces;
     const double k = s.has_view ? s.view.k() : 0.0;
+    // Each face's bounds on what its swallowed nodes can show: its largest deviation, times the
+    // largest weight in its box and times k over the box's distance (both are 0 when it swallowed
+    // none). Faces go from the largest weighted bound down, and a face whose three bounds cannot
+    // raise the maxima found so far is not scanned (the erase leaves most faces near the bound,
+    // so the first few settle the maxima).
+    struct Bounded {
+        double weighted, screen, vertical;
+        FH f;
+    };
+    std::vector<Bounded> faces;
+    faces.reserve(std::size_t(s.live_faces));
     for (auto f : m.faces()) {
-        std::int32_t u = s.face_head[f.idx()];
-        if (u < 0 || m.status(f).deleted())
+        if (s.face_head[f.idx()] < 0 || m.status(f).deleted())
             continue;
+        const HH he = m.halfedge_handle(f);
+        const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he))),
+                         b = to_glm(m.point(m.to_vertex_handle(he))),
+                         c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
+        const double dev = 1.001 * double(s.face_maxdev[f.idx()]);
+        const auto [lo, hi] = swallowed_box(s, f, a, b, c);
+        const double near = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
+        faces.push_back({s.xy ? dev * s.weigher.bound(lo, hi) * k_rounded_weight : INFINITY,
+                         s.xy && s.has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY,
+                         f});
+    }
+    std::sort(faces.begin(), faces.end(),
+              [](const Bounded &x, const Bounded &y) { return x.weighted > y.weighted; });
+    for (const Bounded &bounded : faces) {
+        if (!(bounded.weighted > stats.max_weighted) && !(bounded.vertical > stats.max_vertical) &&
+            (!s.has_view || !(bounded.screen > stats.max_screen_px)))
+            continue;
+        const FH f = bounded.f;
+        std::int32_t u = s.face_head[f.idx()];
         HH he = m.halfedge_handle(f);
         const VH va = m.from_vertex_handle(he), vb = m.to_vertex_handle(he),
                  vc = m.to_vertex_handle(m.next_halfedge_handle(he));
