@@ -1,6 +1,7 @@
 // Foundation: the full-resolution grid TIN and mesh files in and out.
 #include "assets.hpp"
 
+#include "tinlod/decimate.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
@@ -219,6 +220,63 @@ TEST(AddTriangles, BuildsTheMeshAddFaceBuilds) {
         }
         EXPECT_TRUE(topology(by_array) == topology(by_face));
     }
+}
+
+TEST(LiveCopy, GivesTheMeshGarbageCollectionGives) {
+    // A real DEM's grid TIN erased in place: most vertices, edges and faces marked deleted, the
+    // live ones spread over the arrays. OpenMesh's own compaction is the reference.
+    const Heightfield hf = load_heightfield(asset("crater_u16.png"));
+    Mesh erased = grid_tin(hf);
+    EraseOptions eo;
+    eo.significance.model = SpModel::vertical;
+    eo.tolerance = 2.0;
+    const EraseStats e = NodeEraser(erased, nullptr, eo).erase();
+    ASSERT_GT(e.erased, std::int64_t(erased.n_vertices() / 2));
+    const Mesh copy = live_copy(erased);
+    Mesh collected = erased;
+    collected.garbage_collection();
+    ASSERT_EQ(copy.n_vertices(), collected.n_vertices());
+    ASSERT_EQ(copy.n_faces(), collected.n_faces());
+    EXPECT_EQ(copy.n_edges(), collected.n_edges());
+    // garbage_collection fills holes from the end of the arrays; live_copy keeps the input's
+    // order. So the two are compared through each node's origin (its grid sample).
+    struct Described {
+        std::vector<std::pair<std::int64_t, Mesh::Point>> nodes; // origin, point
+        std::set<std::array<std::int64_t, 3>> faces; // origins, from the smallest, in order
+        std::set<std::int64_t> boundary;
+    };
+    const auto describe = [](const Mesh& m) {
+        Described d;
+        const auto origin = find_origin_property(m);
+        EXPECT_TRUE(origin.is_valid());
+        for (auto v : m.vertices()) {
+            d.nodes.emplace_back(m.property(origin, v), m.point(v));
+            if (m.is_boundary(v))
+                d.boundary.insert(m.property(origin, v));
+        }
+        for (auto f : m.faces()) {
+            std::array<std::int64_t, 3> c{};
+            auto h = m.halfedge_handle(f);
+            for (auto& k : c) {
+                k = m.property(origin, m.from_vertex_handle(h));
+                h = m.next_halfedge_handle(h);
+            }
+            std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+            d.faces.insert(c);
+        }
+        return d;
+    };
+    const Described a = describe(copy);
+    Described b = describe(collected);
+    // live_copy keeps the input's order: origins ascend, as the grid TIN's vertex ids.
+    EXPECT_TRUE(std::is_sorted(a.nodes.begin(), a.nodes.end(),
+                               [](const auto& x, const auto& y) { return x.first < y.first; }));
+    std::sort(b.nodes.begin(), b.nodes.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    EXPECT_TRUE(a.nodes == b.nodes);
+    EXPECT_EQ(a.faces.size(), copy.n_faces());
+    EXPECT_TRUE(a.faces == b.faces);
+    EXPECT_TRUE(a.boundary == b.boundary);
 }
 
 TEST(AddTriangles, RefusesWhatIsNotAnOrientedManifold) {

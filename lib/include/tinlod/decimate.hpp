@@ -247,7 +247,8 @@ struct DemEraseStats {
 // SP is not a screen error a retrieval could share, and for the vertical model the quad-tree's
 // bounds (any subset of side midpoints) are too loose to spare the erase any work (N42E001 at 1,
 // 5 and 20 m: 0.7-1.3x the time). The others erase from the full grid. Returns the TIN's live nodes and
-// faces (live_copy: as erase_nodes leaves it, up to the order of edges; origin = sample id).
+// faces (live_copy: the nodes and triangles erase_nodes leaves, in sample order; origin = sample
+// id).
 Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
                const DemEraseOptions &dem = {}, DemEraseStats *stats = nullptr);
 
