@@ -2647,11 +2647,11 @@ EraseStats NodeEraser::measure() const {
     stats.output_nodes = s.live;
     stats.output_triangles = s.live_faces;
     const double k = s.has_view ? s.view.k() : 0.0;
-    // Each face's bounds on what its swallowed nodes can show: its largest deviation, times the
-    // largest weight in its box and times k over the box's distance (both are 0 when it swallowed
-    // none). Faces go from the largest weighted bound down, and a face whose three bounds cannot
-    // raise the maxima found so far is not scanned (the erase leaves most faces near the bound,
-    // so the first few settle the maxima).
+    // Each TIN face's bounds on what its swallowed nodes can show: its largest deviation, alone,
+    // times the largest weight in its box and times k over the box's distance (a surface mesh's
+    // faces get no bounds: each is scanned). Faces go from the largest weighted bound down, and a
+    // face whose three bounds cannot raise the maxima found so far is not scanned (the erase
+    // leaves most faces near the bound, so the first few settle the maxima).
     struct Bounded {
         double weighted, screen, vertical;
         FH f;

@@ -246,9 +246,9 @@ struct DemEraseStats {
 // do node by node where the terrain is smooth. Only the screen model retrieves: the paper model's
 // SP is not a screen error a retrieval could share, and for the vertical model the quad-tree's
 // bounds (any subset of side midpoints) are too loose to spare the erase any work (N42E001 at 1,
-// 5 and 20 m: 0.7-1.3x the time). The others erase from the full grid. Returns the TIN's live nodes and
-// faces (live_copy: the nodes and triangles erase_nodes leaves, in sample order; origin = sample
-// id).
+// 5 and 20 m: 0.7-1.3x the time). The others erase from the full grid. Returns the TIN's live
+// nodes and faces (live_copy: the nodes and triangles erase_nodes leaves, in sample order; origin
+// = sample id).
 Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
                const DemEraseOptions &dem = {}, DemEraseStats *stats = nullptr);
 
