@@ -1336,7 +1336,7 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
         // A dirty node is erased only if its cost is still the least: its evaluation stops once
         // the cost passes the next key, and it goes back with that lower bound as its key, dirty
         // (the keys stay lower bounds of the costs, so the order is the one exact keys give).
-        // 40 % of the queue's scanning on N42E001 went to such nodes, scanned whole.
+        // Half of the queue's scanning on N42E001 went to such nodes, scanned whole.
         const double second = double(s.heap.second_key());
         const bool by_cost = s.options.significance.model != SpModel::paper;
         bool erasable = evaluate(s, VH(int(v)), dirty && by_cost ? std::min(tau, second) : tau);
