@@ -6,7 +6,11 @@
 #include "tinlod/focal.hpp"
 #include "tinlod/significance.hpp"
 
+#include "../lib/src/weigher.hpp" // internal: the weights the erase and the retrieval bound
+
 #include <gtest/gtest.h>
+
+#include <random>
 
 namespace tinlod {
 namespace {
@@ -79,6 +83,86 @@ TEST(Significance, NodeSignificanceOnARealTinFallsFarAway) {
     }
     ASSERT_GT(interior, 1000);
     EXPECT_EQ(lower, interior);
+}
+
+// The Weigher (lib/src/weigher.hpp) computes the screen model's weight k / OD * peripheral(OA)
+// for the erase and the retrieval, and bounds it over boxes: the erase skips nodes, and the
+// retrieval leaves nodes unsplit, on those bounds. Random boxes around views of every kind, and
+// points in each (corners, and points pulled toward the frustum's margin band and the cone's
+// edge, where the factor steps and the shortcuts by cosines decide).
+TEST(Weigher, MatchesScreenWeightAndBoundsItOverEveryBox) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const SignificanceOptions options;
+    std::vector<View> views;
+    views.push_back(looking_north());
+    View down; // straight down
+    down.eye = {0.0, 0.0, 5000.0};
+    down.at = {0.0, 0.0, 0.0};
+    views.push_back(down);
+    View narrow; // oblique, narrow lens, square viewport
+    narrow.eye = {100.0, -300.0, 800.0};
+    narrow.at = {-200.0, 900.0, 0.0};
+    narrow.fov_deg = 20.0;
+    narrow.viewport_w = narrow.viewport_h = 512;
+    views.push_back(narrow);
+    for (const View& view : views) {
+        const Weigher weigher(&view, options);
+        const glm::dvec3 f = view.axis();
+        // A point at distance r whose direction makes angle a with the axis, at azimuth b.
+        const glm::dvec3 side = glm::normalize(glm::cross(f, std::abs(f.z) > 0.9
+                                                                 ? glm::dvec3(0, 1, 0)
+                                                                 : glm::dvec3(0, 0, 1)));
+        const glm::dvec3 up = glm::cross(side, f);
+        const double cone = std::atan(0.5 * std::hypot(double(view.viewport_w),
+                                                        double(view.viewport_h)) / view.k());
+        auto around = [&](double r, double a, double b) {
+            return view.eye + r * (std::cos(a) * f +
+                                   std::sin(a) * (std::cos(b) * side + std::sin(b) * up));
+        };
+        int boxes = 0;
+        for (int k = 0; k < 4000; ++k) {
+            // Centres at any angle, most near the cone's edge; sizes from a metre to kilometres.
+            const double a = unit(rng) < 0.6 ? cone + 0.05 * (unit(rng) - 0.5) : M_PI * unit(rng);
+            const glm::dvec3 c = around(50.0 + 5000.0 * unit(rng), a, 2.0 * M_PI * unit(rng));
+            const glm::dvec3 half = glm::dvec3(unit(rng), unit(rng), unit(rng)) *
+                                    std::pow(10.0, 3.5 * unit(rng));
+            const glm::dvec3 lo = c - half, hi = c + half;
+            if (glm::all(glm::lessThanEqual(lo, view.eye)) &&
+                glm::all(glm::lessThanEqual(view.eye, hi)))
+                continue; // the eye inside: the bound is infinite
+            ++boxes;
+            const double upper = weigher.bound(lo, hi), lower = weigher.lower(lo, hi);
+            for (int j = 0; j < 40; ++j) {
+                glm::dvec3 p;
+                if (j < 8)
+                    p = {j & 1 ? hi.x : lo.x, j & 2 ? hi.y : lo.y, j & 4 ? hi.z : lo.z};
+                else
+                    p = lo + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (hi - lo);
+                const double w = weigher(p);
+                ASSERT_NEAR(w, screen_weight(view, p, options), 1e-9 * w);
+                ASSERT_GE(upper, w * (1.0 - 1e-12)) << "box " << k << ", point " << j;
+                ASSERT_LE(lower, w * (1.0 + 1e-12)) << "box " << k << ", point " << j;
+            }
+        }
+        EXPECT_GT(boxes, 3000);
+        // The frustum's margin band at its corners lies outside the cone through the viewport's
+        // corners, and the factor there is 1: small boxes around such points.
+        const double m = 0.9 * options.cone_margin_px;
+        for (const double sx : {-1.0, 1.0})
+            for (const double sy : {-1.0, 1.0})
+                for (const double r : {100.0, 1000.0, 10000.0}) {
+                    const glm::dvec3 d = f + sx * (view.viewport_w / 2.0 + m) / view.k() * side +
+                                         sy * (view.viewport_h / 2.0 + m) / view.k() * up;
+                    const glm::dvec3 p = view.eye + r * glm::normalize(d);
+                    ASSERT_GT(observation_angle(view, p), cone);
+                    const double w = weigher(p);
+                    ASSERT_NEAR(w, view.k() / r, 1e-9 * w); // in the frustum's margin: factor 1
+                    const glm::dvec3 half(1e-6 * r);
+                    ASSERT_GE(weigher.bound(p - half, p + half), w * (1.0 - 1e-12));
+                    ASSERT_LE(weigher.lower(p - half, p + half), w * (1.0 + 1e-12));
+                }
+    }
 }
 
 TEST(Focal, HitsTheSurfaceOnTheAxis) {

@@ -33,6 +33,11 @@ class Weigher {
         cone_ = std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
         cos_cone_ = std::cos(cone_);
         sin_cone_ = std::sin(cone_);
+        // The cone through the corners of the frustum widened by the margin: the factor is 1 in
+        // that frustum, so up to this angle.
+        cone_margin_ = std::atan(std::hypot(half_w_, half_h_) / k_);
+        cos_cone_margin_ = std::cos(cone_margin_);
+        sin_cone_margin_ = std::sin(cone_margin_);
         falloff_ = std::max(options.falloff_deg, 1e-6) * M_PI / 180.0;
         floor_ = options.floor;
         // Beyond this cosine of the angle to the axis the factor is the floor (a hair inside, so
@@ -59,7 +64,8 @@ class Weigher {
         return beyond <= 0.0 ? k_ / od : k_ / od * std::max(floor_, std::exp(-beyond / falloff_));
     }
     // An upper bound of the weight anywhere in the box [lo, hi]: k over the box's distance to the
-    // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the axis.
+    // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the axis
+    // (1 up to the cone through the margin-widened frustum's corners, whose points all have it).
     double bound(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
         if (unit_)
             return 1.0;
@@ -70,14 +76,15 @@ class Weigher {
         const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
         if (dc <= radius)
             return k_ / dist;
-        // Inside the cone widened by the sphere's half angle asin(rho), tested by cosines (cone +
+        // Inside that cone widened by the sphere's half angle asin(rho), tested by cosines (cone +
         // asin(rho) <= pi, where the cosine falls): the factor is 1, which bounds any angle.
         const double rho = radius / dc, cos_axis = glm::dot(c, f_) / dc;
-        if (cos_axis >= cos_cone_ * std::sqrt(1.0 - rho * rho) - sin_cone_ * rho)
+        if (cos_axis >= cos_cone_margin_ * std::sqrt(1.0 - rho * rho) - sin_cone_margin_ * rho)
             return k_ / dist;
         const double angle = std::acos(std::clamp(cos_axis, -1.0, 1.0)) - std::asin(rho);
-        const double beyond = angle - cone_;
-        return beyond <= 0.0 ? k_ / dist : k_ / dist * std::max(floor_, std::exp(-beyond / falloff_));
+        if (angle <= cone_margin_)
+            return k_ / dist;
+        return k_ / dist * std::max(floor_, std::exp(-(angle - cone_) / falloff_));
     }
 
     // Whether the box [lo, hi] lies inside the view cone, where the peripheral factor is 1: the
@@ -120,6 +127,7 @@ class Weigher {
     double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
     double floor_cos_ = -2.0;
     double cos_cone_ = 1.0, sin_cone_ = 0.0;
+    double cone_margin_ = 0.0, cos_cone_margin_ = 1.0, sin_cone_margin_ = 0.0;
 };
 
 } // namespace tinlod
