@@ -2833,12 +2833,16 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
     DemEraseStats out;
     const bool budget = options.max_nodes > 0;
     // With a budget: the retrieval's nodes, at most half of the samples, and then only when that
-    // leaves the erase at least twice the budget to choose from.
+    // leaves the erase at least 3/4 of budget_share times the budget to choose from. A retrieval
+    // cut to fewer is coarse where the erase cannot mend it: a 129² DEM to 23 % of its samples
+    // kept 2.2 times the budget at 2 px, which the output then showed (1.97 px, where the erase
+    // from the whole grid reaches 1.03).
     const double target =
         std::min(dem.budget_share * double(options.max_nodes), 0.5 * double(hf.size()));
     const bool retrieve =
         view && options.significance.model == SpModel::screen &&
-        (budget ? target >= 2.0 * double(options.max_nodes) : dem.retrieve_share > 0.0);
+        (budget ? target >= 0.75 * dem.budget_share * double(options.max_nodes)
+                : dem.retrieve_share > 0.0);
     const auto build = [&]() -> Mesh {
         if (!retrieve) {
             out.retrieved_nodes = hf.size();

@@ -226,8 +226,9 @@ struct DemEraseOptions {
     double retrieve_share = 0.5;
     // With a node budget: the retrieval keeps about this many times the budget, at most half of the
     // samples (its tolerance is searched for, and kept <= retrieve_share * tolerance when both a
-    // budget and a tolerance are given), the erase the rest; 0, or a budget over a quarter of the
-    // samples: the full grid.
+    // budget and a tolerance are given), the erase the rest; 0, or a budget over 2/3 / budget_share
+    // of the samples (1/12 of them at 8: the retrieval would keep under 3/4 of its share): the full
+    // grid.
     double budget_share = 8.0;
     const QuadTree *tree = nullptr; // the DEM's quad-tree when one is built already
 };
