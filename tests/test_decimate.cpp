@@ -303,6 +303,13 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
     const Mesh whole = erase_dem(hf, &view, budget, dem, &stats);
     EXPECT_EQ(stats.retrieved_nodes, hf.size());
     EXPECT_LE(measure_error(hf, whole, eo).max_screen_px, options.tolerance);
+    // No share of the budget either (`simplify --max-nodes N --retrieve-share 0`): the whole
+    // lattice, erased to the budget.
+    dem.budget_share = 0.0;
+    budget.tolerance = INFINITY;
+    const Mesh to_budget = erase_dem(hf, &view, budget, dem, &stats);
+    EXPECT_EQ(stats.retrieved_nodes, hf.size());
+    EXPECT_EQ(std::int64_t(to_budget.n_vertices()), budget.max_nodes);
 }
 
 // A node budget erases in rungs of rising limits, the last ones 5 % apart, so it reaches about the

@@ -2841,7 +2841,8 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         std::min(dem.budget_share * double(options.max_nodes), 0.5 * double(hf.size()));
     const bool retrieve =
         view && options.significance.model == SpModel::screen &&
-        (budget ? target >= 0.75 * dem.budget_share * double(options.max_nodes)
+        (budget ? dem.budget_share > 0.0 &&
+                      target >= 0.75 * dem.budget_share * double(options.max_nodes)
                 : dem.retrieve_share > 0.0);
     const auto build = [&]() -> Mesh {
         if (!retrieve) {
