@@ -48,8 +48,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                        "view-independent: vertical error bound, world units (no camera)");
     cmd.add_option("--retrieve-share", args->retrieve_share,
                    "DEM input, screen model: the quad-tree retrieval first keeps share * tau (with "
-                   "--max-nodes: about 8 x the budget), the node erase the rest; the bound holds "
-                   "at every sample either way (0: erase from the full grid)")
+                   "--max-nodes: about 8 x the budget, and none for a budget over 1/12 of the "
+                   "samples), the node erase the rest; the bound holds at every sample either way "
+                   "(0: erase from the full grid)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     args->camera.add(cmd, false);
