@@ -2149,11 +2149,15 @@ void NodeEraser::compact() {
     s.ring_pool.shrink_to_fit();
 }
 
+static void rebuild_fans(NodeEraser::Impl &s);
+
 void NodeEraser::rebind(Mesh &mesh) {
     assert(mesh.n_vertices() == impl_->mesh->n_vertices() &&
            mesh.n_faces() == impl_->face_head.size());
     impl_->mesh = &mesh;
     advise_huge(*impl_);
+    if (impl_->fans_stale)
+        rebuild_fans(*impl_); // here, not in the first update (23 ms of a 30 fps descent's frame)
 }
 
 const Mesh &NodeEraser::mesh() const { return *impl_->mesh; }

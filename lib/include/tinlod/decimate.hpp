@@ -190,7 +190,9 @@ class NodeEraser {
     // OpenMesh keeps the arrays' capacity; to give the memory back, copy the mesh and rebind.
     void compact();
     // Continues on `mesh`, a copy of the eraser's current mesh, for a long run of updates: the
-    // large arrays (the mesh's and the eraser's) are moved to huge pages where the kernel allows.
+    // large arrays (the mesh's and the eraser's) are moved to huge pages where the kernel allows,
+    // and the bounds the updates keep on the live nodes' fans are built now (else the first update
+    // after an erase() builds them).
     void rebind(Mesh &mesh);
 
     bool is_erased(Mesh::VertexHandle v) const;
