@@ -1538,8 +1538,8 @@ static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t s
 // The sweep over the nodes of `list` only, then over the rings their erases changed, at `limit`
 // alone, until `stop_at` live nodes remain: its cost follows the nodes that changed (in an update,
 // the full sweep's rungs below the limit cost a tenth of its erase time for no fewer nodes: N42E001
-// flights at 4 frames per second). Fans over
-// `cap` swallowed nodes are left as they are (see sweep_node). Returns the erases made.
+// flights at 4 frames per second). Fans over `cap` swallowed nodes are left as they are (see
+// sweep_node). Returns the erases made.
 static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<std::uint32_t> list,
                                 std::size_t cap, std::int64_t stop_at = 0) {
     std::int64_t erased = 0;
@@ -1578,28 +1578,24 @@ static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<s
 // erases made.
 static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, std::int64_t budget) {
     std::int64_t erased = 0;
-    std::vector<std::uint32_t> list;
-    for (bool first = true; s.live > budget; first = false) {
-        if (first) {
-            limit = std::min(limit, tau);
-        } else {
-            if (limit >= tau)
-                break;
-            double least = INFINITY;
-            for (const LiveNode &l : s.live_list)
-                if (!(s.flags[l.node] & k_locked))
-                    least = std::min(least, double(s.heap.key(l.node)));
-            if (!(least < INFINITY))
-                break; // no live node can be erased
-            limit = std::min(tau, std::max(limit * k_fine_rung_ratio, least));
-        }
-        list.clear();
+    limit = std::min(limit, tau);
+    while (s.live > budget) {
+        std::vector<std::uint32_t> list;
         for (const LiveNode &l : s.live_list)
             if (!(s.flags[l.node] & k_locked) &&
                 ((s.flags[l.node] & k_dirty) || double(s.heap.key(l.node)) <= limit))
                 list.push_back(l.node);
         erased += sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(),
                               budget);
+        if (limit >= tau)
+            break;
+        double least = INFINITY;
+        for (const LiveNode &l : s.live_list)
+            if (!(s.flags[l.node] & k_locked))
+                least = std::min(least, double(s.heap.key(l.node)));
+        if (!(least < INFINITY))
+            break; // no live node can be erased
+        limit = std::min(tau, std::max(limit * k_fine_rung_ratio, least));
     }
     return erased;
 }
