@@ -1520,18 +1520,28 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     return true;
 }
 
-// One pass at `limit` over every node, until `stop_at` live nodes remain. Returns the erases made.
-static std::int64_t sweep_pass(NodeEraser::Impl &s, double limit, std::int64_t stop_at) {
+// One pass at `limit` over the nodes of `order` (ascending ids, those that were live and not locked
+// when the erase began), until `stop_at` live nodes remain. Drops the nodes erased before the pass
+// from `order`: a pass costs the nodes still live, not the input's. The refiner's first erase on the
+// 4097² flight makes 20 passes, which each read the state of all 16.8 M ids before, 0.83 M of them
+// live at first: 0.35-0.5 s of its 6.9 s (scratch runs).
+static std::int64_t sweep_pass(NodeEraser::Impl &s, std::vector<std::uint32_t> &order,
+                               double limit, std::int64_t stop_at) {
     next_pass(s);
-    const std::uint32_t n = std::uint32_t(s.mesh->n_vertices());
     std::int64_t erased = 0;
-    for (std::uint32_t x = 0; x < n && s.live > stop_at; ++x) {
-        if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
+    std::size_t kept = 0, i = 0;
+    for (; i < order.size() && s.live > stop_at; ++i) {
+        const std::uint32_t x = order[i];
+        if (s.record_of[x] >= 0)
             continue;
+        order[kept++] = x;
         if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
             continue;
         erased += sweep_node(s, x, limit);
     }
+    for (; i < order.size(); ++i)
+        order[kept++] = order[i];
+    order.resize(kept);
     return erased;
 }
 
@@ -1606,7 +1616,14 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     s.heap.reset(s.mesh->n_vertices()); // keys only: 0 until a node is first measured
     for (auto v : s.mesh->vertices())
         s.flags[v.idx()] &= std::uint8_t(~k_dirty);
-    auto sweep = [&](double limit, std::int64_t stop_at) { return sweep_pass(s, limit, stop_at); };
+    std::vector<std::uint32_t> order;
+    order.reserve(std::size_t(s.live));
+    for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
+        if (!(s.flags[x] & k_locked) && s.record_of[x] < 0)
+            order.push_back(x);
+    auto sweep = [&](double limit, std::int64_t stop_at) {
+        return sweep_pass(s, order, limit, stop_at);
+    };
     std::int64_t erased = 0;
     if (s.options.max_nodes <= 0) {
         for (int rung = tau_rungs(s); rung > 0; --rung)
