@@ -710,9 +710,10 @@ static std::uint32_t grid_width(const Mesh &m) {
             return 0;
     if (p[0][0] == p[1][0] || p[0][1] == p[w][1])
         return 0;
-    for (std::size_t i = 0; i < n; ++i)
-        if (p[i][0] != p[i % w][0] || p[i][1] != p[i - i % w][1])
-            return 0;
+    for (std::size_t r = 0; r < n; r += w)
+        for (std::size_t c = 0; c < w; ++c)
+            if (p[r + c][0] != p[c][0] || p[r + c][1] != p[r][1])
+                return 0;
     return std::uint32_t(w);
 }
 
