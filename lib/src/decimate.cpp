@@ -795,6 +795,16 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
                                   glm::dvec2(std::max(xa, xb), std::max(ya, yb)));
         if (value < 0.0)
             continue;
+        // The band's rows lie a lattice row apart in memory, too far for the hardware to guess:
+        // asking for all of them before the first is read overlaps their cache misses. The 4097²
+        // flight's updates at 30 frames per second took 4-16 % less (scratch runs, p50 of 300
+        // frames of each path); the 1201² erase, whose rows stay cached, the same.
+        for (std::int64_t y = y0; y <= y1; ++y) {
+            const char *first = reinterpret_cast<const char *>(pts + y * w + spans[y - y0].first);
+            const char *last = reinterpret_cast<const char *>(pts + y * w + spans[y - y0].second + 1);
+            for (const char *line = first; line < last; line += 64)
+                __builtin_prefetch(line);
+        }
         for (std::int64_t y = y0; y <= y1; ++y)
             for (std::int64_t x = spans[y - y0].first; x <= spans[y - y0].second; ++x) {
                 const std::uint32_t u = std::uint32_t(y * w + x);
