@@ -1386,8 +1386,14 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
 //  - tolerance only: passes at tau until one erases nothing; 3.4-4x faster and 4 % fewer nodes at
 //    tau = 1 px (42,087 against 43,897: the queue's strict order does not pay at a fixed bound).
 //    Cheap erases may go first, in passes at lower limits (tau_rungs);
-//  - node budget: the rungs' limits double while more than twice the budget remains (each
-//    exhausted before the next), then rise by 5 % (fine_rungs) until the budget is met. The
+//  - node budget: the rungs' limits double while more than twice the budget remains (one pass
+//    each), then rise by 5 % (fine_rungs) until the budget is met. A doubling rung used to repeat
+//    its pass until one erased nothing: those repeats re-evaluate the nodes whose ring the last
+//    pass changed, and the next rung, or the fine rungs (which start at the last doubling rung's
+//    limit and sweep every dirty node), evaluate most of them again. One pass per rung: 19-21 %
+//    fewer evaluations and 8-14 % less time at the benchmark's budgets (N42E001 low 673 k -> 546 k
+//    evaluations, 1352 -> 1165 ms; high, top, Rainier and the 513² crop alike), every output
+//    within 0.02 % of the same bound (scratch runs). The
 //    doubling rung that reaches twice the budget may pass the bound the budget needs, and the
 //    budget is then met inside it: from above (the benchmark's high and top views of N42E001 and
 //    Rainier) the output ends 23-26 % over the bound an erase to a tolerance reaches with as many
@@ -1674,10 +1680,7 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
             for (limit = std::max(double(*nth), 1e-30);
                  s.live > far && limit < tau && limit <= 2.0 * highest;
                  limit *= k_budget_rung_ratio)
-                for (std::int64_t made = 1; made > 0 && s.live > far;) {
-                    made = sweep(limit, far); // until the rung is exhausted: the limit rises slowly
-                    erased += made;
-                }
+                erased += sweep(limit, far);
             limit /= k_budget_rung_ratio;
         }
     }
