@@ -557,8 +557,10 @@ static void widen_fans(NodeEraser::Impl &s, const glm::dvec3 *p, const std::uint
                        int count, const RingTriangle *tri, const float *dev, int ntri) {
     if (s.fans_stale)
         return;
-    std::array<double, k_max_ring + 1> far2{};
-    std::array<float, k_max_ring + 1> most{};
+    std::array<double, k_max_ring + 1> far2;
+    std::array<float, k_max_ring + 1> most;
+    std::fill_n(far2.begin(), count, 0.0);
+    std::fill_n(most.begin(), count, 0.0f);
     for (int t = 0; t < ntri; ++t) {
         const std::uint8_t c[3] = {tri[t].a, tri[t].b, tri[t].c};
         for (int k = 0; k < 3; ++k) {
@@ -789,12 +791,18 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
     const std::int64_t w = s.grid_w;
     const LatticeTriangle t(s.grid_w, a, b, c);
     const Mesh::Point *pts = s.mesh->points();
-    std::array<std::pair<std::int64_t, std::int64_t>, k_band_rows> spans;
+    // Left uninitialised (a std::pair would be zeroed on every call, 1 % of an erase's time): each
+    // band writes the spans of its rows before it reads them.
+    struct Span {
+        std::int64_t first, second;
+    };
+    std::array<Span, k_band_rows> spans;
     for (std::int64_t y0 = t.first_row; y0 <= t.last_row; y0 += k_band_rows) {
         const std::int64_t y1 = std::min(y0 + k_band_rows - 1, t.last_row);
         std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = -1;
         for (std::int64_t y = y0; y <= y1; ++y) {
-            spans[y - y0] = t.span(y);
+            const auto [first, last] = t.span(y);
+            spans[y - y0] = {first, last};
             if (spans[y - y0].first <= spans[y - y0].second) {
                 lo = std::min(lo, spans[y - y0].first);
                 hi = std::max(hi, spans[y - y0].second);
