@@ -44,6 +44,10 @@ class Weigher {
         // rounding never takes the shortcut where the formula is above the floor).
         const double floored = cone_ + falloff_ * std::log(1.0 / std::max(floor_, 1e-300));
         floor_cos_ = floored < M_PI ? std::cos(floored) - 1e-9 : -2.0;
+        if (floored < M_PI) {
+            cos_floored_ = std::cos(floored);
+            sin_floored_ = std::sin(floored);
+        }
     }
     double operator()(const glm::dvec3 &p) const {
         if (unit_)
@@ -79,8 +83,14 @@ class Weigher {
         // Inside that cone widened by the sphere's half angle asin(rho), tested by cosines (cone +
         // asin(rho) <= pi, where the cosine falls): the factor is 1, which bounds any angle.
         const double rho = radius / dc, cos_axis = glm::dot(c, f_) / dc;
-        if (cos_axis >= cos_cone_margin_ * std::sqrt(1.0 - rho * rho) - sin_cone_margin_ * rho)
+        const double cos_rho = std::sqrt(1.0 - rho * rho);
+        if (cos_axis >= cos_cone_margin_ * cos_rho - sin_cone_margin_ * rho)
             return k_ / dist;
+        // Beyond the angle where the factor reaches the floor even at the sphere's nearest point:
+        // the angle to its centre exceeds that one plus asin(rho) (a sum under pi, as rho is under
+        // its sine), tested by cosines with a hair of margin.
+        if (rho < sin_floored_ && cos_axis < cos_floored_ * cos_rho - sin_floored_ * rho - 1e-9)
+            return k_ / dist * floor_;
         const double angle = std::acos(std::clamp(cos_axis, -1.0, 1.0)) - std::asin(rho);
         if (angle <= cone_margin_)
             return k_ / dist;
@@ -109,8 +119,12 @@ class Weigher {
         if (unit_)
             return 1.0;
         const double dist = glm::length(glm::max(glm::abs(lo - eye_), glm::abs(hi - eye_)));
+        if (in_cone(lo, hi))
+            return k_ / dist; // the factor is 1 at every angle the sphere makes
         const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
         const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
+        if (glm::dot(c, f_) < floor_cos_ * dc)
+            return k_ / dist * floor_; // its centre, and so its farthest angle, is floored
         const double angle = dc <= radius ? M_PI
                                           : std::acos(std::clamp(glm::dot(c, f_) / dc, -1.0, 1.0)) +
                                                 std::asin(radius / dc);
@@ -126,6 +140,7 @@ class Weigher {
     glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
     double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
     double floor_cos_ = -2.0;
+    double cos_floored_ = -1.0, sin_floored_ = 0.0; // of the angle where the factor is floored
     double cos_cone_ = 1.0, sin_cone_ = 0.0;
     double cone_margin_ = 0.0, cos_cone_margin_ = 1.0, sin_cone_margin_ = 0.0;
 };
