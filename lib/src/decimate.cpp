@@ -1526,9 +1526,16 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     if (fresh && s.options.shallow_history)
         return false;
     // Over the cap by its area: left as it is without locating the first `cap` nodes (18 % of a
-    // 4097² flight update's locates went to such walks).
+    // 4097² flight update's locates went to such walks). The fan lies in the disc of its reach
+    // (an update keeps the live nodes' fan bounds), so most fans need no walk to pass.
+    const auto over_cap = [&] {
+        assert(!s.fans_stale);
+        const double reach = double(live_node(s, x).reach);
+        return M_PI * reach * reach > double(cap) * s.area_per_node &&
+               covered_estimate(s, x) > double(cap);
+    };
     if (cap != std::numeric_limits<std::size_t>::max() && s.xy && s.area_per_node > 0.0 &&
-        covered_estimate(s, x) > double(cap)) {
+        over_cap()) {
         park(s, x);
         return false;
     }
