@@ -307,6 +307,7 @@ struct LiveNode {
     std::uint32_t seen_at = 0;
     std::uint32_t low_at = 0;
     bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
+    bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
 };
 
 // A run of a long swallowed list (see build_blocks).
@@ -577,6 +578,7 @@ static void widen_fans(NodeEraser::Impl &s, const glm::dvec3 *p, const std::uint
             continue;
         LiveNode &l = live_node(s, ids[i]);
         l.seen_log = INFINITY;
+        l.fan_exact = false;
         l.reach = std::max(l.reach, float_up(std::sqrt(far2[i]) + double(most[i])));
         l.fan_dev = std::max(l.fan_dev, most[i]);
         Cell &cell = s.cells[l.cell];
@@ -2600,6 +2602,7 @@ static void fan_extent(const NodeEraser::Impl &s, LiveNode &l) {
     }
     l.reach = float_up(std::sqrt(far2) + double(fan_dev));
     l.fan_dev = fan_dev;
+    l.fan_exact = true;
 }
 
 // The fan bounds of every live node and cell, from the fans as they stand (see Impl::fans_stale).
@@ -2620,14 +2623,16 @@ static void rebuild_fans(NodeEraser::Impl &s) {
 
 // Seeds the recover worklist with the faces of live node l's fan whose swallowed nodes may cost
 // more than `recover_above` (l's own bounds did not clear them): tightens l's bounds from its fan
-// as it stands, which may clear them, else tries each face's. Each face is seeded by the node its
+// as it stands unless they are that already (LiveNode::fan_exact), which may clear them, else tries
+// each face's. Each face is seeded by the node its
 // halfedge leaves from, so once, and l's seen bound need only cover the faces it seeds: a face
 // near the bound makes one node walk its fan each update, not three.
 static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
                      std::vector<FH> &work) {
     const Mesh &m = *s.mesh;
     const VH x{int(l.node)};
-    fan_extent(s, l);
+    if (!l.fan_exact)
+        fan_extent(s, l); // else its bounds are what the walk would give
     const double box = fan_bound(s, l);
     if (!(box > recover_above)) {
         remember_fan(s, l, box);
