@@ -1413,15 +1413,17 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
 //    limit and sweep every dirty node), evaluate most of them again. One pass per rung: 19-21 %
 //    fewer evaluations and 8-14 % less time at the benchmark's budgets (N42E001 low 673 k -> 546 k
 //    evaluations, 1352 -> 1165 ms; high, top, Rainier and the 513² crop alike), every output
-//    within 0.02 % of the same bound (scratch runs). The
-//    doubling rung that reaches twice the budget may pass the bound the budget needs, and the
-//    budget is then met inside it: from above (the benchmark's high and top views of N42E001 and
-//    Rainier) the output ends 23-26 % over the bound an erase to a tolerance reaches with as many
-//    nodes. Rungs sized by the slope of the last two (nodes against limit, in log-log, at least
-//    -1.5) got 1.03-1.07 px there instead of 1.23-1.24, for 5-15 % more time (scratch runs): not
-//    taken, as it would cost the low view its lead over meshoptimizer. The first rung is the first
-//    cost the budget makes unavoidable (see sweep_erase), not the 5th percentile of the first
-//    costs: 2.1x faster on N42E001 to 35 k nodes (7.3 M evaluations to 2.4 M) at the same error.
+//    within 0.02 % of the same bound (scratch runs). The doubling rung that reaches twice the
+//    budget may pass the bound the budget needs, and the budget is then met inside it: from above
+//    (the benchmark's high and top views of N42E001 and Rainier) the output ends 23-26 % over the
+//    bound an erase to a tolerance reaches with as many nodes. Rungs sized by the slope of the
+//    last two (nodes against limit, in log-log, at least -1.5) got 1.03-1.07 px there instead of
+//    1.23-1.24, for 5-15 % more time; doubling rungs down to 3 times the budget (k_coarse_share
+//    3) got 1.04-1.07 px from every view for 11-27 % more evaluations (scratch runs): neither is
+//    taken, as the low view's time is its margin on the 2 M input triangles/s goal. The first
+//    rung is the first cost the budget makes unavoidable (see sweep_erase), not the 5th
+//    percentile of the first costs: 2.1x faster on N42E001 to 35 k nodes (7.3 M evaluations to
+//    2.4 M) at the same error.
 //    The fine rungs replaced a queue over the last twice the budget (the least cost first, its
 //    keys lower bounds refreshed at the top). Scratch runs at the benchmark's budgets, DEMs
 //    through erase_dem: the erase takes 9-33 % less time (N42E001 low 1714 -> 1326 ms, high 1758
@@ -2624,9 +2626,9 @@ static void rebuild_fans(NodeEraser::Impl &s) {
 // Seeds the recover worklist with the faces of live node l's fan whose swallowed nodes may cost
 // more than `recover_above` (l's own bounds did not clear them): tightens l's bounds from its fan
 // as it stands unless they are that already (LiveNode::fan_exact), which may clear them, else tries
-// each face's. Each face is seeded by the node its
-// halfedge leaves from, so once, and l's seen bound need only cover the faces it seeds: a face
-// near the bound makes one node walk its fan each update, not three.
+// each face's. Each face is seeded by the node its halfedge leaves from, so once, and l's seen
+// bound need only cover the faces it seeds: a face near the bound makes one node walk its fan each
+// update, not three.
 static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
                      std::vector<FH> &work) {
     const Mesh &m = *s.mesh;
