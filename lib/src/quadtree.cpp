@@ -695,17 +695,23 @@ Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
             mesh.status(v).set_deleted(true);
     // Faces in the order of their first sample (row-major), so the half-edges of nearby nodes lie
     // near each other in memory: an erase sweeping the nodes row by row walked the retrieval's
-    // level order before, 16 % slower on N42E001.
+    // level order before, 16 % slower on N42E001. A counting sort on the first sample, stable
+    // (ties keep the retrieval's order): a comparison sort of the keys took 24 ms of N42E001's
+    // 352 k-node budget retrieval.
     const auto& t = retrieval.triangles;
-    std::vector<std::uint64_t> order(t.size() / 3);
-    for (std::size_t k = 0; k < order.size(); ++k)
-        order[k] = std::uint64_t{std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]})} << 32 | k;
-    std::sort(order.begin(), order.end());
-    std::vector<std::uint32_t> corners;
-    corners.reserve(t.size());
-    for (const std::uint64_t key : order) {
-        const std::size_t k = key & 0xffffffffu;
-        corners.insert(corners.end(), {t[3 * k], t[3 * k + 1], t[3 * k + 2]});
+    const std::size_t faces = t.size() / 3;
+    const auto first = [&](std::size_t k) {
+        return std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]});
+    };
+    std::vector<std::uint32_t> start(mesh.n_vertices() + 1, 0);
+    for (std::size_t k = 0; k < faces; ++k)
+        ++start[first(k) + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v)
+        start[v + 1] += start[v];
+    std::vector<std::uint32_t> corners(t.size());
+    for (std::size_t k = 0; k < faces; ++k) {
+        const std::size_t at = 3 * std::size_t(start[first(k)]++);
+        std::copy_n(t.begin() + std::ptrdiff_t(3 * k), 3, corners.begin() + std::ptrdiff_t(at));
     }
     add_triangles(mesh, corners);
     return mesh;
