@@ -104,12 +104,7 @@ class Weigher {
         if (unit_)
             return true;
         const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
-        const double dc = glm::length(c);
-        const double rho = 0.5 * glm::length(hi - lo) / dc;
-        if (!(rho < sin_cone_))
-            return false;
-        const double cos_limit = cos_cone_ * std::sqrt(1.0 - rho * rho) + sin_cone_ * rho;
-        return glm::dot(c, f_) >= dc * cos_limit * (1.0 + 1e-9);
+        return sphere_in_cone(c, glm::length(c), 0.5 * glm::length(hi - lo));
     }
 
     // A lower bound of the weight anywhere in the box [lo, hi]: k over the distance to its farthest
@@ -119,10 +114,10 @@ class Weigher {
         if (unit_)
             return 1.0;
         const double dist = glm::length(glm::max(glm::abs(lo - eye_), glm::abs(hi - eye_)));
-        if (in_cone(lo, hi))
-            return k_ / dist; // the factor is 1 at every angle the sphere makes
         const glm::dvec3 c = 0.5 * (lo + hi) - eye_;
         const double dc = glm::length(c), radius = 0.5 * glm::length(hi - lo);
+        if (sphere_in_cone(c, dc, radius))
+            return k_ / dist; // the factor is 1 at every angle the sphere makes
         if (glm::dot(c, f_) < floor_cos_ * dc)
             return k_ / dist * floor_; // its centre, and so its farthest angle, is floored
         const double angle = dc <= radius ? M_PI
@@ -136,6 +131,15 @@ class Weigher {
     double falloff() const { return falloff_; } // the peripheral factor's e-folding, radians
 
   private:
+    // in_cone for the sphere of centre eye + c (at distance dc) and the given radius.
+    bool sphere_in_cone(const glm::dvec3 &c, double dc, double radius) const {
+        const double rho = radius / dc;
+        if (!(rho < sin_cone_))
+            return false;
+        const double cos_limit = cos_cone_ * std::sqrt(1.0 - rho * rho) + sin_cone_ * rho;
+        return glm::dot(c, f_) >= dc * cos_limit * (1.0 + 1e-9);
+    }
+
     bool unit_ = true;
     glm::dvec3 eye_{0.0}, f_{0.0}, r_{0.0}, u_{0.0};
     double k_ = 1.0, half_w_ = 0.0, half_h_ = 0.0, cone_ = 0.0, falloff_ = 1.0, floor_ = 0.0;
