@@ -82,6 +82,23 @@ TEST(Cli, SimplifyDemRetrievesThenErasesWithinTheBound) {
     EXPECT_GT(stats["output"]["nodes"].get<std::int64_t>(), 100);
 }
 
+// simplify --max-error on a DEM: greedy insertion first where the bound is coarse, the full grid
+// with --retrieve-share 0; the vertical error the command measures at every sample stays within the
+// bound either way.
+TEST(Cli, SimplifyMaxErrorStartsFromGreedyInsertionWithinTheBound) {
+    const std::string dir = tinlod::test::temp_dir();
+    const std::string base = "simplify '" + asset("dem_srtm30.tif") + "' --max-error 40 -o " + dir +
+                             "/out.ply --stats " + dir + "/stats.json ";
+    for (const std::string stage : {"greedy", "grid"}) {
+        auto r = run_cli(base + (stage == "grid" ? "--retrieve-share 0" : ""));
+        ASSERT_EQ(r.status, 0) << r.err;
+        const auto stats = nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
+        EXPECT_EQ(stats["retrieve"]["first_stage"], stage);
+        EXPECT_LE(stats["error"]["max_vertical"].get<double>(), 40.0);
+        EXPECT_LT(stats["output"]["nodes"], stats["retrieve"]["nodes"]);
+    }
+}
+
 struct BadCase {
     std::string name;
     std::string args; // {dir} is the temp folder

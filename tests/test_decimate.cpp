@@ -4,6 +4,7 @@
 #include "assets.hpp"
 
 #include "tinlod/decimate.hpp"
+#include "tinlod/greedy.hpp"
 #include "tinlod/hausdorff.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <random>
 
 namespace tinlod {
@@ -332,6 +334,82 @@ TEST_P(DemErase, BudgetReachesTheBoundOfAsManyNodes) {
     const Mesh out = erase_dem(hf, &view, budget);
     EXPECT_EQ(out.n_vertices(), swept.n_vertices());
     EXPECT_LE(measure_error(hf, out, eo).max_screen_px, 1.1) << budget.max_nodes << " nodes";
+}
+
+// Greedy insertion: every sample within the bound (measured at every sample), a valid TIN over the
+// whole rectangle (to_lattice_mesh refuses anything else), Delaunay (no node strictly inside the
+// circumcircle of the triangle across an edge), and fewer nodes as the bound grows.
+TEST_P(DemErase, GreedyInsertionIsDelaunayAndWithinItsBound) {
+    const Heightfield hf = load_cropped(GetParam());
+    const double relief = hf.max_z() - hf.min_z();
+    const std::int64_t w = hf.width;
+    std::int64_t previous = INT64_MAX;
+    for (double fraction : {0.002, 0.01, 0.05}) {
+        GreedyOptions go;
+        go.max_error = fraction * relief;
+        const GreedyTin g = greedy_tin(hf, go);
+        EXPECT_FALSE(g.stopped);
+        const TinError measured = measure_error(hf, g.tin.triangles);
+        EXPECT_EQ(measured.uncovered, 0);
+        EXPECT_LE(measured.max_vertical, go.max_error) << "bound " << go.max_error;
+        const std::int64_t nodes = std::int64_t(g.tin.nodes.size());
+        EXPECT_LT(nodes, previous);
+        previous = nodes;
+        const Mesh mesh = to_lattice_mesh(g.tin, hf);
+        EXPECT_EQ(test::count_folded_faces(mesh), 0);
+        EXPECT_NEAR(test::xy_area(mesh), (hf.width - 1) * hf.dx * (hf.height - 1) * hf.dy,
+                    1e-6 * (hf.width - 1) * hf.dx * (hf.height - 1) * hf.dy);
+        const auto &t = g.tin.triangles;
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> apex;
+        for (std::size_t i = 0; i < t.size(); i += 3)
+            for (int k = 0; k < 3; ++k)
+                apex[{t[i + k], t[i + (k + 1) % 3]}] = t[i + (k + 2) % 3];
+        std::int64_t illegal = 0;
+        for (const auto &[edge, c] : apex) {
+            const auto across = apex.find({edge.second, edge.first});
+            if (across == apex.end())
+                continue;
+            const auto x = [&](std::uint32_t n) { return double(std::int64_t(n % w)); };
+            const auto y = [&](std::uint32_t n) { return double(std::int64_t(n / w)); };
+            const std::uint32_t a = edge.first, b = edge.second, d = across->second;
+            const double ax = x(a) - x(d), ay = y(a) - y(d), bx = x(b) - x(d), by = y(b) - y(d);
+            const double cx = x(c) - x(d), cy = y(c) - y(d);
+            const double det = (ax * ax + ay * ay) * (bx * cy - by * cx) -
+                               (bx * bx + by * by) * (ax * cy - ay * cx) +
+                               (cx * cx + cy * cy) * (ax * by - ay * bx);
+            illegal += det > 0.0;
+        }
+        EXPECT_EQ(illegal, 0) << "bound " << go.max_error;
+    }
+    GreedyOptions capped;
+    capped.max_error = 0.002 * relief;
+    capped.max_nodes = 100;
+    const GreedyTin g = greedy_tin(hf, capped);
+    EXPECT_TRUE(g.stopped);
+    EXPECT_EQ(g.tin.nodes.size(), 100u);
+}
+
+// The vertical erase from a DEM starts from greedy insertion where the bound is coarse for the
+// terrain; the erase keeps the bound over every sample, and keeps fewer nodes than the insertion.
+TEST_P(DemErase, VerticalEraseFromGreedyInsertionKeepsTheBound) {
+    const Heightfield hf = load_cropped(GetParam());
+    const double relief = hf.max_z() - hf.min_z();
+    EraseOptions options;
+    options.significance.model = SpModel::vertical;
+    options.tolerance = 0.05 * relief;
+    for (const double cap : {DemEraseOptions{}.greedy_cap, 0.0}) {
+        DemEraseOptions dem;
+        dem.greedy_cap = cap;
+        DemEraseStats stats;
+        const Mesh out = erase_dem(hf, nullptr, options, dem, &stats);
+        EXPECT_EQ(stats.first_stage, cap > 0.0 ? FirstStage::greedy : FirstStage::grid);
+        const TinError measured = measure_error(hf, out);
+        EXPECT_EQ(measured.uncovered, 0);
+        EXPECT_LE(measured.max_vertical, options.tolerance);
+        EXPECT_LE(stats.erase.max_vertical, options.tolerance);
+        EXPECT_EQ(test::count_folded_faces(out), 0);
+        EXPECT_LT(std::int64_t(out.n_vertices()), stats.retrieved_nodes);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Assets, DemErase, ::testing::ValuesIn(k_dems), [](const auto &info) {

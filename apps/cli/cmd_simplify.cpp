@@ -50,7 +50,8 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                    "DEM input, screen model: the quad-tree retrieval first keeps share * tau (with "
                    "--max-nodes: about 8 x the budget, and none for a budget over 1/12 of the "
                    "samples), the node erase the rest; the bound holds at every sample either way "
-                   "(0: erase from the full grid)")
+                   "(0: erase from the full grid; with --max-error, 0 also skips the greedy "
+                   "insertion that starts the erase where the bound is coarse for the terrain)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     args->camera.add(cmd, false);
@@ -107,8 +108,10 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             input_triangles = 2 * std::int64_t(hf->width - 1) * (hf->height - 1);
             DemEraseOptions dem_options;
             dem_options.retrieve_share = args->retrieve_share;
-            if (args->retrieve_share == 0.0)
+            if (args->retrieve_share == 0.0) {
                 dem_options.budget_share = 0.0;
+                dem_options.greedy_cap = 0.0;
+            }
             mesh = erase_dem(*hf, view ? &*view : nullptr, options, dem_options, &dem);
             erased = dem.erase;
         } else {
@@ -137,7 +140,10 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
              {{"file", args->output}, {"nodes", mesh.n_vertices()}, {"triangles", mesh.n_faces()}}},
             {"time_ms", {{"load", ms_load}, {"retrieve", dem.retrieve_ms},
                          {"simplify", ms_simplify}, {"write", ms_write}}},
-            {"retrieve", {{"tol_px", dem.retrieve_tol}, {"nodes", hf ? dem.retrieved_nodes : 0}}},
+            {"retrieve",
+             {{"first_stage", first_stage_name(dem.first_stage)},
+              {"tol", dem.retrieve_tol},
+              {"nodes", hf ? dem.retrieved_nodes : 0}}},
             {"error", {{"max_screen_px", max_screen}, {"max_vertical", max_vertical}}},
             {"simplify",
              {{"model", vertical ? "vertical" : args->model},

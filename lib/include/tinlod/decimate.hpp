@@ -233,13 +233,25 @@ struct DemEraseOptions {
     // grid.
     double budget_share = 8.0;
     const QuadTree *tree = nullptr; // the DEM's quad-tree when one is built already
+    // The vertical model with a bound (no budget): greedy insertion (greedy.hpp) to the bound
+    // first, when a probe on a coarser lattice says it keeps few samples (about a third or less,
+    // where it is faster than the erase from the grid); should it still pass this share of the
+    // samples, it stops and the erase starts from the full grid (0: always from the grid).
+    double greedy_cap = 0.4;
 };
+
+// What the erase of erase_dem started from.
+enum class FirstStage { grid, quadtree, greedy };
+inline const char *first_stage_name(FirstStage stage) {
+    return stage == FirstStage::grid ? "grid" : stage == FirstStage::quadtree ? "quadtree" : "greedy";
+}
 
 struct DemEraseStats {
     EraseStats erase;                 // the erase, on the retrieved TIN
     std::int64_t retrieved_nodes = 0; // the retrieval's nodes (the grid's when it was skipped)
-    double retrieve_tol = 0.0;        // its tolerance (0: the full grid)
-    double retrieve_ms = 0.0;         // quad-tree build, retrieval and mesh
+    double retrieve_tol = 0.0; // its tolerance, pixels or (greedy) metres (0: the full grid)
+    double retrieve_ms = 0.0;         // quad-tree build or greedy insertion, retrieval and mesh
+    FirstStage first_stage = FirstStage::grid;
 };
 
 // A DEM's TIN by both methods of the paper: the quad-tree retrieval (method 1) as a TIN on the
@@ -249,7 +261,8 @@ struct DemEraseStats {
 // do node by node where the terrain is smooth. Only the screen model retrieves: the paper model's
 // SP is not a screen error a retrieval could share, and for the vertical model the quad-tree's
 // bounds (any subset of side midpoints) are too loose to spare the erase any work (N42E001 at 1,
-// 5 and 20 m: 0.7-1.3x the time). The others erase from the full grid. Returns the TIN's live
+// 5 and 20 m: 0.7-1.3x the time): it starts from greedy insertion instead, where that keeps few
+// samples (DemEraseOptions::greedy_cap), and erases from there. The others erase from the full grid. Returns the TIN's live
 // nodes and faces (live_copy: the nodes and triangles erase_nodes leaves, in sample order; origin
 // = sample id).
 Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,

@@ -1,0 +1,39 @@
+// Greedy insertion of a DEM's samples into a Delaunay TIN (Garland and Heckbert, "Fast polygonal
+// approximation of terrains and height fields", 1995; the method of the heightmap meshers hmm and
+// delatin): from the two triangles over the lattice's corners, the sample farthest (vertically)
+// from the TIN is inserted, and the edges round it are flipped until the TIN is Delaunay again, as
+// long as a sample is more than max_error away.
+//
+// tinlod uses it as the first stage of the view-independent erase at a large bound (erase_dem):
+// its work follows the nodes it keeps, where the erase's follows the nodes it drops.
+#pragma once
+
+#include "tinlod/quadtree.hpp"
+#include "tinlod/raster.hpp"
+
+#include <cstdint>
+
+namespace tinlod {
+
+struct GreedyTin {
+    // The TIN as a retrieval has it (nodes, z and counter-clockwise triangles by sample id, for
+    // to_lattice_mesh); its counters stay 0.
+    Retrieval tin;
+    bool stopped = false; // max_nodes was reached before max_error was
+};
+
+struct GreedyOptions {
+    double max_error = 1.0;    // > 0, world units
+    std::int64_t max_nodes = 0; // stop at this many nodes (0: no limit)
+    // Added to a triangle's largest deviation, times the triangle's slope (|grad z|): what a
+    // consumer that rounds the TIN's coordinates to float counts on top of the deviation (the
+    // node erase's rounding margin), so its own measure stays within max_error too.
+    double slope_margin = 0.0;
+};
+
+// Inserts until every sample is within options.max_error of the TIN (vertical distance, computed
+// in double from the samples' float heights, plus the slope margin), or until it holds max_nodes
+// nodes. Cost: O(samples * log(nodes)) time on a terrain, about 80 bytes per node.
+GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options);
+
+} // namespace tinlod
