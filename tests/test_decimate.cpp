@@ -343,22 +343,16 @@ TEST_P(DemErase, GreedyInsertionIsDelaunayAndWithinItsBound) {
     const Heightfield hf = load_cropped(GetParam());
     const double relief = hf.max_z() - hf.min_z();
     const std::int64_t w = hf.width;
-    std::int64_t previous = INT64_MAX;
-    for (double fraction : {0.002, 0.01, 0.05}) {
-        GreedyOptions go;
-        go.max_error = fraction * relief;
+    const auto check = [&](const GreedyOptions &go) {
         const GreedyTin g = greedy_tin(hf, go);
         EXPECT_FALSE(g.stopped);
         const TinError measured = measure_error(hf, g.tin.triangles);
         EXPECT_EQ(measured.uncovered, 0);
         EXPECT_LE(measured.max_vertical, go.max_error) << "bound " << go.max_error;
-        const std::int64_t nodes = std::int64_t(g.tin.nodes.size());
-        EXPECT_LT(nodes, previous);
-        previous = nodes;
         const Mesh mesh = to_lattice_mesh(g.tin, hf);
         EXPECT_EQ(test::count_folded_faces(mesh), 0);
-        EXPECT_NEAR(test::xy_area(mesh), (hf.width - 1) * hf.dx * (hf.height - 1) * hf.dy,
-                    1e-6 * (hf.width - 1) * hf.dx * (hf.height - 1) * hf.dy);
+        const double area = (hf.width - 1) * hf.dx * (hf.height - 1) * hf.dy;
+        EXPECT_NEAR(test::xy_area(mesh), area, 1e-6 * area);
         const auto &t = g.tin.triangles;
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> apex;
         for (std::size_t i = 0; i < t.size(); i += 3)
@@ -379,8 +373,21 @@ TEST_P(DemErase, GreedyInsertionIsDelaunayAndWithinItsBound) {
                                (cx * cx + cy * cy) * (ax * by - ay * bx);
             illegal += det > 0.0;
         }
-        EXPECT_EQ(illegal, 0) << "bound " << go.max_error;
+        EXPECT_EQ(illegal, 0) << "bound " << go.max_error << ", seed step " << go.seed_step;
+        return std::int64_t(g.tin.nodes.size());
+    };
+    std::int64_t previous = INT64_MAX;
+    for (double fraction : {0.002, 0.01, 0.05}) {
+        GreedyOptions go;
+        go.max_error = fraction * relief;
+        const std::int64_t nodes = check(go);
+        EXPECT_LT(nodes, previous);
+        previous = nodes;
     }
+    GreedyOptions seeded;
+    seeded.max_error = 0.01 * relief;
+    seeded.seed_step = 16;
+    check(seeded);
     GreedyOptions capped;
     capped.max_error = 0.002 * relief;
     capped.max_nodes = 100;

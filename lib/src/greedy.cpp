@@ -177,7 +177,7 @@ struct Inserter {
         candidate[t] = at;
         is_pending[t] = 0;
         if (slope_margin > 0.0)
-            worst += slope_margin * std::hypot(gx / dx, gy / dy);
+            worst += slope_margin * std::sqrt(gx * gx / (dx * dx) + gy * gy / (dy * dy));
         if (worst > threshold && at != sa && at != sb && at != sc) {
             const int b = int(std::min(double(k_buckets - 1),
                                        std::log2(worst / threshold) * k_buckets_per_octave));
@@ -272,11 +272,32 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     if (!(options.max_error > 0.0))
         throw std::invalid_argument("greedy_tin: max_error must be > 0");
     Inserter ins(hf, options);
-    const std::uint32_t w = std::uint32_t(hf.width), last_row = std::uint32_t(hf.height - 1) * w;
-    const std::int32_t sw = ins.add_point(0), se = ins.add_point(w - 1);
-    const std::int32_t nw = ins.add_point(last_row), ne = ins.add_point(last_row + w - 1);
-    const std::int32_t first = ins.set_triangle(sw, se, ne, -1, -1, -1);
-    ins.set_triangle(sw, ne, nw, first + 2, -1, -1);
+    // The seed: a regular grid of nodes every seed_step samples (and on the last row and column),
+    // each cell split along the same diagonal (Delaunay: a cell's four corners are cocircular).
+    const int step = options.seed_step > 0 ? options.seed_step : std::max(hf.width, hf.height);
+    std::vector<std::uint32_t> xs, ys;
+    for (int x = 0; x < hf.width - 1; x += step)
+        xs.push_back(std::uint32_t(x));
+    xs.push_back(std::uint32_t(hf.width - 1));
+    for (int y = 0; y < hf.height - 1; y += step)
+        ys.push_back(std::uint32_t(y));
+    ys.push_back(std::uint32_t(hf.height - 1));
+    const std::size_t nx = xs.size(), cells_x = nx - 1;
+    for (const std::uint32_t y : ys)
+        for (const std::uint32_t x : xs)
+            ins.add_point(y * std::uint32_t(hf.width) + x);
+    for (std::size_t j = 0; j + 1 < ys.size(); ++j)
+        for (std::size_t i = 0; i < cells_x; ++i) {
+            // Cell (i, j): triangles 2k (south-east half) and 2k + 1 (north-west half), k its index;
+            // each links to the cell below and the one to the left, made before it.
+            const auto node = [&](std::size_t x, std::size_t y) { return std::int32_t(y * nx + x); };
+            const auto half_edge = [&](std::size_t k, int side) { return std::int32_t(3 * k + side); };
+            const std::int32_t below = j > 0 ? half_edge(2 * ((j - 1) * cells_x + i) + 1, 1) : -1;
+            const std::int32_t left = i > 0 ? half_edge(2 * (j * cells_x + i - 1), 1) : -1;
+            const std::int32_t se = ins.set_triangle(node(i, j), node(i + 1, j), node(i + 1, j + 1),
+                                                     below, -1, -1);
+            ins.set_triangle(node(i, j), node(i + 1, j + 1), node(i, j + 1), se + 2, -1, left);
+        }
     ins.flush();
     GreedyTin out;
     std::int32_t t;

@@ -1,8 +1,8 @@
 // Greedy insertion of a DEM's samples into a Delaunay TIN (Garland and Heckbert, "Fast polygonal
 // approximation of terrains and height fields", 1995; the method of the heightmap meshers hmm and
-// delatin): from the two triangles over the lattice's corners, the sample farthest (vertically)
-// from the TIN is inserted, and the edges round it are flipped until the TIN is Delaunay again, as
-// long as a sample is more than max_error away.
+// delatin): from the two triangles over the lattice's corners (or a seed grid), the sample
+// farthest (vertically) from the TIN is inserted, and the edges round it are flipped until the TIN
+// is Delaunay again, as long as a sample is more than max_error away.
 //
 // tinlod uses it as the first stage of the view-independent erase at a large bound (erase_dem):
 // its work follows the nodes it keeps, where the erase's follows the nodes it drops.
@@ -29,6 +29,11 @@ struct GreedyOptions {
     // consumer that rounds the TIN's coordinates to float counts on top of the deviation (the
     // node erase's rounding margin), so its own measure stays within max_error too.
     double slope_margin = 0.0;
+    // The insertion starts from the nodes every seed_step samples along each row and column (and
+    // the last row and column), not from the lattice's four corners (0): they spare it the scans
+    // of the first few levels, over the whole lattice each, for a few more nodes (N42E001 to 20 m,
+    // every 16th sample: a quarter less time, 1 % more nodes).
+    int seed_step = 0;
 };
 
 // Inserts until every sample is within options.max_error of the TIN (vertical distance, computed
