@@ -234,10 +234,10 @@ struct DemEraseOptions {
     double budget_share = 8.0;
     const QuadTree *tree = nullptr; // the DEM's quad-tree when one is built already
     // The vertical model with a bound (no budget): greedy insertion (greedy.hpp) to the bound
-    // first, when a probe on a coarser lattice says it keeps few samples (about a third or less,
-    // where it is faster than the erase from the grid); should it still pass this share of the
-    // samples, it stops and the erase starts from the full grid (0: always from the grid).
-    double greedy_cap = 0.4;
+    // first, when a probe on a coarser lattice says it keeps few enough samples (about half or
+    // less, where it is faster than the erase from the grid); should it still pass this share of
+    // the samples, it stops and the erase starts from the full grid (0: always from the grid).
+    double greedy_cap = 0.6;
 };
 
 // What the erase of erase_dem started from.
