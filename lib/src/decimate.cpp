@@ -2991,12 +2991,14 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         go.slope_margin = 2.0 * rounding_margin(std::max((hf.width - 1) * hf.dx,
                                                          (hf.height - 1) * hf.dy), 1.0);
         go.seed_step = 16; // the erase drops the seed's nodes the insertion did not need
-        const GreedyTin greedy = greedy_pays(hf, go) ? greedy_tin(hf, go) : GreedyTin{{}, true};
-        if (!greedy.stopped) {
-            Mesh mesh = to_lattice_mesh(greedy.tin, hf);
-            out.retrieved_nodes = std::int64_t(greedy.tin.nodes.size());
-            out.retrieve_tol = options.tolerance;
-            return erase(mesh, FirstStage::greedy);
+        if (greedy_pays(hf, go)) {
+            const GreedyTin greedy = greedy_tin(hf, go);
+            if (!greedy.stopped) {
+                Mesh mesh = to_lattice_mesh(greedy.tin, hf);
+                out.retrieved_nodes = std::int64_t(greedy.tin.nodes.size());
+                out.retrieve_tol = options.tolerance;
+                return erase(mesh, FirstStage::greedy);
+            }
         }
     }
     Mesh mesh = build();
