@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -274,7 +275,13 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     Inserter ins(hf, options);
     // The seed: a regular grid of nodes every seed_step samples (and on the last row and column),
     // each cell split along the same diagonal (Delaunay: a cell's four corners are cocircular).
-    const int step = options.seed_step > 0 ? options.seed_step : std::max(hf.width, hf.height);
+    // Half-edges are counted in 32 bits: 6 per node (a TIN has about twice as many triangles as
+    // nodes, and the outline's nodes fewer). A seed grid finer than that is thinned.
+    constexpr std::int64_t k_max_nodes = (std::numeric_limits<std::int32_t>::max() - 64) / 6;
+    int step = options.seed_step > 0 ? options.seed_step : std::max(hf.width, hf.height);
+    const auto lines = [&](int samples) { return std::int64_t((samples - 2) / step + 2); };
+    while (lines(hf.width) * lines(hf.height) > k_max_nodes)
+        step *= 2;
     std::vector<std::uint32_t> xs, ys;
     for (int x = 0; x < hf.width - 1; x += step)
         xs.push_back(std::uint32_t(x));
@@ -300,9 +307,11 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
         }
     ins.flush();
     GreedyTin out;
+    const std::int64_t max_nodes =
+        options.max_nodes > 0 ? std::min(options.max_nodes, k_max_nodes) : k_max_nodes;
     std::int32_t t;
     while (ins.pop(t)) {
-        if (options.max_nodes > 0 && std::int64_t(ins.points.size()) >= options.max_nodes) {
+        if (std::int64_t(ins.points.size()) >= max_nodes) {
             out.stopped = true;
             break;
         }
