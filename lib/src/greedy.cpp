@@ -279,7 +279,7 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     // nodes, and the outline's nodes fewer). A seed grid finer than that is thinned.
     constexpr std::int64_t k_max_nodes = (std::numeric_limits<std::int32_t>::max() - 64) / 6;
     int step = options.seed_step > 0 ? options.seed_step : std::max(hf.width, hf.height);
-    const auto lines = [&](int samples) { return std::int64_t((samples - 2) / step + 2); };
+    const auto lines = [&](int samples) { return std::int64_t{(samples - 2) / step} + 2; };
     while (lines(hf.width) * lines(hf.height) > k_max_nodes)
         step *= 2;
     std::vector<std::uint32_t> xs, ys;
