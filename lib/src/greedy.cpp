@@ -41,7 +41,6 @@ struct Inserter {
     std::int64_t w;
     double threshold;                  // a triangle is queued when its farthest sample is farther
     double slope_margin;               // GreedyOptions::slope_margin
-    double dx, dy;                     // the lattice's ground spacing
     bool exact64;                      // in_circle fits in 64 bits (lattice side <= 16385)
     std::vector<std::uint32_t> points; // sample id per node
     std::vector<std::int32_t> px, py;  // lattice column and row per node
@@ -55,8 +54,7 @@ struct Inserter {
     std::vector<std::int32_t> pending;    // triangles to scan
 
     Inserter(const Heightfield &h, const GreedyOptions &o)
-        : hf(h), w(h.width), threshold(o.max_error), slope_margin(o.slope_margin), dx(h.dx),
-          dy(h.dy),
+        : hf(h), w(h.width), threshold(o.max_error), slope_margin(o.slope_margin),
           exact64(std::max(h.width, h.height) <= 16385), buckets(k_buckets) {}
 
     // Twice the signed area of (a, b, p) in lattice coordinates: > 0 when p is left of a -> b.
@@ -178,7 +176,8 @@ struct Inserter {
         candidate[t] = at;
         is_pending[t] = 0;
         if (slope_margin > 0.0)
-            worst += slope_margin * std::sqrt(gx * gx / (dx * dx) + gy * gy / (dy * dy));
+            worst += slope_margin * std::sqrt(gx * gx / (hf.dx * hf.dx) +
+                                              gy * gy / (hf.dy * hf.dy));
         if (worst > threshold && at != sa && at != sb && at != sc) {
             const int b = int(std::min(double(k_buckets - 1),
                                        std::log2(worst / threshold) * k_buckets_per_octave));
