@@ -292,12 +292,12 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     for (const std::uint32_t y : ys)
         for (const std::uint32_t x : xs)
             ins.add_point(y * std::uint32_t(hf.width) + x);
+    // Cell (i, j): triangles 2k (south-east half) and 2k + 1 (north-west half), k its index; each
+    // links to the cell below and the one to the left, made before it.
+    const auto node = [&](std::size_t x, std::size_t y) { return std::int32_t(y * nx + x); };
+    const auto half_edge = [](std::size_t k, int side) { return std::int32_t(3 * k + side); };
     for (std::size_t j = 0; j + 1 < ys.size(); ++j)
         for (std::size_t i = 0; i < cells_x; ++i) {
-            // Cell (i, j): triangles 2k (south-east half) and 2k + 1 (north-west half), k its index;
-            // each links to the cell below and the one to the left, made before it.
-            const auto node = [&](std::size_t x, std::size_t y) { return std::int32_t(y * nx + x); };
-            const auto half_edge = [&](std::size_t k, int side) { return std::int32_t(3 * k + side); };
             const std::int32_t below = j > 0 ? half_edge(2 * ((j - 1) * cells_x + i) + 1, 1) : -1;
             const std::int32_t left = i > 0 ? half_edge(2 * (j * cells_x + i - 1), 1) : -1;
             const std::int32_t se = ins.set_triangle(node(i, j), node(i + 1, j), node(i + 1, j + 1),
