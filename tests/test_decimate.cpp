@@ -594,6 +594,35 @@ TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
     EXPECT_LE(measure_error(hf, out, eo).max_screen_px, options.tolerance);
 }
 
+// erase() reports its progress as it goes: a bound alone by its sweeps over the nodes, a budget by
+// the erases it needs, both rising to near the end.
+TEST(Erase, ProgressRisesWithTheWork) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 401});
+    const View view = corner_view(hf);
+    for (const std::int64_t budget : {std::int64_t(0), std::int64_t(2000)}) {
+        SCOPED_TRACE(budget);
+        std::vector<double> seen;
+        Mesh work = grid_tin(hf);
+        EraseOptions options;
+        options.max_nodes = budget;
+        if (budget > 0)
+            options.tolerance = INFINITY;
+        options.progress = [&seen](double done) { seen.push_back(done); };
+        const EraseStats stats = NodeEraser(work, &view, options).erase();
+        ASSERT_GT(stats.erased, 0);
+        ASSERT_GE(seen.size(), 10u);
+        EXPECT_LT(seen.front(), 0.1);
+        EXPECT_GE(seen.back(), 0.9);
+        for (std::size_t i = 0; i < seen.size(); ++i) {
+            EXPECT_GE(seen[i], 0.0);
+            EXPECT_LE(seen[i], 1.0);
+            if (i > 0) {
+                EXPECT_GE(seen[i], seen[i - 1]) << "report " << i;
+            }
+        }
+    }
+}
+
 TEST(Erase, RecoverInRandomOrderStaysValid) {
     const Heightfield hf = load_cropped({"dem_squared.tif", false, 0});
     Mesh input = grid_tin(hf);

@@ -99,6 +99,8 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
             options.tolerance = args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol;
         }
+        Progress bar("erase", 1000);
+        options.progress = [&bar](double done) { bar.update(std::int64_t(done * 1000.0)); };
         // A DEM goes through both methods (erase_dem): the quad-tree retrieval, then the node erase
         // of the retrieved TIN over every sample of the grid.
         DemEraseStats dem;
@@ -117,6 +119,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         } else {
             erased = erase_nodes(mesh, view ? &*view : nullptr, options);
         }
+        bar.finish();
         const double ms_simplify = erased.ms;
 
         clock.reset();

@@ -1527,11 +1527,14 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
 // 4097² flight makes 20 passes, which each read the state of all 16.8 M ids before, 0.83 M of them
 // live at first: 0.35-0.5 s of its 6.9 s (scratch runs).
 static std::int64_t sweep_pass(NodeEraser::Impl &s, std::vector<std::uint32_t> &order,
-                               double limit, std::int64_t stop_at) {
+                               double limit, std::int64_t stop_at,
+                               const std::function<void(double)> &report) {
     next_pass(s);
     std::int64_t erased = 0;
     std::size_t kept = 0, i = 0;
     for (; i < order.size() && s.live > stop_at; ++i) {
+        if (report && i % 4096 == 0)
+            report(double(i) / double(order.size()));
         const std::uint32_t x = order[i];
         if (s.record_of[x] >= 0)
             continue;
@@ -1587,10 +1590,13 @@ static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<s
 // the dirty nodes and those whose key it covers, then the rings their erases change, until none is
 // left: afterwards every live node's key (a lower bound of its cost) is above the rung. Returns the
 // erases made.
-static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, std::int64_t budget) {
+static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, std::int64_t budget,
+                               const std::function<void()> &report) {
     std::int64_t erased = 0;
     limit = std::min(limit, tau);
     while (s.live > budget) {
+        if (report)
+            report();
         std::vector<std::uint32_t> list;
         for (const LiveNode &l : s.live_list)
             if (!(s.flags[l.node] & k_locked) &&
@@ -1622,8 +1628,30 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
         if (!(s.flags[x] & k_locked) && s.record_of[x] < 0)
             order.push_back(x);
+    const std::function<void(double)> &progress = s.options.progress;
+    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
+    const std::int64_t first_live = s.live;
+    // Progress: with a budget, the erases made over those it needs; with a bound alone, pass k
+    // (from 0) spans [1 - 0.1^k, 1 - 0.1^(k+1)).
+    double pass_share = 1.0;
+    const auto by_erases = [&] {
+        progress(first_live > budget ? std::clamp(double(first_live - s.live) /
+                                                      double(first_live - budget),
+                                                  0.0, 1.0)
+                                     : 1.0);
+    };
+    const auto report = [&](double within) {
+        if (s.options.max_nodes > 0)
+            by_erases();
+        else
+            progress(1.0 - pass_share + 0.9 * pass_share * within);
+    };
     auto sweep = [&](double limit, std::int64_t stop_at) {
-        return sweep_pass(s, order, limit, stop_at);
+        const std::int64_t made =
+            sweep_pass(s, order, limit, stop_at,
+                       progress ? std::function<void(double)>(report) : nullptr);
+        pass_share *= 0.1;
+        return made;
     };
     std::int64_t erased = 0;
     if (s.options.max_nodes <= 0) {
@@ -1635,7 +1663,6 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
         }
         return erased;
     }
-    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
     const std::int64_t far = k_coarse_share * budget;
     double limit = 0.0; // the last rung's
     if (s.live > far) {
@@ -1667,7 +1694,8 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
             limit /= k_budget_rung_ratio;
         }
     }
-    return erased + fine_rungs(s, limit, tau, budget);
+    return erased + fine_rungs(s, limit, tau, budget,
+                               progress ? std::function<void()>(by_erases) : nullptr);
 }
 
 // ---- Recovery ----------------------------------------------------------------------------------

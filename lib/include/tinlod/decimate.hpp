@@ -32,6 +32,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -91,6 +92,11 @@ struct EraseOptions {
     // quad-tree's order (absent_sample_rings, about 30 bytes each), so recover() and update()
     // bring them in by local edits like any erased node. Otherwise they never enter.
     bool absent_history = false;
+    // Called now and then by erase() (screen and vertical models) with the share of its work done,
+    // non-decreasing in [0, 1] (for a progress bar). With a budget: the erases made over those it needs; with a bound
+    // alone: the first sweep over the nodes (most of the time) takes 0.9 of it, each next one 0.9
+    // of what is left.
+    std::function<void(double)> progress;
 };
 
 struct EraseStats {
