@@ -411,6 +411,9 @@ struct NodeEraser::Impl {
     // is rebuilt.
     std::vector<std::uint8_t> face_blocked;
     std::unordered_map<std::int32_t, std::vector<Block>> face_blocks;
+    // A grid TIN's large faces: the largest deviation of their samples per tile (face_blocked is 1
+    // for them too, see lattice_tiles).
+    std::unordered_map<std::int32_t, std::vector<float>> face_tiles;
     std::vector<std::int32_t> block_scratch; // build_blocks' scratch
     std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
@@ -530,6 +533,7 @@ static void face_changed(NodeEraser::Impl &s, FH f) {
     if (s.face_blocked[f.idx()]) {
         s.face_blocked[f.idx()] = 0;
         s.face_blocks.erase(f.idx());
+        s.face_tiles.erase(f.idx());
     }
 }
 
@@ -789,6 +793,106 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
             }
     }
     return true;
+}
+
+// A grid TIN's face over more than k_tiled_samples samples (a far flat, a slope seen from afar:
+// on 4097² a face can hold millions) keeps its samples' largest deviation per tile of k_band_rows
+// rows by k_tile_cols columns, so that a check weighs only the tiles whose deviation can matter,
+// where a band's bound must take the face's largest deviation. A low observer's frames on 4097²
+// re-checked a few such faces of the far edge each, 5-30 ms apiece.
+constexpr std::int64_t k_tile_cols = 64;
+constexpr std::int64_t k_tiled_samples = 16384;
+
+// The tiling of face (a, b, c): its rows, bands from first_row, columns from the corners' least.
+struct Tiling {
+    LatticeTriangle t;
+    std::int64_t x0, columns; // tile columns: [x0 + k * k_tile_cols, ... + k_tile_cols)
+};
+
+static Tiling tiling(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
+                     std::uint32_t c) {
+    const std::int64_t w = s.grid_w;
+    const std::int64_t x0 = std::min({a % w, b % w, c % w}),
+                       x1 = std::max({a % w, b % w, c % w});
+    return {LatticeTriangle(s.grid_w, a, b, c), x0, (x1 - x0) / k_tile_cols + 1};
+}
+
+// Visits the samples of face (a, b, c) tile by tile: tile(lo, hi, dev) gets the xy box of a
+// tile's samples and their largest deviation, and returns the value visit(u, p, value) is given for
+// each of them, or a negative value to skip the tile.
+template <class Tile, class Visit>
+static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
+                       std::uint32_t c, const std::vector<float> &dev, const Tile &tile,
+                       const Visit &visit) {
+    const std::int64_t w = s.grid_w;
+    const Tiling g = tiling(s, a, b, c);
+    const Mesh::Point *pts = s.mesh->points();
+    std::array<std::pair<std::int64_t, std::int64_t>, k_band_rows> spans;
+    for (std::int64_t y0 = g.t.first_row; y0 <= g.t.last_row; y0 += k_band_rows) {
+        const std::int64_t y1 = std::min(y0 + k_band_rows - 1, g.t.last_row);
+        const std::int64_t band = (y0 - g.t.first_row) / k_band_rows;
+        std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = -1;
+        for (std::int64_t y = y0; y <= y1; ++y) {
+            spans[y - y0] = g.t.span(y);
+            if (spans[y - y0].first <= spans[y - y0].second) {
+                lo = std::min(lo, spans[y - y0].first);
+                hi = std::max(hi, spans[y - y0].second);
+            }
+        }
+        if (lo > hi)
+            continue;
+        for (std::int64_t k = (lo - g.x0) / k_tile_cols; k <= (hi - g.x0) / k_tile_cols; ++k) {
+            const double d = double(dev[std::size_t(band * g.columns + k)]);
+            const std::int64_t c0 = std::max(lo, g.x0 + k * k_tile_cols),
+                               c1 = std::min(hi, g.x0 + (k + 1) * k_tile_cols - 1);
+            const double xa = pts[c0][0], xb = pts[c1][0], ya = pts[y0 * w][1], yb = pts[y1 * w][1];
+            const double value = tile(glm::dvec2(std::min(xa, xb), std::min(ya, yb)),
+                                      glm::dvec2(std::max(xa, xb), std::max(ya, yb)), d);
+            if (value < 0.0)
+                continue;
+            for (std::int64_t y = y0; y <= y1; ++y)
+                for (std::int64_t x = std::max(c0, spans[y - y0].first),
+                                  end = std::min(c1, spans[y - y0].second);
+                     x <= end; ++x) {
+                    const std::uint32_t u = std::uint32_t(y * w + x);
+                    if (u != a && u != b && u != c)
+                        visit(u, pts[u], value);
+                }
+        }
+    }
+}
+
+// Face f's tiles (corners a, b, c; `deviation(p)` gives a sample's deviation): kept ones, made now
+// when the face holds more than k_tiled_samples samples (one pass, no weights), else null.
+template <class Deviation>
+static const std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::uint32_t a,
+                                               std::uint32_t b, std::uint32_t c,
+                                               const Deviation &deviation) {
+    if (s.face_blocked[f.idx()]) {
+        const auto kept = s.face_tiles.find(f.idx());
+        return kept == s.face_tiles.end() ? nullptr : &kept->second;
+    }
+    const Tiling g = tiling(s, a, b, c);
+    const std::int64_t rows = g.t.last_row - g.t.first_row + 1;
+    if (rows * g.columns * k_tile_cols / 2 <= k_tiled_samples)
+        return nullptr; // half its box: at most about k_tiled_samples samples
+    const std::int64_t bands = (rows + k_band_rows - 1) / k_band_rows;
+    std::vector<float> dev(std::size_t(bands * g.columns), 0.0f);
+    const std::int64_t w = s.grid_w;
+    const Mesh::Point *pts = s.mesh->points();
+    for (std::int64_t y = g.t.first_row; y <= g.t.last_row; ++y) {
+        const auto [first, last] = g.t.span(y);
+        float *row = dev.data() + (y - g.t.first_row) / k_band_rows * g.columns;
+        for (std::int64_t x = first; x <= last; ++x) {
+            const std::uint32_t u = std::uint32_t(y * w + x);
+            if (u == a || u == b || u == c)
+                continue;
+            float &most = row[(x - g.x0) / k_tile_cols];
+            most = std::max(most, float_up(deviation(to_glm(pts[u]))));
+        }
+    }
+    s.face_blocked[f.idx()] = 1;
+    return &(s.face_tiles[f.idx()] = std::move(dev));
 }
 
 // The samples strictly inside a grid TIN's hole (the node itself among them), by Pick's theorem:
@@ -2181,6 +2285,7 @@ void NodeEraser::compact() {
     s.face_seen.assign(s.face_head.size(), 0);
     s.face_seen.shrink_to_fit();
     s.face_blocks.clear();
+    s.face_tiles.clear();
     s.heap.release_queue(); // updates keep keys only
     std::vector<float>().swap(s.weight); // and compute weights where they need them
     std::vector<EH>().swap(s.free_edges);
@@ -2472,9 +2577,43 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     };
     if (s.grid_w > 0) {
         // Band by band, skipping a band whose largest weight cannot make the face's largest
-        // deviation matter.
+        // deviation matter; or, on a large face, tile by tile with each tile's.
         const double dz = 1.001 * double(s.face_maxdev[f.idx()]);
         const double zlo = std::min({a.z, b.z, c.z}) - dz, zhi = std::max({a.z, b.z, c.z}) + dz;
+        const std::uint32_t ia = std::uint32_t(m.from_vertex_handle(he).idx()),
+                            ib = std::uint32_t(m.to_vertex_handle(he).idx()),
+                            ic = std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx());
+        if (const std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, deviation_at)) {
+            const auto bound_over = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
+                return s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
+            };
+            scan_tiles(
+                s, ia, ib, ic, *tiles,
+                [&](const glm::dvec2 &lo, const glm::dvec2 &hi, double dev) {
+                    const double bound = bound_over(lo, hi);
+                    return 1.001 * dev * bound > worst.second ? bound : -1.0;
+                },
+                [&](std::uint32_t v, const Mesh::Point &p, double bound) {
+                    visit(std::int32_t(v), deviation_at(to_glm(p)), bound);
+                });
+            if (screen && worst.first < 0) {
+                double seen = 0.0;
+                scan_tiles(
+                    s, ia, ib, ic, *tiles,
+                    [&](const glm::dvec2 &lo, const glm::dvec2 &hi, double dev) {
+                        const double bound = bound_over(lo, hi);
+                        return 1.001 * dev * bound > seen ? bound : -1.0;
+                    },
+                    [&](std::uint32_t, const Mesh::Point &p, double bound) {
+                        const glm::dvec3 q = to_glm(p);
+                        const double dev = deviation_at(q);
+                        if (dev * bound > seen)
+                            seen = std::max(seen, dev * s.weigher(q));
+                    });
+                remember_seen(s, f, seen, box_lo, box_hi);
+            }
+            return worst;
+        }
         scan_lattice(
             s, std::uint32_t(m.from_vertex_handle(he).idx()),
             std::uint32_t(m.to_vertex_handle(he).idx()),
@@ -2490,15 +2629,23 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
                 return true;
             });
         if (screen && worst.first < 0) {
+            // The largest weighted deviation, for the updates that follow: a band or a sample that
+            // its bound shows cannot raise it is not weighed (weighing every sample took a third
+            // of a low observer's frames on 4097²; the maximum is the same).
             double seen = 0.0;
             scan_lattice(
                 s, std::uint32_t(m.from_vertex_handle(he).idx()),
                 std::uint32_t(m.to_vertex_handle(he).idx()),
                 std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx()),
-                [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
-                [&](std::uint32_t, const Mesh::Point &p, double) {
+                [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
+                    const double bound = s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
+                    return dz * bound > seen ? bound : -1.0;
+                },
+                [&](std::uint32_t, const Mesh::Point &p, double bound) {
                     const glm::dvec3 q = to_glm(p);
-                    seen = std::max(seen, deviation_at(q) * s.weigher(q));
+                    const double dev = deviation_at(q);
+                    if (dev * bound > seen)
+                        seen = std::max(seen, dev * s.weigher(q));
                     return true;
                 });
             remember_seen(s, f, seen, box_lo, box_hi);
@@ -2899,6 +3046,8 @@ EraseStats NodeEraser::measure() const {
 
 static std::size_t block_bytes(const NodeEraser::Impl &s) {
     std::size_t bytes = s.block_cell_scratch.capacity() + s.block_order_scratch.capacity() * 4;
+    for (const auto &[face, tiles] : s.face_tiles)
+        bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
     for (const auto &[face, blocks] : s.face_blocks)
         bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
     return bytes;
