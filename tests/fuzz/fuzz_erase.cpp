@@ -8,6 +8,8 @@
 #include "tinlod/error.hpp"
 #include "tinlod/metrics.hpp"
 
+#include "fuzz_grid.hpp"
+
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -155,13 +157,7 @@ View take_view(FuzzedDataProvider& in, double extent, double zmid) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     FuzzedDataProvider in(data, size);
     Heightfield hf;
-    hf.width = in.ConsumeIntegralInRange(2, 16);
-    hf.height = in.ConsumeIntegralInRange(2, 16);
-    static constexpr double k_cell[] = {1, 0.5, 3, 30};
-    hf.dx = in.PickValueInArray(k_cell);
-    hf.dy = in.PickValueInArray(k_cell);
-    static constexpr double k_zscale[] = {1, 0.01, 10, 1000};
-    const double zscale = in.PickValueInArray(k_zscale);
+    const double zscale = fuzz::take_grid(in, 16, hf);
     static constexpr SpModel k_model[] = {SpModel::screen, SpModel::paper, SpModel::vertical};
     EraseOptions options;
     options.significance.model = in.PickValueInArray(k_model);
@@ -186,12 +182,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     // Heights last: a short input leaves the rest of the grid flat, which is what erases most.
-    hf.z.resize(std::size_t(hf.width) * hf.height);
-    double max_abs_z = 0;
-    for (float& z : hf.z) {
-        z = float(in.ConsumeIntegral<std::int8_t>() * zscale);
-        max_abs_z = std::max(max_abs_z, double(std::abs(z)));
-    }
+    const double max_abs_z = fuzz::take_heights(in, zscale, hf);
     const Slack slack = slack_of(hf, view, max_abs_z), next_slack = slack_of(hf, next, max_abs_z);
 
     const Mesh input = grid_tin(hf);

@@ -8,6 +8,8 @@
 #include "tinlod/metrics.hpp"
 #include "tinlod/quadtree.hpp"
 
+#include "fuzz_grid.hpp"
+
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cmath>
@@ -72,13 +74,7 @@ bool delaunay(const Retrieval& tin, std::int64_t width) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     FuzzedDataProvider in(data, size);
     Heightfield hf;
-    hf.width = in.ConsumeIntegralInRange(2, 40);
-    hf.height = in.ConsumeIntegralInRange(2, 40);
-    static constexpr double k_cell[] = {1, 0.5, 3, 30};
-    hf.dx = in.PickValueInArray(k_cell);
-    hf.dy = in.PickValueInArray(k_cell);
-    static constexpr double k_zscale[] = {1, 0.01, 10, 1000};
-    const double zscale = in.PickValueInArray(k_zscale);
+    const double zscale = fuzz::take_grid(in, 40, hf);
     GreedyOptions options;
     static constexpr double k_bound[] = {1, 1e-6, 0.25, 4, 64, 1e9};
     options.max_error = in.PickValueInArray(k_bound) * zscale;
@@ -86,10 +82,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.seed_step = in.PickValueInArray(k_seed);
     options.max_nodes = in.ConsumeBool() ? in.ConsumeIntegralInRange(1, hf.width * hf.height) : 0;
     options.slope_margin = in.ConsumeBool() ? 1e-3 * zscale : 0.0;
-    // Heights last: a short input leaves the rest of the grid flat.
-    hf.z.resize(std::size_t(hf.width) * hf.height);
-    for (float& z : hf.z)
-        z = float(in.ConsumeIntegral<std::int8_t>() * zscale);
+    fuzz::take_heights(in, zscale, hf);
 
     const GreedyTin g = greedy_tin(hf, options);
     const std::size_t nodes = g.tin.nodes.size();
