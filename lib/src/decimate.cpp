@@ -877,20 +877,23 @@ static const std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::u
     if (rows * g.columns * k_tile_cols / 2 <= k_tiled_samples)
         return nullptr; // half its box: at most about k_tiled_samples samples
     const std::int64_t bands = (rows + k_band_rows - 1) / k_band_rows;
-    std::vector<float> dev(std::size_t(bands * g.columns), 0.0f);
+    std::vector<double> most(std::size_t(bands * g.columns), 0.0);
     const std::int64_t w = s.grid_w;
     const Mesh::Point *pts = s.mesh->points();
     for (std::int64_t y = g.t.first_row; y <= g.t.last_row; ++y) {
         const auto [first, last] = g.t.span(y);
-        float *row = dev.data() + (y - g.t.first_row) / k_band_rows * g.columns;
+        double *row = most.data() + (y - g.t.first_row) / k_band_rows * g.columns;
         for (std::int64_t x = first; x <= last; ++x) {
             const std::uint32_t u = std::uint32_t(y * w + x);
             if (u == a || u == b || u == c)
                 continue;
-            float &most = row[(x - g.x0) / k_tile_cols];
-            most = std::max(most, float_up(deviation(to_glm(pts[u]))));
+            double &tile = row[(x - g.x0) / k_tile_cols];
+            tile = std::max(tile, deviation(to_glm(pts[u])));
         }
     }
+    // Rounded up once per tile, not per sample (float_up is monotone: the same bound).
+    std::vector<float> dev(most.size());
+    std::transform(most.begin(), most.end(), dev.begin(), float_up);
     s.face_blocked[f.idx()] = 1;
     return &(s.face_tiles[f.idx()] = std::move(dev));
 }
