@@ -2586,71 +2586,50 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         const std::uint32_t ia = std::uint32_t(m.from_vertex_handle(he).idx()),
                             ib = std::uint32_t(m.to_vertex_handle(he).idx()),
                             ic = std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx());
-        if (const std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, deviation_at)) {
+        const std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, deviation_at);
+        // Visits sample(u, p, bound) for each sample of a tile or band whose largest deviation
+        // times its largest weight (`bound`) may exceed `above`.
+        const auto scan = [&](const double &above, const auto &sample) {
             const auto bound_over = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
                 return s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
             };
-            scan_tiles(
-                s, ia, ib, ic, *tiles,
-                [&](const glm::dvec2 &lo, const glm::dvec2 &hi, double dev) {
-                    const double bound = bound_over(lo, hi);
-                    return 1.001 * dev * bound > worst.second ? bound : -1.0;
-                },
-                [&](std::uint32_t v, const Mesh::Point &p, double bound) {
-                    visit(std::int32_t(v), deviation_at(to_glm(p)), bound);
-                });
-            if (screen && worst.first < 0) {
-                double seen = 0.0;
+            if (tiles) {
                 scan_tiles(
                     s, ia, ib, ic, *tiles,
                     [&](const glm::dvec2 &lo, const glm::dvec2 &hi, double dev) {
                         const double bound = bound_over(lo, hi);
-                        return 1.001 * dev * bound > seen ? bound : -1.0;
+                        return 1.001 * dev * bound > above ? bound : -1.0;
                     },
-                    [&](std::uint32_t, const Mesh::Point &p, double bound) {
-                        const glm::dvec3 q = to_glm(p);
-                        const double dev = deviation_at(q);
-                        if (dev * bound > seen)
-                            seen = std::max(seen, dev * s.weigher(q));
-                    });
-                remember_seen(s, f, seen, box_lo, box_hi);
+                    sample);
+                return;
             }
-            return worst;
-        }
-        scan_lattice(
-            s, std::uint32_t(m.from_vertex_handle(he).idx()),
-            std::uint32_t(m.to_vertex_handle(he).idx()),
-            std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx()),
-            [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-                if (s.unit_weights)
-                    return 1.0;
-                const double bound = s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
-                return dz * bound > worst.second ? bound : -1.0;
-            },
-            [&](std::uint32_t v, const Mesh::Point &p, double bound) {
-                visit(std::int32_t(v), deviation_at(to_glm(p)), bound);
-                return true;
-            });
-        if (screen && worst.first < 0) {
-            // The largest weighted deviation, for the updates that follow: a band or a sample that
-            // its bound shows cannot raise it is not weighed (weighing every sample took a third
-            // of a low observer's frames on 4097²; the maximum is the same).
-            double seen = 0.0;
             scan_lattice(
-                s, std::uint32_t(m.from_vertex_handle(he).idx()),
-                std::uint32_t(m.to_vertex_handle(he).idx()),
-                std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx()),
+                s, ia, ib, ic,
                 [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-                    const double bound = s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
-                    return dz * bound > seen ? bound : -1.0;
+                    if (s.unit_weights)
+                        return 1.0;
+                    const double bound = bound_over(lo, hi);
+                    return dz * bound > above ? bound : -1.0;
                 },
-                [&](std::uint32_t, const Mesh::Point &p, double bound) {
-                    const glm::dvec3 q = to_glm(p);
-                    const double dev = deviation_at(q);
-                    if (dev * bound > seen)
-                        seen = std::max(seen, dev * s.weigher(q));
+                [&](std::uint32_t v, const Mesh::Point &p, double bound) {
+                    sample(v, p, bound);
                     return true;
                 });
+        };
+        scan(worst.second, [&](std::uint32_t v, const Mesh::Point &p, double bound) {
+            visit(std::int32_t(v), deviation_at(to_glm(p)), bound);
+        });
+        if (screen && worst.first < 0) {
+            // The largest weighted deviation, for the updates that follow: a band, tile or sample
+            // that its bound shows cannot raise it is not weighed (weighing every sample took a
+            // third of a low observer's frames on 4097²; the maximum is the same).
+            double seen = 0.0;
+            scan(seen, [&](std::uint32_t, const Mesh::Point &p, double bound) {
+                const glm::dvec3 q = to_glm(p);
+                const double dev = deviation_at(q);
+                if (dev * bound > seen)
+                    seen = std::max(seen, dev * s.weigher(q));
+            });
             remember_seen(s, f, seen, box_lo, box_hi);
         }
         return worst;
