@@ -66,6 +66,10 @@ Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& 
     } else {
         impl_->mesh = std::make_unique<Mesh>(grid_tin(hf));
     }
+    // Node i is grid sample i: the origin property (8 bytes per sample) would only repeat it.
+    // live_copy sets it again from the index.
+    auto origin = find_origin_property(*impl_->mesh);
+    impl_->mesh->remove_property(origin);
     start(*impl_, first);
 }
 
@@ -107,14 +111,15 @@ bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_e
 std::size_t Refiner::bytes() const {
     const Mesh& m = *impl_->mesh;
     // OpenMesh's arrays: per vertex a point, an outgoing halfedge, a status byte and the origin
-    // property; per halfedge its vertex, next, prev and face; per edge and face a status byte, per
+    // property if it has one (a refiner from a heightfield drops it); per halfedge its vertex, next, prev and face; per edge and face a status byte, per
     // face a halfedge. Edges and faces count their reserved room; past it an array has at most
     // doubled.
     const auto room = [](std::size_t n, std::size_t reserved) {
         return n <= reserved ? reserved : 2 * n;
     };
     const std::size_t edges = room(m.n_edges(), impl_->edge_room);
-    const std::size_t mesh_bytes = m.n_vertices() * (sizeof(Mesh::Point) + 4 + 1 + 8) +
+    const std::size_t origin = find_origin_property(m).is_valid() ? sizeof(std::int64_t) : 0;
+    const std::size_t mesh_bytes = m.n_vertices() * (sizeof(Mesh::Point) + 4 + 1 + origin) +
                                    edges * (2 * 16 + 1) +
                                    room(m.n_faces(), impl_->face_room) * (4 + 1);
     return mesh_bytes + impl_->eraser->history_bytes();

@@ -66,7 +66,8 @@ class Refiner {
     FrameStats update(const View& view);
 
     // The current TIN: erased nodes and their faces are marked deleted, not removed; vertex idx =
-    // input vertex (grid sample id for a heightfield).
+    // input vertex (grid sample id for a heightfield, whose TIN then has no origin property: the
+    // index says it, and live_copy sets the property from it).
     const Mesh& mesh() const;
     bool is_erased(Mesh::VertexHandle v) const;
     // Bytes of the whole structure: the mesh's arrays and the erase history.
