@@ -185,6 +185,31 @@ TEST(Refiner, SmallStepsTowardTheGroundAndPanningKeepTauAtEverySample) {
     EXPECT_GT(recovered, 0);
 }
 
+// At a coarse tau the fans erased from high above hold tens of thousands of samples each: their
+// faces come back with what they knew at the erase instead of a scan of every sample. Each frame
+// of the shipped descent, at 4 frames per second, keeps tau at every sample.
+TEST(Refiner, LargeFansComeBackWithWhatTheyKnewAndKeepTau) {
+    const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
+    const CameraPath path = read_camera_path(asset("paths/n42_descent.csv"));
+    const std::vector<View> views = path.sample(int(path.duration() * 4) + 1, View{});
+    RefineOptions options;
+    options.tol_px = 16.0;
+    Refiner refiner(hf, views.front(), options);
+    std::int64_t kept = 0, recovered = 0;
+    for (std::size_t i = 1; i < views.size(); ++i) {
+        const FrameStats f = refiner.update(views[i]);
+        EXPECT_LE(f.fans_kept, f.recovered);
+        kept += f.fans_kept;
+        recovered += f.recovered;
+        ErrorOptions eo;
+        eo.view = &views[i];
+        const TinError e = measure_error(hf, refiner.mesh(), eo);
+        EXPECT_LE(e.max_screen_px, options.tol_px) << "frame " << i;
+        EXPECT_EQ(e.uncovered, 0) << "frame " << i;
+    }
+    EXPECT_GE(kept, 20) << "of " << recovered << " recoveries";
+}
+
 // Thin and odd-sized crops of a real DEM (nodes one cell wide, no centres): the retrieval's
 // records still bring its samples in, within tau at every sample of every frame.
 TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {

@@ -312,6 +312,15 @@ struct LiveNode {
     bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
 };
 
+// What the faces of an erased node's fan knew of the samples they held, for the re-insert that
+// brings the same triangles back (see reinsert): per fan face, in ring order, its worst sample,
+// their largest deviation and its tiles (empty when it had none, see lattice_tiles).
+struct KeptFan {
+    std::vector<std::int32_t> head;
+    std::vector<float> maxdev;
+    std::vector<std::vector<float>> tiles;
+};
+
 // A run of a long swallowed list (see build_blocks).
 struct Block {
     std::int32_t head;   // its first node
@@ -414,6 +423,9 @@ struct NodeEraser::Impl {
     // A grid TIN's large faces: the largest deviation of their samples per tile (face_blocked is 1
     // for them too, see lattice_tiles).
     std::unordered_map<std::int32_t, std::vector<float>> face_tiles;
+    // A shallow history's erased nodes whose fan covered more than k_kept_fan_samples samples of a
+    // grid TIN: per fan face, what it knew of its samples (see KeptFan), by node.
+    std::unordered_map<std::uint32_t, KeptFan> kept_fans;
     std::vector<std::int32_t> block_scratch; // build_blocks' scratch
     std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
@@ -467,6 +479,7 @@ struct NodeEraser::Impl {
     std::int64_t evaluations = 0;
     std::int64_t reerased = 0; // the update under way's erases of nodes it recovered
     std::int64_t entered = 0;  // k_unread samples re-inserted so far
+    std::int64_t fans_kept = 0; // re-inserts whose fan faces took back a KeptFan so far
     bool absent_for_good = false; // some samples are k_absent: they can never enter
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
@@ -802,6 +815,10 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
 // re-checked a few such faces of the far edge each, 5-30 ms apiece.
 constexpr std::int64_t k_tile_cols = 64;
 constexpr std::int64_t k_tiled_samples = 16384;
+// A shallow history keeps what the fan faces of an erase knew of their samples (KeptFan) when they
+// held more than this many in all: a re-insert then scans none of them (face_worst) and the next
+// check builds no tiles.
+constexpr std::int64_t k_kept_fan_samples = k_tiled_samples;
 
 // The tiling of face (a, b, c): its rows, bands from first_row, columns from the corners' least.
 struct Tiling {
@@ -1352,6 +1369,23 @@ static void retriangulate(NodeEraser::Impl &s) {
         m.status(e).set_deleted(true);
         s.free_edges.push_back(e);
     }
+    const std::uint32_t x = std::uint32_t(h.v.idx());
+    if (s.grid_w > 0 && s.options.shallow_history && lattice_inside(s, h) > k_kept_fan_samples) {
+        KeptFan &kept = s.kept_fans[x];
+        kept.head.resize(std::size_t(fans));
+        kept.maxdev.resize(std::size_t(fans));
+        kept.tiles.resize(std::size_t(fans));
+        for (int t = 0; t < fans; ++t) {
+            const std::int32_t f = face[t].idx();
+            kept.head[std::size_t(t)] = s.face_head[f];
+            kept.maxdev[std::size_t(t)] = s.face_maxdev[f];
+            const auto tiles = s.face_tiles.find(f);
+            if (tiles != s.face_tiles.end())
+                kept.tiles[std::size_t(t)] = std::move(tiles->second);
+            else
+                kept.tiles[std::size_t(t)].clear();
+        }
+    }
     for (int t = 0; t < fans; ++t) {
         s.face_head[face[t].idx()] = -1;
         face_changed(s, face[t]);
@@ -1376,7 +1410,6 @@ static void retriangulate(NodeEraser::Impl &s) {
 
     // A node erased before re-uses its record, and its ring's room in the pool when the ring
     // fits: the history stays within one record per node however long the flight.
-    const std::uint32_t x = std::uint32_t(h.v.idx());
     std::int32_t k = live_node(s, x).last_record;
     if (k < 0)
         k = std::int32_t(s.records.append(1));
@@ -1982,7 +2015,20 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     for (int i = 0; i < fans; ++i)
         h.tri[i] = {std::uint8_t(n), std::uint8_t(i), std::uint8_t((i + 1) % n)};
     frame_triangles(s, h);
-    if (s.grid_w > 0)
+    if (const auto kept = s.kept_fans.find(x); kept != s.kept_fans.end()) {
+        // The fan's faces are the triangles they were at the erase, holding the same samples.
+        for (int i = 0; i < fans; ++i) {
+            const std::int32_t f = face[i].idx();
+            s.face_head[f] = kept->second.head[std::size_t(i)];
+            s.face_maxdev[f] = kept->second.maxdev[std::size_t(i)];
+            if (!kept->second.tiles[std::size_t(i)].empty()) {
+                s.face_tiles[f] = std::move(kept->second.tiles[std::size_t(i)]);
+                s.face_blocked[f] = 1;
+            }
+        }
+        s.kept_fans.erase(kept);
+        ++s.fans_kept;
+    } else if (s.grid_w > 0) {
         for (int i = 0; i < fans; ++i) {
             const std::uint32_t a = ring[i], b = ring[(i + 1) % n];
             const auto [maxdev, worst] =
@@ -1990,6 +2036,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
             s.face_head[face[i].idx()] = worst;
             s.face_maxdev[face[i].idx()] = maxdev;
         }
+    }
     for (std::size_t k = swallowed_begin; k < swallowed.size(); ++k) {
         const std::uint32_t u = swallowed[k];
         double dev = 0.0;
@@ -2799,7 +2846,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
                                "EraseOptions::absent_history to follow a view");
     UpdateStats stats;
-    const std::int64_t entered = s.entered;
+    const std::int64_t entered = s.entered, fans_kept = s.fans_kept;
     if (s.fans_stale)
         rebuild_fans(s);
 
@@ -2877,6 +2924,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
             work.push_back(f);
     }
     stats.entered = s.entered - entered;
+    stats.fans_kept = s.fans_kept - fans_kept;
     stats.ms_recover = clock.ms();
 
     // erase: only nodes whose cost may have fallen to the bound are re-evaluated.
@@ -3032,6 +3080,12 @@ static std::size_t block_bytes(const NodeEraser::Impl &s) {
         bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
     for (const auto &[face, blocks] : s.face_blocks)
         bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
+    for (const auto &[node, kept] : s.kept_fans) {
+        bytes += sizeof(node) + sizeof(kept) + 16 + kept.head.capacity() * 4 +
+                 kept.maxdev.capacity() * 4 + kept.tiles.capacity() * sizeof(kept.tiles[0]);
+        for (const std::vector<float> &tiles : kept.tiles)
+            bytes += tiles.capacity() * sizeof(float);
+    }
     return bytes;
 }
 

@@ -93,6 +93,7 @@ FrameStats Refiner::update(const View& view) {
     f.erased = u.erased;
     f.recovered = u.recovered;
     f.entered = u.entered;
+    f.fans_kept = u.fans_kept;
     f.reerased = u.reerased;
     f.candidates = u.candidates;
     f.ms_weights = u.ms_weights;

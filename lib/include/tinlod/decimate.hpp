@@ -132,6 +132,8 @@ struct UpdateStats {
     std::int64_t recovered = 0;   // nodes re-inserted (dependency closures included)
     std::int64_t entered = 0;     // of those, samples the input TIN left out, there for the first
                                   // time (EraseOptions::absent_history)
+    std::int64_t fans_kept = 0;   // of those, nodes whose fan held many grid samples: its faces
+                                  // took back what they knew of them at the erase, unscanned
     std::int64_t erased = 0;      // nodes erased
     std::int64_t reerased = 0;    // of those, nodes this update had recovered (a recovery another
                                   // node's waited on, undone once that node was back)

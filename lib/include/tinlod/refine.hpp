@@ -36,6 +36,8 @@ struct FrameStats {
     std::int64_t recovered = 0;  // nodes recovered by this update
     std::int64_t entered = 0;    // of those, samples there for the first time (left out by the
                                  // first frame's retrieval)
+    std::int64_t fans_kept = 0;  // of the recovered, nodes whose large fan's faces took back what
+                                 // they knew of their samples at the erase (UpdateStats)
     std::int64_t reerased = 0;   // nodes this update recovered and then erased again
     std::int64_t candidates = 0; // live nodes re-evaluated for erase
     double ms_retrieve = 0.0;    // the first frame: quad-tree build and retrieval
