@@ -185,10 +185,11 @@ TEST(Refiner, SmallStepsTowardTheGroundAndPanningKeepTauAtEverySample) {
     EXPECT_GT(recovered, 0);
 }
 
-// At a coarse tau the fans erased from high above hold tens of thousands of samples each: their
-// faces come back with what they knew at the erase instead of a scan of every sample. Each frame
-// of the shipped descent, at 4 frames per second, keeps tau at every sample.
-TEST(Refiner, LargeFansComeBackWithWhatTheyKnewAndKeepTau) {
+// At a coarse tau the faces erased from high above hold tens of thousands of samples each: their
+// tiles' bounds come from height ranges (tightened where a check scans them), and their fans come
+// back with what they knew at the erase, not from a scan of every sample. Each frame of the
+// shipped descent, at 4 frames per second, keeps tau at every sample.
+TEST(Refiner, LargeFacesKeepTauWithTileBoundsAndKeptFans) {
     const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
     const CameraPath path = read_camera_path(asset("paths/n42_descent.csv"));
     const std::vector<View> views = path.sample(int(path.duration() * 4) + 1, View{});

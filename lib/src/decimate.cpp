@@ -423,6 +423,9 @@ struct NodeEraser::Impl {
     // A grid TIN's large faces: the largest deviation of their samples per tile (face_blocked is 1
     // for them too, see lattice_tiles).
     std::unordered_map<std::int32_t, std::vector<float>> face_tiles;
+    // A grid TIN's lattice tiles (see lattice_tiles): the least and largest height of each, made
+    // when a face is first tiled.
+    std::vector<float> tile_z;
     // A shallow history's erased nodes whose fan covered more than k_kept_fan_samples samples of a
     // grid TIN: per fan face, what it knew of its samples (see KeptFan), by node.
     std::unordered_map<std::uint32_t, KeptFan> kept_fans;
@@ -809,47 +812,85 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
 }
 
 // A grid TIN's face over more than k_tiled_samples samples (a far flat, a slope seen from afar:
-// on 4097² a face can hold millions) keeps its samples' largest deviation per tile of k_band_rows
-// rows by k_tile_cols columns, so that a check weighs only the tiles whose deviation can matter,
-// where a band's bound must take the face's largest deviation. A low observer's frames on 4097²
-// re-checked a few such faces of the far edge each, 5-30 ms apiece.
+// on 4097² a face can hold millions) keeps a bound on its samples' deviation per tile of the
+// lattice's grid of k_band_rows rows by k_tile_cols columns, so that a check weighs only the tiles
+// whose deviation can matter, where a band's bound must take the face's largest deviation. A low
+// observer's frames on 4097² re-checked a few such faces of the far edge each, 5-30 ms apiece.
+// The bounds come from each tile's height range (Impl::tile_z) against the face's plane, with no
+// sample read: a pass over every sample of a face that covers most of the terrain was most of the
+// slowest frames of a descent from high above (36 of 57 ms, scratch runs on 4097²). A tile's scan
+// then tightens its bound to its samples' largest deviation.
 constexpr std::int64_t k_tile_cols = 64;
 constexpr std::int64_t k_tiled_samples = 16384;
 // A shallow history keeps what the fan faces of an erase knew of their samples (KeptFan) when they
-// held more than this many in all: a re-insert then scans none of them (face_worst) and the next
-// check builds no tiles.
+// held more than this many in all: a re-insert then scans none of them (face_worst).
 constexpr std::int64_t k_kept_fan_samples = k_tiled_samples;
 
-// The tiling of face (a, b, c): its rows, bands from first_row, columns from the corners' least.
+// The lattice's tiles: tile (r / k_band_rows, c / k_tile_cols) holds sample (c, r).
+static std::int64_t tile_columns(const NodeEraser::Impl &s) {
+    return (std::int64_t(s.grid_w) - 1) / k_tile_cols + 1;
+}
+
+// The least and largest height of each tile of a grid TIN's lattice (one pass over the samples).
+static void build_tile_z(NodeEraser::Impl &s) {
+    const std::int64_t w = s.grid_w, rows = std::int64_t(s.mesh->n_vertices()) / w;
+    const std::int64_t columns = tile_columns(s);
+    s.tile_z.assign(std::size_t(2 * columns * ((rows - 1) / k_band_rows + 1)), 0.0f);
+    const Mesh::Point *pts = s.mesh->points();
+    for (std::int64_t r = 0; r < rows; ++r) {
+        float *band = s.tile_z.data() + 2 * (r / k_band_rows) * columns;
+        for (std::int64_t c0 = 0; c0 < w; c0 += k_tile_cols) {
+            float lo = INFINITY, hi = -INFINITY;
+            for (std::int64_t c = c0; c < std::min(w, c0 + k_tile_cols); ++c) {
+                lo = std::min(lo, pts[r * w + c][2]);
+                hi = std::max(hi, pts[r * w + c][2]);
+            }
+            float *tile = band + 2 * (c0 / k_tile_cols);
+            if (r % k_band_rows == 0) {
+                tile[0] = lo;
+                tile[1] = hi;
+            } else {
+                tile[0] = std::min(tile[0], lo);
+                tile[1] = std::max(tile[1], hi);
+            }
+        }
+    }
+}
+
+// The tiling of face (a, b, c): its rows, and the lattice tiles over its box, bands from row0 and
+// columns from x0 (multiples of the tile's sides).
 struct Tiling {
     LatticeTriangle t;
-    std::int64_t x0, columns; // tile columns: [x0 + k * k_tile_cols, ... + k_tile_cols)
+    std::int64_t row0, x0, columns; // tile columns: [x0 + k * k_tile_cols, ... + k_tile_cols)
 };
 
 static Tiling tiling(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
                      std::uint32_t c) {
     const std::int64_t w = s.grid_w;
-    const std::int64_t x0 = std::min({a % w, b % w, c % w}),
+    const std::int64_t x0 = std::min({a % w, b % w, c % w}) / k_tile_cols * k_tile_cols,
                        x1 = std::max({a % w, b % w, c % w});
-    return {LatticeTriangle(s.grid_w, a, b, c), x0, (x1 - x0) / k_tile_cols + 1};
+    const LatticeTriangle t(s.grid_w, a, b, c);
+    return {t, t.first_row / k_band_rows * k_band_rows, x0, (x1 - x0) / k_tile_cols + 1};
 }
 
-// Visits the samples of face (a, b, c) tile by tile: tile(lo, hi, dev) gets the xy box of a
-// tile's samples and their largest deviation, and returns the value visit(u, p, value) is given for
-// each of them, or a negative value to skip the tile.
-template <class Tile, class Visit>
+// Visits the samples of face (a, b, c) tile by tile: tile(lo, hi, bound) gets the xy box of a
+// tile's samples and the bound on their deviation, and returns the value visit(u, q, dev, value)
+// is given for each of them (q its point, dev = deviation(q)), or a negative value to skip the
+// tile. A tile visited lowers its bound in `dev` to its samples' largest deviation.
+template <class Tile, class Deviation, class Visit>
 static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
-                       std::uint32_t c, const std::vector<float> &dev, const Tile &tile,
-                       const Visit &visit) {
+                       std::uint32_t c, std::vector<float> &dev, const Tile &tile,
+                       const Deviation &deviation, const Visit &visit) {
     const std::int64_t w = s.grid_w;
     const Tiling g = tiling(s, a, b, c);
     const Mesh::Point *pts = s.mesh->points();
     std::array<std::pair<std::int64_t, std::int64_t>, k_band_rows> spans;
-    for (std::int64_t y0 = g.t.first_row; y0 <= g.t.last_row; y0 += k_band_rows) {
-        const std::int64_t y1 = std::min(y0 + k_band_rows - 1, g.t.last_row);
-        const std::int64_t band = (y0 - g.t.first_row) / k_band_rows;
+    for (std::int64_t y0 = g.row0; y0 <= g.t.last_row; y0 += k_band_rows) {
+        const std::int64_t ya = std::max(y0, g.t.first_row),
+                           y1 = std::min(y0 + k_band_rows - 1, g.t.last_row);
+        const std::int64_t band = (y0 - g.row0) / k_band_rows;
         std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = -1;
-        for (std::int64_t y = y0; y <= y1; ++y) {
+        for (std::int64_t y = ya; y <= y1; ++y) {
             spans[y - y0] = g.t.span(y);
             if (spans[y - y0].first <= spans[y - y0].second) {
                 lo = std::min(lo, spans[y - y0].first);
@@ -859,32 +900,42 @@ static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t
         if (lo > hi)
             continue;
         for (std::int64_t k = (lo - g.x0) / k_tile_cols; k <= (hi - g.x0) / k_tile_cols; ++k) {
-            const double d = double(dev[std::size_t(band * g.columns + k)]);
+            float &bound = dev[std::size_t(band * g.columns + k)];
             const std::int64_t c0 = std::max(lo, g.x0 + k * k_tile_cols),
                                c1 = std::min(hi, g.x0 + (k + 1) * k_tile_cols - 1);
-            const double xa = pts[c0][0], xb = pts[c1][0], ya = pts[y0 * w][1], yb = pts[y1 * w][1];
-            const double value = tile(glm::dvec2(std::min(xa, xb), std::min(ya, yb)),
-                                      glm::dvec2(std::max(xa, xb), std::max(ya, yb)), d);
+            const double xa = pts[c0][0], xb = pts[c1][0], yl = pts[ya * w][1], yh = pts[y1 * w][1];
+            const double value = tile(glm::dvec2(std::min(xa, xb), std::min(yl, yh)),
+                                      glm::dvec2(std::max(xa, xb), std::max(yl, yh)),
+                                      double(bound));
             if (value < 0.0)
                 continue;
-            for (std::int64_t y = y0; y <= y1; ++y)
+            double most = 0.0;
+            for (std::int64_t y = ya; y <= y1; ++y)
                 for (std::int64_t x = std::max(c0, spans[y - y0].first),
                                   end = std::min(c1, spans[y - y0].second);
                      x <= end; ++x) {
                     const std::uint32_t u = std::uint32_t(y * w + x);
-                    if (u != a && u != b && u != c)
-                        visit(u, pts[u], value);
+                    if (u == a || u == b || u == c)
+                        continue;
+                    const glm::dvec3 q = to_glm(pts[u]);
+                    const double d = deviation(q);
+                    most = std::max(most, d);
+                    visit(u, q, d, value);
                 }
+            bound = std::min(bound, float_up(most));
         }
     }
 }
 
-// Face f's tiles (corners a, b, c; `deviation(p)` gives a sample's deviation): kept ones, made now
-// when the face holds more than k_tiled_samples samples (one pass, no weights), else null.
-template <class Deviation>
-static const std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::uint32_t a,
-                                               std::uint32_t b, std::uint32_t c,
-                                               const Deviation &deviation) {
+// Face f's tiles (corners a, b, c): kept ones, made now when the face holds more than
+// k_tiled_samples samples, else null. A tile's bound is the largest distance from the height
+// range of its lattice tile to `plane(x, y)` (the face's height) over its box, widened like a
+// deviation (rounding_margin at its farthest corner for the face's slope, and a hair for the
+// rounding of these sums); no sample is read.
+template <class Plane>
+static std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::uint32_t a,
+                                         std::uint32_t b, std::uint32_t c, const Plane &plane,
+                                         double slope) {
     if (s.face_blocked[f.idx()]) {
         const auto kept = s.face_tiles.find(f.idx());
         return kept == s.face_tiles.end() ? nullptr : &kept->second;
@@ -893,24 +944,34 @@ static const std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::u
     const std::int64_t rows = g.t.last_row - g.t.first_row + 1;
     if (rows * g.columns * k_tile_cols / 2 <= k_tiled_samples)
         return nullptr; // half its box: at most about k_tiled_samples samples
-    const std::int64_t bands = (rows + k_band_rows - 1) / k_band_rows;
-    std::vector<double> most(std::size_t(bands * g.columns), 0.0);
-    const std::int64_t w = s.grid_w;
+    if (s.tile_z.empty())
+        build_tile_z(s);
+    const std::int64_t w = s.grid_w, columns = tile_columns(s);
+    const std::int64_t x_lo = std::min({a % w, b % w, c % w}), x_hi = std::max({a % w, b % w, c % w});
     const Mesh::Point *pts = s.mesh->points();
-    for (std::int64_t y = g.t.first_row; y <= g.t.last_row; ++y) {
-        const auto [first, last] = g.t.span(y);
-        double *row = most.data() + (y - g.t.first_row) / k_band_rows * g.columns;
-        for (std::int64_t x = first; x <= last; ++x) {
-            const std::uint32_t u = std::uint32_t(y * w + x);
-            if (u == a || u == b || u == c)
-                continue;
-            double &tile = row[(x - g.x0) / k_tile_cols];
-            tile = std::max(tile, deviation(to_glm(pts[u])));
+    const std::int64_t bands = (g.t.last_row - g.row0) / k_band_rows + 1;
+    std::vector<float> dev(std::size_t(bands * g.columns));
+    for (std::int64_t j = 0; j < bands; ++j) {
+        const std::int64_t r0 = std::max(g.row0 + j * k_band_rows, g.t.first_row),
+                           r1 = std::min(g.row0 + (j + 1) * k_band_rows - 1, g.t.last_row);
+        const double y0 = pts[r0 * w][1], y1 = pts[r1 * w][1];
+        for (std::int64_t k = 0; k < g.columns; ++k) {
+            const std::int64_t c0 = std::max(g.x0 + k * k_tile_cols, x_lo),
+                               c1 = std::min(g.x0 + (k + 1) * k_tile_cols - 1, x_hi);
+            const double x0 = pts[c0][0], x1 = pts[c1][0];
+            const float *z = s.tile_z.data() +
+                             2 * ((g.row0 / k_band_rows + j) * columns + (g.x0 / k_tile_cols + k));
+            const double p[4] = {plane(x0, y0), plane(x1, y0), plane(x0, y1), plane(x1, y1)};
+            const double pl = std::min({p[0], p[1], p[2], p[3]}),
+                         ph = std::max({p[0], p[1], p[2], p[3]});
+            const double far = std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
+            const double most = std::max({double(z[1]) - pl, ph - double(z[0]), 0.0});
+            dev[std::size_t(j * g.columns + k)] = float_up(
+                most + rounding_margin(far, slope) +
+                1e-9 * (std::abs(pl) + std::abs(ph) + std::abs(double(z[0])) +
+                        std::abs(double(z[1])) + 1.0));
         }
     }
-    // Rounded up once per tile, not per sample (float_up is monotone: the same bound).
-    std::vector<float> dev(most.size());
-    std::transform(most.begin(), most.end(), dev.begin(), float_up);
     s.face_blocked[f.idx()] = 1;
     return &(s.face_tiles[f.idx()] = std::move(dev));
 }
@@ -2353,6 +2414,8 @@ void NodeEraser::rebind(Mesh &mesh) {
     advise_huge(*impl_);
     if (impl_->fans_stale)
         rebuild_fans(*impl_); // here, not in the first update (23 ms of a 30 fps descent's frame)
+    if (impl_->grid_w > 0 && impl_->tile_z.empty())
+        build_tile_z(*impl_); // and these (a pass over every sample)
 }
 
 const Mesh &NodeEraser::mesh() const { return *impl_->mesh; }
@@ -2606,16 +2669,19 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     const auto [box_lo, box_hi] = swallowed_box(s, f, a, b, c);
     if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
         return worst;
-    // The deviation from f of a swallowed node at p, computed the same way by every scan.
+    // A TIN face's height at (x, y), and the deviation from f of a swallowed node at p, computed
+    // the same way by every scan.
+    auto plane_at = [&](double x, double y) {
+        const double b0 = orient({b.x, b.y}, {c.x, c.y}, {x, y}) / normal.z;
+        const double b1 = orient({c.x, c.y}, {a.x, a.y}, {x, y}) / normal.z;
+        return b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z;
+    };
     auto deviation_at = [&](const glm::dvec3 &p) {
         if (!s.xy)
             return triangle_distance(p, a, b, c);
-        const glm::dvec2 x(p.x, p.y);
-        const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / normal.z;
-        const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / normal.z;
         // The same float-rounding widening as locate(): the bound is never overstated.
-        return std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z)) +
-               rounding_margin(std::max(std::abs(x.x), std::abs(x.y)), slope);
+        return std::abs(p.z - plane_at(p.x, p.y)) +
+               rounding_margin(std::max(std::abs(p.x), std::abs(p.y)), slope);
     };
     auto deviation = [&](std::int32_t u) { return deviation_at(to_glm(m.point(VH(u)))); };
     auto visit = [&](std::int32_t u, double dev, double bound) {
@@ -2633,9 +2699,9 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         const std::uint32_t ia = std::uint32_t(m.from_vertex_handle(he).idx()),
                             ib = std::uint32_t(m.to_vertex_handle(he).idx()),
                             ic = std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx());
-        const std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, deviation_at);
-        // Visits sample(u, p, bound) for each sample of a tile or band whose largest deviation
-        // times its largest weight (`bound`) may exceed `above`.
+        std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane_at, slope);
+        // Visits sample(u, q, dev, bound) for each sample (point q, deviation dev) of a tile or
+        // band whose largest deviation times its largest weight (`bound`) may exceed `above`.
         const auto scan = [&](const double &above, const auto &sample) {
             const auto bound_over = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
                 return s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
@@ -2647,7 +2713,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
                         const double bound = bound_over(lo, hi);
                         return 1.001 * dev * bound > above ? bound : -1.0;
                     },
-                    sample);
+                    deviation_at, sample);
                 return;
             }
             scan_lattice(
@@ -2659,21 +2725,20 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
                     return dz * bound > above ? bound : -1.0;
                 },
                 [&](std::uint32_t v, const Mesh::Point &p, double bound) {
-                    sample(v, p, bound);
+                    const glm::dvec3 q = to_glm(p);
+                    sample(v, q, deviation_at(q), bound);
                     return true;
                 });
         };
-        scan(worst.second, [&](std::uint32_t v, const Mesh::Point &p, double bound) {
-            visit(std::int32_t(v), deviation_at(to_glm(p)), bound);
+        scan(worst.second, [&](std::uint32_t v, const glm::dvec3 &, double dev, double bound) {
+            visit(std::int32_t(v), dev, bound);
         });
         if (screen && worst.first < 0) {
             // The largest weighted deviation, for the updates that follow: a band, tile or sample
             // that its bound shows cannot raise it is not weighed (weighing every sample took a
             // third of a low observer's frames on 4097²; the maximum is the same).
             double seen = 0.0;
-            scan(seen, [&](std::uint32_t, const Mesh::Point &p, double bound) {
-                const glm::dvec3 q = to_glm(p);
-                const double dev = deviation_at(q);
+            scan(seen, [&](std::uint32_t, const glm::dvec3 &q, double dev, double bound) {
                 if (dev * bound > seen)
                     seen = std::max(seen, dev * s.weigher(q));
             });
@@ -3075,7 +3140,8 @@ EraseStats NodeEraser::measure() const {
 }
 
 static std::size_t block_bytes(const NodeEraser::Impl &s) {
-    std::size_t bytes = s.block_cell_scratch.capacity() + s.block_order_scratch.capacity() * 4;
+    std::size_t bytes = s.block_cell_scratch.capacity() + s.block_order_scratch.capacity() * 4 +
+                        s.tile_z.capacity() * sizeof(float);
     for (const auto &[face, tiles] : s.face_tiles)
         bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
     for (const auto &[face, blocks] : s.face_blocks)
