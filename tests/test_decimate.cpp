@@ -708,6 +708,45 @@ TEST(Erase, CompactedHistoryRecoversExactly) {
     EXPECT_EQ(triangle_set(back), input_triangles);
 }
 
+// After compact() an update keeps the live nodes' keys and sweep stamps with them; an erase()
+// after that goes back to per-vertex ones. Both keep their bound, and every node still recovers.
+TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 201});
+    const View view = corner_view(hf);
+    View nearer = view;
+    nearer.eye += 0.5 * (view.at - view.eye);
+    Mesh input = grid_tin(hf);
+    const auto input_triangles = triangle_set(input);
+    EraseOptions options;
+    options.tolerance = 0.75;
+    Mesh work = input;
+    NodeEraser eraser(work, &view, options);
+    eraser.erase();
+    eraser.compact();
+    Mesh copy = work;
+    eraser.rebind(copy);
+    for (const View &v : {nearer, view, nearer}) {
+        const UpdateStats u = eraser.update(v, 1.0, 0.75);
+        EXPECT_GT(u.recovered + u.erased, 0);
+        EXPECT_LE(eraser.measure().max_weighted, 1.0);
+    }
+    // From the last update's view (from another, what the TIN left coarse for that one may show
+    // more than the bound: an erase cannot lower it).
+    EraseOptions looser = options;
+    looser.tolerance = 2.0;
+    eraser.set_view(&nearer, looser);
+    const EraseStats again = eraser.erase();
+    EXPECT_GT(again.erased, 0);
+    EXPECT_LE(again.max_weighted, 2.0);
+    const UpdateStats u = eraser.update(view, 2.0, 1.5);
+    EXPECT_GT(u.recovered, 0);
+    EXPECT_LE(eraser.measure().max_weighted, 2.0);
+    eraser.recover_all();
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(triangle_set(back), input_triangles);
+}
+
 TEST(Erase, FlatRegionIsErasedFirst) {
     Heightfield hf;
     hf.width = hf.height = 33;

@@ -192,6 +192,11 @@ class NodeHeap {
         std::vector<std::int32_t>().swap(pos_);
         std::vector<std::uint32_t>().swap(heap_);
     }
+    // Frees the keys too (until the next reset).
+    void release() {
+        std::vector<float>().swap(key_);
+        release_queue();
+    }
     void pop() {
         const std::uint32_t v = heap_.front();
         pos_[v] = -1;
@@ -310,6 +315,9 @@ struct LiveNode {
     std::uint32_t low_at = 0;
     bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
     bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
+    // Once compact() ran (Impl::node_keys): the node's key and sweep stamp (see node_key).
+    std::uint8_t stamp = 0;
+    float key = 0.0f;
 };
 
 // What the faces of an erased node's fan knew of the samples they held, for the re-insert that
@@ -471,6 +479,11 @@ struct NodeEraser::Impl {
     int grid_nx = 1, grid_ny = 1;
     std::vector<std::uint8_t> flags; // per vertex: k_locked, k_dirty, k_recovered, k_unread
     std::vector<std::uint8_t> stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
+    // Set by compact(): the live nodes' keys and stamps are in their LiveNode, and the per-vertex
+    // ones (heap, stamp) are freed, as only an update's sweeps, over live nodes, read them; 5
+    // bytes per input node, and a stamp reset that visits the live nodes, not the terrain. The
+    // next erase() goes back to the per-vertex arrays.
+    bool node_keys = false;
     std::uint8_t pass = 0;
     std::size_t chain_cap = 0; // see sweep_node
     NodeHeap heap;
@@ -541,6 +554,21 @@ static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) 
 static LiveNode &live_node(NodeEraser::Impl &s, std::uint32_t x) {
     assert(s.record_of[x] < 0);
     return s.live_list[std::size_t(-2 - s.record_of[x])];
+}
+
+// Live node x's key (a lower bound of its cost under the current view; +inf: parked, or no erase
+// possible until its ring changes) and its sweep stamp, wherever Impl::node_keys keeps them.
+static float node_key(NodeEraser::Impl &s, std::uint32_t x) {
+    return s.node_keys ? live_node(s, x).key : s.heap.key(x);
+}
+static void store_node_key(NodeEraser::Impl &s, std::uint32_t x, float key) {
+    if (s.node_keys)
+        live_node(s, x).key = key;
+    else
+        s.heap.store_key(x, key);
+}
+static std::uint8_t &node_stamp(NodeEraser::Impl &s, std::uint32_t x) {
+    return s.node_keys ? live_node(s, x).stamp : s.stamp[x];
 }
 
 // Face f's swallowed nodes change: its blocks and its seen bound go.
@@ -1089,7 +1117,11 @@ static void classify_nodes(NodeEraser::Impl &s) {
     s.flags.resize(m.n_vertices());
     for (std::uint8_t &f : s.flags)
         f &= k_unread;
-    s.stamp.assign(m.n_vertices(), 0);
+    if (s.node_keys)
+        for (LiveNode &l : s.live_list)
+            l.stamp = 0;
+    else
+        s.stamp.assign(m.n_vertices(), 0);
     s.pass = 0;
     for (auto v : m.vertices()) {
         const HH he = m.halfedge_handle(v);
@@ -1626,7 +1658,11 @@ constexpr std::uint32_t k_sample_stride = 29;
 // A new sweep pass: its number in s.pass, the stamps of 256 passes ago cleared.
 static void next_pass(NodeEraser::Impl &s) {
     if (++s.pass == 0) {
-        std::fill(s.stamp.begin(), s.stamp.end(), std::uint8_t(0));
+        if (s.node_keys)
+            for (LiveNode &l : s.live_list)
+                l.stamp = 0;
+        else
+            std::fill(s.stamp.begin(), s.stamp.end(), std::uint8_t(0));
         s.pass = 1;
     }
     s.chain_cap = std::size_t(double(k_chain_swallowed) * double(s.mesh->n_vertices()) /
@@ -1652,7 +1688,7 @@ static double covered_estimate(const NodeEraser::Impl &s, std::uint32_t x) {
 // Leaves x as it is (not dirty, infinite key) until a change of its ring marks it dirty again.
 static void park(NodeEraser::Impl &s, std::uint32_t x) {
     s.flags[x] &= std::uint8_t(~k_dirty);
-    s.heap.store_key(x, INFINITY);
+    store_node_key(s, x, INFINITY);
     live_node(s, x).low_log = INFINITY;
 }
 
@@ -1681,7 +1717,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     // than s.chain_cap nodes (else a run of erases along a row, as on a flat sea where every cost
     // is 0, drags one growing face's nodes from erase to erase, quadratic in the run's length),
     // and always with a shallow history.
-    const bool fresh = s.stamp[x] == s.pass;
+    const bool fresh = node_stamp(s, x) == s.pass;
     if (fresh && s.options.shallow_history)
         return false;
     // Over the cap by its area: left as it is without locating the first `cap` nodes (18 % of a
@@ -1709,7 +1745,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     }
     s.flags[x] &= std::uint8_t(~k_dirty);
     if (!(s.hole.cost <= limit)) {
-        s.heap.store_key(x, float(s.hole.cost));
+        store_node_key(s, x, float(s.hole.cost));
         remember_low(s, live_node(s, x), s.hole.cost);
         return false;
     }
@@ -1717,7 +1753,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     retriangulate(s);
     for (int i = 0; i < s.hole.n; ++i) {
         mark_dirty(s, std::uint32_t(s.hole.r[i].idx()));
-        s.stamp[s.hole.r[i].idx()] = s.pass;
+        node_stamp(s, std::uint32_t(s.hole.r[i].idx())) = s.pass;
     }
     return true;
 }
@@ -1740,7 +1776,7 @@ static std::int64_t sweep_pass(NodeEraser::Impl &s, std::vector<std::uint32_t> &
         if (s.record_of[x] >= 0)
             continue;
         order[kept++] = x;
-        if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
+        if (!(s.flags[x] & k_dirty) && double(node_key(s, x)) > limit)
             continue;
         erased += sweep_node(s, x, limit);
     }
@@ -1768,7 +1804,7 @@ static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<s
                 break;
             if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
                 continue;
-            if (!(s.flags[x] & k_dirty) && double(s.heap.key(x)) > limit)
+            if (!(s.flags[x] & k_dirty) && double(node_key(s, x)) > limit)
                 continue;
             if (sweep_node(s, x, limit, cap)) {
                 ++erased;
@@ -1801,7 +1837,7 @@ static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, st
         std::vector<std::uint32_t> list;
         for (const LiveNode &l : s.live_list)
             if (!(s.flags[l.node] & k_locked) &&
-                ((s.flags[l.node] & k_dirty) || double(s.heap.key(l.node)) <= limit))
+                ((s.flags[l.node] & k_dirty) || double(node_key(s, l.node)) <= limit))
                 list.push_back(l.node);
         erased += sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(),
                               budget);
@@ -1810,7 +1846,7 @@ static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, st
         double least = INFINITY;
         for (const LiveNode &l : s.live_list)
             if (!(s.flags[l.node] & k_locked))
-                least = std::min(least, double(s.heap.key(l.node)));
+                least = std::min(least, double(node_key(s, l.node)));
         if (!(least < INFINITY))
             break; // no live node can be erased
         limit = std::min(tau, std::max(limit * k_fine_rung_ratio, least));
@@ -2295,6 +2331,12 @@ EraseStats NodeEraser::erase() {
     stats.input_nodes = s.live;
     stats.input_triangles = s.live_faces;
     const std::int64_t evaluations = s.evaluations;
+    if (s.node_keys) { // back to the per-vertex keys (reset below) and stamps
+        s.stamp.assign(s.mesh->n_vertices(), 0);
+        for (const LiveNode &l : s.live_list)
+            s.stamp[l.node] = l.stamp;
+        s.node_keys = false;
+    }
     if (s.options.significance.model != SpModel::paper &&
         (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance))) {
         stats.erased = sweep_erase(s);
@@ -2397,7 +2439,13 @@ void NodeEraser::compact() {
     s.face_seen.shrink_to_fit();
     s.face_blocks.clear();
     s.face_tiles.clear();
-    s.heap.release_queue(); // updates keep keys only
+    for (LiveNode &l : s.live_list) {
+        l.key = s.heap.key(l.node);
+        l.stamp = s.stamp[l.node];
+    }
+    s.heap.release();
+    std::vector<std::uint8_t>().swap(s.stamp);
+    s.node_keys = true;
     std::vector<float>().swap(s.weight); // and compute weights where they need them
     std::vector<EH>().swap(s.free_edges);
     std::vector<FH>().swap(s.free_faces);
@@ -3034,14 +3082,14 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         }
         if (s.flags[x] & k_locked)
             continue;
-        const float key = s.heap.key(x);
+        const float key = node_key(s, x);
         if (!std::isfinite(key))
             continue; // its hole cannot be re-triangulated: only a change of its ring can help
         if (!(s.flags[x] & k_dirty)) {
             // The cost under this view is at least the star's deviation times its weight now.
             const double least = double(l.star_dev) * weight_of(s, l.star);
             if (least > erase_below) {
-                s.heap.store_key(x, float_down(least));
+                store_node_key(s, x, float_down(least));
                 remember_low(s, l, least);
                 continue;
             }
