@@ -322,7 +322,7 @@ struct LiveNode {
 
 // What the faces of an erased node's fan knew of the samples they held, for the re-insert that
 // brings the same triangles back (see reinsert): per fan face, in ring order, its worst sample,
-// their largest deviation and its tiles (empty when it had none, see lattice_tiles).
+// their largest deviation and its tile bounds (empty when it had none, see lattice_tiles).
 struct KeptFan {
     std::vector<std::int32_t> head;
     std::vector<float> maxdev;
@@ -428,11 +428,11 @@ struct NodeEraser::Impl {
     // is rebuilt.
     std::vector<std::uint8_t> face_blocked;
     std::unordered_map<std::int32_t, std::vector<Block>> face_blocks;
-    // A grid TIN's large faces: the largest deviation of their samples per tile (face_blocked is 1
+    // A grid TIN's large faces: a bound on their samples' deviation per tile (face_blocked is 1
     // for them too, see lattice_tiles).
     std::unordered_map<std::int32_t, std::vector<float>> face_tiles;
     // A grid TIN's lattice tiles (see lattice_tiles): the least and largest height of each, made
-    // when a face is first tiled.
+    // by rebind() or when a face is first tiled.
     std::vector<float> tile_z;
     // A shallow history's erased nodes whose fan covered more than k_kept_fan_samples samples of a
     // grid TIN: per fan face, what it knew of its samples (see KeptFan), by node.
@@ -1511,7 +1511,6 @@ static void retriangulate(NodeEraser::Impl &s) {
         record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
         record.ring_capacity = std::uint8_t(n);
     }
-    record.node = x;
     record.ring_size = std::uint8_t(n);
     record.boundary = h.boundary;
     std::array<std::uint32_t, k_max_ring> ids;
@@ -2281,7 +2280,6 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
                             [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
                                 const std::size_t k = s.records.append(1);
                                 EraseRecord &record = s.records[k];
-                                record.node = x;
                                 record.ring_begin =
                                     std::uint32_t(s.ring_pool.append(std::size_t(n)));
                                 record.ring_size = record.ring_capacity = std::uint8_t(n);
@@ -2395,10 +2393,16 @@ std::int64_t NodeEraser::recover(Mesh::VertexHandle v) {
 
 std::int64_t NodeEraser::recover_all() {
     Impl &s = *impl_;
+    // The records from the last made to the first (a one-off erase undone in reverse: no closure
+    // to walk).
+    std::vector<std::pair<std::int32_t, std::uint32_t>> erased;
+    for (std::uint32_t x = 0; x < std::uint32_t(s.record_of.size()); ++x)
+        if (s.record_of[x] >= 0)
+            erased.emplace_back(s.record_of[x], x);
+    std::sort(erased.begin(), erased.end(), std::greater<>());
     std::int64_t recovered = 0;
-    for (std::size_t k = s.records.size(); k-- > 0;)
-        if (s.record_of[s.records[k].node] == std::int32_t(k))
-            recovered += recover(VH(int(s.records[k].node)));
+    for (const auto &[record, x] : erased)
+        recovered += recover(VH(int(x)));
     return recovered;
 }
 

@@ -115,12 +115,12 @@ struct EraseStats {
     double ms = 0.0;           // wall time of the erase
 };
 
-// One erase, enough to undo it exactly: the node and its ring (counter-clockwise; for a boundary
-// node the open chain r_0..r_m along which the new boundary edge r_m -> r_0 runs). The triangles it
-// removed are the fan (node, r_i, r_i+1); the ones it created are the faces inside the ring, so
-// they need not be stored: they are present exactly when every ring node is live.
+// One erase, enough to undo it exactly: the node's ring (counter-clockwise; for a boundary node the
+// open chain r_0..r_m along which the new boundary edge r_m -> r_0 runs); the node is the one
+// NodeEraser::record was asked for. The triangles it removed are the fan (node, r_i, r_i+1); the
+// ones it created are the faces inside the ring, so they need not be stored: they are present
+// exactly when every ring node is live. 8 bytes, with the ring's 4 per node beside it.
 struct EraseRecord {
-    std::uint32_t node = 0;       // vertex idx
     std::uint32_t ring_begin = 0; // offset in the eraser's ring pool
     std::uint8_t ring_size = 0;
     std::uint8_t ring_capacity = 0; // room at ring_begin (a node erased again re-uses it)
