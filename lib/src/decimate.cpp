@@ -171,6 +171,7 @@ class NodeHeap {
             down(std::int32_t(i));
     }
     float key(std::uint32_t v) const { return key_[v]; }
+    bool has_key(std::uint32_t v) const { return v < key_.size(); }
     void store_key(std::uint32_t v, float key) { key_[v] = key; } // for a node outside the heap
     void set(std::uint32_t v, float key) {
         if (pos_[v] < 0) {
@@ -2141,6 +2142,10 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     }
     swallowed.resize(swallowed_begin);
     add_live(s, x, s.record_of[x]);
+    // Its key from before its erase says nothing of the fan it has now (an infinite one kept the
+    // update's pick from ever re-evaluating it).
+    if (s.node_keys || s.heap.has_key(x))
+        store_node_key(s, x, 0.0f);
     std::array<float, k_max_ring> tri_dev;
     for (int i = 0; i < fans; ++i)
         tri_dev[i] = s.face_maxdev[face[i].idx()];
