@@ -170,6 +170,14 @@ View corner_view(const Heightfield &hf) {
     return view;
 }
 
+// N42E001's 201² corner as a grid TIN, its triangles, and its corner view.
+struct CornerCrop {
+    Heightfield hf = load_cropped({"N42E001.hgt", false, 201});
+    View view = corner_view(hf);
+    Mesh input = grid_tin(hf);
+    std::vector<Triangle> triangles = triangle_set(input);
+};
+
 const DemAsset k_dems[] = {
     {"dem_squared.tif", false, 0}, {"dem_srtm30.tif", false, 0}, {"crater_u16.png", false, 0},
     {"fuji.png", true, 0},         {"N42E001.hgt", false, 401},
@@ -665,10 +673,10 @@ TEST(Erase, RecoverInRandomOrderStaysValid) {
 // compact() drops the erased edges and faces; the history still recovers every node exactly, on a
 // copy of the compacted mesh (rebind), with edges and faces created as the re-inserts need them.
 TEST(Erase, CompactedHistoryRecoversExactly) {
-    const Heightfield hf = load_cropped({"N42E001.hgt", false, 201});
-    const View view = corner_view(hf);
-    Mesh input = grid_tin(hf);
-    const auto input_triangles = triangle_set(input);
+    CornerCrop crop;
+    const View &view = crop.view;
+    Mesh &input = crop.input;
+    const auto &input_triangles = crop.triangles;
     EraseOptions options;
     options.tolerance = 1.0;
     Mesh work = input;
@@ -711,15 +719,13 @@ TEST(Erase, CompactedHistoryRecoversExactly) {
 // After compact() an update keeps the live nodes' keys and sweep stamps with them; an erase()
 // after that goes back to per-vertex ones. Both keep their bound, and every node still recovers.
 TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
-    const Heightfield hf = load_cropped({"N42E001.hgt", false, 201});
-    const View view = corner_view(hf);
+    CornerCrop crop;
+    const View &view = crop.view;
     View nearer = view;
     nearer.eye += 0.5 * (view.at - view.eye);
-    Mesh input = grid_tin(hf);
-    const auto input_triangles = triangle_set(input);
     EraseOptions options;
     options.tolerance = 0.75;
-    Mesh work = input;
+    Mesh work = crop.input;
     NodeEraser eraser(work, &view, options);
     eraser.erase();
     eraser.compact();
@@ -744,7 +750,7 @@ TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
     eraser.recover_all();
     Mesh back = eraser.mesh();
     back.garbage_collection();
-    EXPECT_EQ(triangle_set(back), input_triangles);
+    EXPECT_EQ(triangle_set(back), crop.triangles);
 }
 
 TEST(Erase, FlatRegionIsErasedFirst) {
