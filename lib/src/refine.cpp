@@ -42,8 +42,14 @@ static void start(Refiner::Impl& s, const View& first) {
     compacted->reserve(compacted->n_vertices(), s.edge_room, s.face_room);
     s.eraser->rebind(*compacted);
     s.mesh = std::move(compacted);
+    // An update from the same view makes the bounds that later updates carry over (each fan's and
+    // face's weighted deviation, each node's least cost), so the first move does not pay for
+    // them all at once.
+    const UpdateStats warm =
+        s.eraser->update(first, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
     s.first.ms_erase = clock.ms();
-    s.first.erased = e.erased;
+    s.first.erased = e.erased + warm.erased;
+    s.first.recovered = warm.recovered;
     s.first.candidates = e.evaluations;
     s.first.nodes = s.eraser->live_nodes();
     s.first.triangles = s.eraser->live_triangles();

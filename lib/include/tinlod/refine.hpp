@@ -53,7 +53,8 @@ struct FrameStats {
 class Refiner {
   public:
     // Starts from the grid TIN of `hf` seen from `first`: the quad-tree retrieval, then the erase
-    // (see RefineOptions::retrieve_share). `hf` must outlive the refiner.
+    // (see RefineOptions::retrieve_share), then one update from `first` that makes the bounds the
+    // updates carry over. `hf` must outlive the refiner.
     Refiner(const Heightfield& hf, const View& first, const RefineOptions& options = {});
     // Starts from a mesh (a TIN or a surface mesh).
     Refiner(Mesh mesh, const View& first, const RefineOptions& options = {});
@@ -61,7 +62,7 @@ class Refiner {
     Refiner(const Refiner&) = delete;
     Refiner& operator=(const Refiner&) = delete;
 
-    // The first frame's statistics (the initial erase).
+    // The first frame's statistics (the initial erase and its update).
     const FrameStats& first_frame() const;
     // Moves to `view`: recovers where the bound would break, erases where SP fell below
     // (1 - hysteresis) tau. Afterwards every frame-visible deviation is <= tau pixels.
