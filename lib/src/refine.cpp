@@ -118,9 +118,9 @@ bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_e
 std::size_t Refiner::bytes() const {
     const Mesh& m = *impl_->mesh;
     // OpenMesh's arrays: per vertex a point, an outgoing halfedge, a status byte and the origin
-    // property if it has one (a refiner from a heightfield drops it); per halfedge its vertex, next, prev and face; per edge and face a status byte, per
-    // face a halfedge. Edges and faces count their reserved room; past it an array has at most
-    // doubled.
+    // property if it has one (a refiner from a heightfield drops it); per halfedge its vertex,
+    // next, prev and face; per edge and face a status byte, per face a halfedge. Edges and faces
+    // count their reserved room; past it an array has at most doubled.
     const auto room = [](std::size_t n, std::size_t reserved) {
         return n <= reserved ? reserved : 2 * n;
     };
