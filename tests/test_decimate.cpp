@@ -3,6 +3,7 @@
 // error <= bound, recover(erase(m)) == m).
 #include "assets.hpp"
 
+#include "../lib/src/lattice_rings.hpp" // internal: the rings of the samples a retrieval left out
 #include "tinlod/decimate.hpp"
 #include "tinlod/greedy.hpp"
 #include "tinlod/hausdorff.hpp"
@@ -510,6 +511,52 @@ TEST(Erase, RetrievedLatticeTinRecoversExactly) {
     EXPECT_THROW(eraser.update(view, 1.0, 0.75), std::logic_error);
 }
 
+// The samples a retrieval left out keep their insertion's ring (absent_sample_rings, replayed here
+// over the whole lattice), but only the irregular ones as records: on a 2^k + 1 grid every ring is
+// RegularRings' and the history holds none of them; on other sizes each ring is still the replay's.
+TEST(Erase, AbsentSamplesKeepOnlyTheRingsTheLatticeCannotTell) {
+    for (const DemAsset &a : {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201}}) {
+        const Heightfield hf = load_cropped(a);
+        SCOPED_TRACE(std::to_string(hf.width) + "x" + std::to_string(hf.height));
+        const View view = corner_view(hf);
+        const Mesh lattice = to_lattice_mesh(retrieve(QuadTree(hf), view, {1.0, false}), hf);
+        const RegularRings regular(std::uint32_t(hf.width), std::uint32_t(hf.height));
+        std::map<std::uint32_t, ErasedNodeRing> replay;
+        std::int64_t regular_ones = 0;
+        absent_sample_rings(lattice, std::uint32_t(hf.width),
+                            [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                                replay[x] = {{ring, ring + n}, boundary};
+                                std::array<std::uint32_t, 4> guess;
+                                bool chain = false;
+                                const int m = regular.ring(x, guess.data(), chain);
+                                regular_ones += m == n && chain == boundary &&
+                                                std::equal(ring, ring + n, guess.data());
+                            });
+        ASSERT_GT(replay.size(), std::size_t(hf.size()) / 4);
+        const auto history = [&](bool absent) {
+            Mesh work = lattice;
+            EraseOptions options;
+            options.absent_history = absent;
+            NodeEraser eraser(work, &view, options);
+            if (absent)
+                for (const auto &[x, ring] : replay) {
+                    const ErasedNodeRing kept = eraser.ring(Mesh::VertexHandle(int(x)));
+                    EXPECT_EQ(kept.nodes, ring.nodes) << x;
+                    EXPECT_EQ(kept.boundary, ring.boundary) << x;
+                }
+            return double(eraser.history_bytes());
+        };
+        const double per_sample = (history(true) - history(false)) / double(replay.size());
+        if (hf.width == 257) {
+            EXPECT_EQ(regular_ones, std::int64_t(replay.size()));
+            EXPECT_LT(per_sample, 2.0);
+        } else {
+            EXPECT_GT(regular_ones, 0);
+            EXPECT_LT(regular_ones, std::int64_t(replay.size()));
+        }
+    }
+}
+
 // With absent_history the samples a retrieval left out are erased nodes like any other: they enter
 // by recover() in any order through a valid TIN, and recovering everything gives the whole lattice,
 // whatever the grid's size (2^k + 1, odd, even).
@@ -534,9 +581,9 @@ TEST(Erase, AbsentSamplesEnterInAnyOrderUntilTheLatticeIsWhole) {
         for (auto v : work.all_vertices()) {
             if (!eraser.is_erased(v))
                 continue;
-            const EraseRecord r = eraser.record(v);
-            EXPECT_TRUE(r.ring_size == 3 || (r.ring_size == 4 && !r.boundary)) << v.idx();
-            inside += !r.boundary && r.ring_size == 3;
+            const ErasedNodeRing r = eraser.ring(v);
+            EXPECT_TRUE(r.nodes.size() == 3 || (r.nodes.size() == 4 && !r.boundary)) << v.idx();
+            inside += !r.boundary && r.nodes.size() == 3;
         }
         if (hf.width == 257) {
             EXPECT_EQ(inside, 0);
@@ -652,9 +699,9 @@ TEST(Erase, RecoverInRandomOrderStaysValid) {
         const Mesh::VertexHandle v(erased[k]);
         if (eraser.is_erased(v)) {
             // Every ring node of v's record becomes live, and v itself.
-            const EraseRecord record = eraser.record(v);
+            const ErasedNodeRing ring = eraser.ring(v);
             EXPECT_GE(eraser.recover(v), 1);
-            for (std::uint32_t u : eraser.ring(record))
+            for (std::uint32_t u : ring.nodes)
                 EXPECT_FALSE(eraser.is_erased(Mesh::VertexHandle(int(u))));
         }
         EXPECT_FALSE(eraser.is_erased(v));

@@ -291,6 +291,15 @@ struct Assignment {
     float dev;
 };
 
+// One erase, enough to undo it exactly (see ErasedNodeRing): its ring's place in the ring pool.
+// 8 bytes, with the ring's 4 per node beside it.
+struct EraseRecord {
+    std::uint32_t ring_begin = 0; // offset in the eraser's ring pool
+    std::uint8_t ring_size = 0;
+    std::uint8_t ring_capacity = 0; // room at ring_begin (a node erased again re-uses it)
+    bool boundary = false;
+};
+
 // What an update needs to know of a live node without walking its fan (see update()).
 struct LiveNode {
     std::uint32_t node;
@@ -399,6 +408,8 @@ constexpr std::uint8_t k_recovered = 4; // recovered by the update under way
 constexpr std::uint8_t k_unread = 8; // a sample the input TIN left out, never live yet
 
 constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN never held
+// record_of of a sample left out whose ring is its lattice's regular one (RegularRings): no record.
+constexpr std::int32_t k_regular_ring = std::numeric_limits<std::int32_t>::max();
 
 } // namespace
 
@@ -461,10 +472,13 @@ struct NodeEraser::Impl {
     };
     std::array<Since, k_seen_views> since;
     std::uint32_t updates = 0; // update() calls so far
-    // Per vertex: its erase record (>= 0), k_absent for a sample the input TIN never held (see
-    // the constructor), or for a live node -2 - its place in live_list (so an update visits the
-    // live nodes without walking the whole terrain).
+    // Per vertex: its erase record (>= 0; k_regular_ring: none, see regular), k_absent for a
+    // sample the input TIN never held (see the constructor), or for a live node -2 - its place in
+    // live_list (so an update visits the live nodes without walking the whole terrain).
     std::vector<std::int32_t> record_of;
+    // The samples a grid TIN left out take their rings from here where those are regular (all of
+    // them on a 2^k + 1 grid), and keep a record only where not (EraseOptions::absent_history).
+    std::unique_ptr<RegularRings> regular;
     std::vector<LiveNode> live_list; // the live nodes, in no order
     // The live nodes' and cells' fan bounds (reach, fan_dev) are not kept: only an update reads
     // them, so the constructor and erase() leave them, and the first update after them builds them
@@ -597,6 +611,25 @@ static void remove_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t recor
     s.record_of[last.node] = -2 - place;
     s.live_list.pop_back();
     s.record_of[x] = record;
+}
+
+// The ring of erased node x's last erase: its record's, or its regular one (written to `scratch`).
+struct ErasedRing {
+    const std::uint32_t *nodes;
+    int size;
+    bool boundary;
+};
+
+static ErasedRing erased_ring(const NodeEraser::Impl &s, std::uint32_t x,
+                              std::array<std::uint32_t, 4> &scratch) {
+    assert(s.record_of[x] >= 0);
+    if (s.record_of[x] == k_regular_ring) {
+        bool boundary = false;
+        const int n = s.regular->ring(x, scratch.data(), boundary);
+        return {scratch.data(), n, boundary};
+    }
+    const EraseRecord &record = s.records[std::size_t(s.record_of[x])];
+    return {s.ring_pool.run(record.ring_begin), record.ring_size, record.boundary};
 }
 
 // The fans of the live nodes among the points p[0..count) (node ids `ids`, a hole's or a face's)
@@ -1964,10 +1997,11 @@ static FH take_face(NodeEraser::Impl &s) {
 // fan again, the diagonals and two free edges its spokes.
 static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     Mesh &m = *s.mesh;
-    const EraseRecord record = s.records[s.record_of[x]];
-    const int n = record.ring_size;
-    const bool boundary = record.boundary;
-    const std::uint32_t *ring = s.ring_pool.run(record.ring_begin);
+    std::array<std::uint32_t, 4> scratch;
+    const ErasedRing erased = erased_ring(s, x, scratch);
+    const int n = erased.size;
+    const bool boundary = erased.boundary;
+    const std::uint32_t *ring = erased.nodes;
     const VH v{int(x)};
     auto ring_index = [&](VH u) {
         for (int i = 0; i < n; ++i)
@@ -2141,7 +2175,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         push_swallowed(s, f.idx(), u, float(dev));
     }
     swallowed.resize(swallowed_begin);
-    add_live(s, x, s.record_of[x]);
+    add_live(s, x, s.record_of[x] == k_regular_ring ? -1 : s.record_of[x]);
     // Its key from before its erase says nothing of the fan it has now (an infinite one kept the
     // update's pick from ever re-evaluating it).
     if (s.node_keys || s.heap.has_key(x))
@@ -2281,8 +2315,18 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.absent_for_good = absent > 0 && !options.absent_history;
     if (absent > 0 && options.absent_history) {
         s.flags.assign(s.mesh->n_vertices(), 0);
+        s.regular = std::make_unique<RegularRings>(
+            s.grid_w, std::uint32_t(s.mesh->n_vertices() / s.grid_w));
         absent_sample_rings(*s.mesh, s.grid_w,
                             [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                                s.flags[x] = k_unread;
+                                std::array<std::uint32_t, 4> regular;
+                                bool chain = false;
+                                if (s.regular->ring(x, regular.data(), chain) == n &&
+                                    chain == boundary && std::equal(ring, ring + n, regular.data())) {
+                                    s.record_of[x] = k_regular_ring;
+                                    return;
+                                }
                                 const std::size_t k = s.records.append(1);
                                 EraseRecord &record = s.records[k];
                                 record.ring_begin =
@@ -2291,7 +2335,6 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
                                 record.boundary = boundary;
                                 std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
                                 s.record_of[x] = std::int32_t(k);
-                                s.flags[x] = k_unread;
                             });
     }
     if (absent > 0)
@@ -2372,10 +2415,11 @@ static std::int64_t recover_closure(NodeEraser::Impl &s, std::uint32_t v,
             stack.pop_back();
             continue;
         }
-        const EraseRecord &record = s.records[s.record_of[x]];
+        std::array<std::uint32_t, 4> scratch;
+        const ErasedRing ring = erased_ring(s, x, scratch);
         bool ready = true;
-        for (int i = 0; i < record.ring_size; ++i) {
-            const std::uint32_t u = s.ring_pool[record.ring_begin + i];
+        for (int i = 0; i < ring.size; ++i) {
+            const std::uint32_t u = ring.nodes[i];
             if (s.record_of[u] >= 0) {
                 stack.push_back(u); // erased after x and over x's triangles: undo it first
                 ready = false;
@@ -2413,13 +2457,11 @@ std::int64_t NodeEraser::recover_all() {
 
 bool NodeEraser::is_erased(Mesh::VertexHandle v) const { return impl_->record_of[v.idx()] >= 0; }
 
-EraseRecord NodeEraser::record(Mesh::VertexHandle v) const {
+ErasedNodeRing NodeEraser::ring(Mesh::VertexHandle v) const {
     assert(is_erased(v));
-    return impl_->records[impl_->record_of[v.idx()]];
-}
-
-std::span<const std::uint32_t> NodeEraser::ring(const EraseRecord &record) const {
-    return {impl_->ring_pool.run(record.ring_begin), record.ring_size};
+    std::array<std::uint32_t, 4> scratch;
+    const ErasedRing ring = erased_ring(*impl_, std::uint32_t(v.idx()), scratch);
+    return {{ring.nodes, ring.nodes + ring.size}, ring.boundary};
 }
 
 void NodeEraser::compact() {
@@ -2501,11 +2543,12 @@ static std::uint32_t ready_dependency(NodeEraser::Impl &s, std::uint32_t v) {
     const glm::dvec3 target = to_glm(s.mesh->point(VH(int(v))));
     for (;;) {
         const std::uint32_t at = chain.back();
-        const EraseRecord &record = s.records[std::size_t(s.record_of[at])];
-        const std::uint32_t *ring = s.ring_pool.run(record.ring_begin);
+        std::array<std::uint32_t, 4> scratch;
+        const ErasedRing erased = erased_ring(s, at, scratch);
+        const std::uint32_t *ring = erased.nodes;
         std::uint32_t next = at;
         double nearest = INFINITY;
-        for (std::uint8_t i = 0; i < record.ring_size; ++i)
+        for (int i = 0; i < erased.size; ++i)
             if (s.record_of[ring[i]] >= 0) {
                 glm::dvec3 d = to_glm(s.mesh->point(VH(int(ring[i])))) - target;
                 if (s.xy)
@@ -3220,7 +3263,7 @@ std::size_t NodeEraser::history_bytes() const {
            s.weight.capacity() * sizeof(float) +
            s.live_list.capacity() * sizeof(LiveNode) + s.cells.capacity() * sizeof(Cell) +
            s.cell_visit.capacity() +
-           s.records.bytes() + s.ring_pool.bytes() +
+           s.records.bytes() + s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
            s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views);
 }

@@ -5,6 +5,7 @@
 
 #include "tinlod/quadtree.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <stdexcept>
@@ -99,6 +100,9 @@ class Lattice {
             vface_[ring[n - 1]] = slot[fans - 1];
         vface_[p] = slot[0];
         held_[p] = 1;
+        if (!boundary)
+            std::rotate(ring.begin(), std::min_element(ring.begin(), ring.begin() + n),
+                        ring.begin() + n);
         visit(p, ring.data(), n, boundary);
     }
 
@@ -187,6 +191,97 @@ void absent_sample_rings(const Mesh &tin, std::uint32_t width, const RingVisitor
                     }
                 }
     }
+}
+
+} // namespace tinlod
+
+namespace tinlod {
+
+RegularRings::RegularRings(std::uint32_t width, std::uint32_t height)
+    : w_(width), h_(height), layout_(int(width), int(height)), level_x_(width, 0),
+      level_y_(height, 0) {
+    const auto first_levels = [&](const AxisSplit &axis, std::vector<std::uint8_t> &level) {
+        std::vector<std::uint8_t> seen(level.size(), 0);
+        for (int d = 0; d < layout_.levels(); ++d)
+            for (std::uint32_t k = 0; k <= axis.count(d); ++k) {
+                const std::uint32_t b = k < axis.count(d) ? axis.lo(d, k) : axis.hi(d, k - 1);
+                if (!seen[b]) {
+                    seen[b] = 1;
+                    level[b] = std::uint8_t(d);
+                }
+            }
+    };
+    first_levels(layout_.x, level_x_);
+    first_levels(layout_.y, level_y_);
+}
+
+std::size_t RegularRings::bytes() const {
+    std::size_t b = level_x_.capacity() + level_y_.capacity();
+    for (int d = 0; d < layout_.levels(); ++d) // each axis's bounds, parents and first children
+        b += 3 * sizeof(std::uint32_t) * (layout_.x.count(d) + layout_.y.count(d) + 2);
+    return b;
+}
+
+int RegularRings::ring(std::uint32_t sample, std::uint32_t *ring, bool &boundary) const {
+    const std::uint32_t c = sample % w_, r = sample / w_;
+    const int a = level_x_[c], b = level_y_[r];
+    assert(a > 0 || b > 0);
+    const AxisSplit &ax = layout_.x, &ay = layout_.y;
+    const auto id = [&](std::uint32_t x, std::uint32_t y) { return y * w_ + x; };
+    // The centre of node (d, i, j).
+    const auto centre = [&](int d, std::uint32_t i, std::uint32_t j) {
+        return id((ax.lo(d, i) + ax.hi(d, i)) / 2, (ay.lo(d, j) + ay.hi(d, j)) / 2);
+    };
+    boundary = false;
+    int n = 4;
+    if (a == b) { // the centre of a node one level up
+        const int d = a - 1;
+        const std::uint32_t i = ax.interval_of(d, c), j = ay.interval_of(d, r);
+        const std::uint32_t x0 = ax.lo(d, i), x1 = ax.hi(d, i), y0 = ay.lo(d, j), y1 = ay.hi(d, j);
+        const std::uint32_t corners[4] = {id(x0, y0), id(x1, y0), id(x1, y1), id(x0, y1)};
+        std::copy(corners, corners + 4, ring);
+    } else if (a < b) { // the midpoint of a west or east side, x = c
+        const int d = b - 1;
+        const std::uint32_t j = ay.interval_of(d, r), y0 = ay.lo(d, j), y1 = ay.hi(d, j);
+        const std::uint32_t right = ax.bound_index(d, c);
+        if (c == 0) {
+            boundary = true;
+            n = 3;
+            const std::uint32_t chain[3] = {id(c, y0), centre(d, 0, j), id(c, y1)};
+            std::copy(chain, chain + 3, ring);
+        } else if (c == w_ - 1) {
+            boundary = true;
+            n = 3;
+            const std::uint32_t chain[3] = {id(c, y1), centre(d, right - 1, j), id(c, y0)};
+            std::copy(chain, chain + 3, ring);
+        } else {
+            const std::uint32_t nodes[4] = {id(c, y0), centre(d, right, j), id(c, y1),
+                                            centre(d, right - 1, j)};
+            std::copy(nodes, nodes + 4, ring);
+        }
+    } else { // the midpoint of a south or north side, y = r
+        const int d = a - 1;
+        const std::uint32_t i = ax.interval_of(d, c), x0 = ax.lo(d, i), x1 = ax.hi(d, i);
+        const std::uint32_t above = ay.bound_index(d, r);
+        if (r == 0) {
+            boundary = true;
+            n = 3;
+            const std::uint32_t chain[3] = {id(x1, r), centre(d, i, 0), id(x0, r)};
+            std::copy(chain, chain + 3, ring);
+        } else if (r == h_ - 1) {
+            boundary = true;
+            n = 3;
+            const std::uint32_t chain[3] = {id(x0, r), centre(d, i, above - 1), id(x1, r)};
+            std::copy(chain, chain + 3, ring);
+        } else {
+            const std::uint32_t nodes[4] = {id(x1, r), centre(d, i, above), id(x0, r),
+                                            centre(d, i, above - 1)};
+            std::copy(nodes, nodes + 4, ring);
+        }
+    }
+    if (!boundary)
+        std::rotate(ring, std::min_element(ring, ring + n), ring + n);
+    return n;
 }
 
 } // namespace tinlod

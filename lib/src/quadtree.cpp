@@ -62,6 +62,12 @@ std::uint32_t AxisSplit::bound_index(int d, std::uint32_t s) const {
     return static_cast<std::uint32_t>(it - st.begin());
 }
 
+std::uint32_t AxisSplit::interval_of(int d, std::uint32_t s) const {
+    const auto& st = starts_[d];
+    assert(s < st.back());
+    return static_cast<std::uint32_t>(std::upper_bound(st.begin(), st.end(), s) - st.begin() - 1);
+}
+
 QuadLayout::QuadLayout(int w, int h) : width(w), height(h) {
     const int levels = std::max(AxisSplit::levels_for(w), AxisSplit::levels_for(h));
     x = AxisSplit(w, levels);

@@ -89,8 +89,10 @@ struct EraseOptions {
     bool shallow_history = false;
     // A grid TIN holding only some of its lattice's samples (to_lattice_mesh): give the samples
     // it left out erase records, as if the erases had taken them from the whole grid in the
-    // quad-tree's order (absent_sample_rings, about 30 bytes each), so recover() and update()
-    // bring them in by local edits like any erased node. Otherwise they never enter.
+    // quad-tree's order (absent_sample_rings), so recover() and update() bring them in by local
+    // edits like any erased node. A record is kept only where the ring is not the lattice's
+    // regular one (RegularRings: none on a 2^k + 1 grid, about half of 1201 x 1201), 20-24
+    // bytes each. Otherwise they never enter.
     bool absent_history = false;
     // Called now and then by erase() (screen and vertical models) with the share of its work done,
     // non-decreasing in [0, 1] (for a progress bar). With a budget: the erases made over those it needs; with a bound
@@ -115,15 +117,13 @@ struct EraseStats {
     double ms = 0.0;           // wall time of the erase
 };
 
-// One erase, enough to undo it exactly: the node's ring (counter-clockwise; for a boundary node the
-// open chain r_0..r_m along which the new boundary edge r_m -> r_0 runs); the node is the one
-// NodeEraser::record was asked for. The triangles it removed are the fan (node, r_i, r_i+1); the
-// ones it created are the faces inside the ring, so they need not be stored: they are present
-// exactly when every ring node is live. 8 bytes, with the ring's 4 per node beside it.
-struct EraseRecord {
-    std::uint32_t ring_begin = 0; // offset in the eraser's ring pool
-    std::uint8_t ring_size = 0;
-    std::uint8_t ring_capacity = 0; // room at ring_begin (a node erased again re-uses it)
+// The ring of an erased node's last erase, enough to undo it exactly (counter-clockwise; for a
+// boundary node the open chain r_0..r_m along which the new boundary edge r_m -> r_0 runs). The
+// triangles the erase removed are the fan (node, r_i, r_i+1); the ones it created are the faces
+// inside the ring, so they need not be stored: they are present exactly when every ring node is
+// live.
+struct ErasedNodeRing {
+    std::vector<std::uint32_t> nodes; // vertex idx values
     bool boundary = false;
 };
 
@@ -204,10 +204,8 @@ class NodeEraser {
     void rebind(Mesh &mesh);
 
     bool is_erased(Mesh::VertexHandle v) const;
-    // The record of an erased node's last erase; v must be erased.
-    EraseRecord record(Mesh::VertexHandle v) const;
-    // Ring of a record, as vertex idx values.
-    std::span<const std::uint32_t> ring(const EraseRecord &record) const;
+    // The ring of erased node v's last erase.
+    ErasedNodeRing ring(Mesh::VertexHandle v) const;
 
     // The current TIN, the caller's mesh: erased elements are marked deleted, not removed.
     const Mesh &mesh() const;

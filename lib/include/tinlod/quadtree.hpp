@@ -44,6 +44,8 @@ class AxisSplit {
     std::uint32_t first_child(int d, std::uint32_t k) const { return first_child_[d][k]; }
     // Index k with lo(d, k) == s, or count(d) when s is the last sample; s must be such a bound.
     std::uint32_t bound_index(int d, std::uint32_t s) const;
+    // Index k of the interval at level d with lo(d, k) <= s < hi(d, k); s < the last sample.
+    std::uint32_t interval_of(int d, std::uint32_t s) const;
 
   private:
     std::vector<std::vector<std::uint32_t>> starts_;      // per level: count+1 interval bounds
