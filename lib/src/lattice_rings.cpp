@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <initializer_list>
 #include <stdexcept>
 #include <vector>
 
@@ -232,52 +233,36 @@ int RegularRings::ring(std::uint32_t sample, std::uint32_t *ring, bool &boundary
     const auto centre = [&](int d, std::uint32_t i, std::uint32_t j) {
         return id((ax.lo(d, i) + ax.hi(d, i)) / 2, (ay.lo(d, j) + ay.hi(d, j)) / 2);
     };
-    boundary = false;
-    int n = 4;
+    // Writes `nodes` to ring; `chain`: an outline's open chain.
+    const auto put = [&](std::initializer_list<std::uint32_t> nodes, bool chain) {
+        std::copy(nodes.begin(), nodes.end(), ring);
+        boundary = chain;
+        return int(nodes.size());
+    };
+    int n = 0;
     if (a == b) { // the centre of a node one level up
         const int d = a - 1;
         const std::uint32_t i = ax.interval_of(d, c), j = ay.interval_of(d, r);
         const std::uint32_t x0 = ax.lo(d, i), x1 = ax.hi(d, i), y0 = ay.lo(d, j), y1 = ay.hi(d, j);
-        const std::uint32_t corners[4] = {id(x0, y0), id(x1, y0), id(x1, y1), id(x0, y1)};
-        std::copy(corners, corners + 4, ring);
+        n = put({id(x0, y0), id(x1, y0), id(x1, y1), id(x0, y1)}, false);
     } else if (a < b) { // the midpoint of a west or east side, x = c
         const int d = b - 1;
         const std::uint32_t j = ay.interval_of(d, r), y0 = ay.lo(d, j), y1 = ay.hi(d, j);
         const std::uint32_t right = ax.bound_index(d, c);
-        if (c == 0) {
-            boundary = true;
-            n = 3;
-            const std::uint32_t chain[3] = {id(c, y0), centre(d, 0, j), id(c, y1)};
-            std::copy(chain, chain + 3, ring);
-        } else if (c == w_ - 1) {
-            boundary = true;
-            n = 3;
-            const std::uint32_t chain[3] = {id(c, y1), centre(d, right - 1, j), id(c, y0)};
-            std::copy(chain, chain + 3, ring);
-        } else {
-            const std::uint32_t nodes[4] = {id(c, y0), centre(d, right, j), id(c, y1),
-                                            centre(d, right - 1, j)};
-            std::copy(nodes, nodes + 4, ring);
-        }
+        n = c == 0        ? put({id(c, y0), centre(d, 0, j), id(c, y1)}, true)
+            : c == w_ - 1 ? put({id(c, y1), centre(d, right - 1, j), id(c, y0)}, true)
+                          : put({id(c, y0), centre(d, right, j), id(c, y1),
+                                 centre(d, right - 1, j)},
+                                false);
     } else { // the midpoint of a south or north side, y = r
         const int d = a - 1;
         const std::uint32_t i = ax.interval_of(d, c), x0 = ax.lo(d, i), x1 = ax.hi(d, i);
         const std::uint32_t above = ay.bound_index(d, r);
-        if (r == 0) {
-            boundary = true;
-            n = 3;
-            const std::uint32_t chain[3] = {id(x1, r), centre(d, i, 0), id(x0, r)};
-            std::copy(chain, chain + 3, ring);
-        } else if (r == h_ - 1) {
-            boundary = true;
-            n = 3;
-            const std::uint32_t chain[3] = {id(x0, r), centre(d, i, above - 1), id(x1, r)};
-            std::copy(chain, chain + 3, ring);
-        } else {
-            const std::uint32_t nodes[4] = {id(x1, r), centre(d, i, above), id(x0, r),
-                                            centre(d, i, above - 1)};
-            std::copy(nodes, nodes + 4, ring);
-        }
+        n = r == 0        ? put({id(x1, r), centre(d, i, 0), id(x0, r)}, true)
+            : r == h_ - 1 ? put({id(x0, r), centre(d, i, above - 1), id(x1, r)}, true)
+                          : put({id(x1, r), centre(d, i, above), id(x0, r),
+                                 centre(d, i, above - 1)},
+                                false);
     }
     if (!boundary)
         std::rotate(ring, std::min_element(ring, ring + n), ring + n);
