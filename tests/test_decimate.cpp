@@ -557,6 +557,50 @@ TEST(Erase, AbsentSamplesKeepOnlyTheRingsTheLatticeCannotTell) {
     }
 }
 
+// A refiner's TIN is a retrieval's (EraseOptions::retrieval_tin): on a square 2^k + 1 grid the
+// eraser takes the rings of the samples it left out from the lattice, without replaying their
+// insertions. Each such ring must be the replay's, for every sample left out, whatever the view and
+// the tolerance made the retrieval keep; on 201² the option must change nothing.
+TEST(Erase, RetrievalTinsOnPowerOfTwoGridsNeedNoReplay) {
+    for (const int side : {129, 257, 513, 201}) {
+        const Heightfield hf = load_cropped({"N42E001.hgt", false, side});
+        const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+        View above; // high over the middle, looking almost straight down
+        above.eye = {0.5 * w, 0.45 * h, hf.max_z() + 0.5 * w};
+        above.at = {0.5 * w, 0.5 * h, hf.min_z()};
+        View low; // low over the west third, looking east along the terrain
+        low.eye = {0.3 * w, 0.5 * h, hf.max_z() + 0.02 * w};
+        low.at = {w, 0.55 * h, hf.min_z()};
+        const QuadTree tree(hf);
+        for (const View &view : {corner_view(hf), above, low})
+            for (const double tol : {0.25, 1.0, 4.0}) {
+                SCOPED_TRACE(std::to_string(side) + "² at " + std::to_string(tol) + " px");
+                const Mesh lattice = to_lattice_mesh(retrieve(tree, view, {tol, false}), hf);
+                std::map<std::uint32_t, ErasedNodeRing> replay;
+                absent_sample_rings(
+                    lattice, std::uint32_t(hf.width),
+                    [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                        replay[x] = {{ring, ring + n}, boundary};
+                    });
+                ASSERT_GT(replay.size(), 0u);
+                Mesh work = lattice;
+                EraseOptions options;
+                options.absent_history = true;
+                options.retrieval_tin = true;
+                const NodeEraser eraser(work, &view, options);
+                EXPECT_EQ(eraser.live_nodes(), hf.size() - std::int64_t(replay.size()));
+                std::int64_t differ = 0;
+                for (const auto &[x, ring] : replay) {
+                    const Mesh::VertexHandle v{int(x)};
+                    ASSERT_TRUE(eraser.is_erased(v)) << x;
+                    const ErasedNodeRing kept = eraser.ring(v);
+                    differ += kept.nodes != ring.nodes || kept.boundary != ring.boundary;
+                }
+                EXPECT_EQ(differ, 0);
+            }
+    }
+}
+
 // With absent_history the samples a retrieval left out are erased nodes like any other: they enter
 // by recover() in any order through a valid TIN, and recovering everything gives the whole lattice,
 // whatever the grid's size (2^k + 1, odd, even).

@@ -2315,27 +2315,35 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.absent_for_good = absent > 0 && !options.absent_history;
     if (absent > 0 && options.absent_history) {
         s.flags.assign(s.mesh->n_vertices(), 0);
-        s.regular = std::make_unique<RegularRings>(
-            s.grid_w, std::uint32_t(s.mesh->n_vertices() / s.grid_w));
-        absent_sample_rings(*s.mesh, s.grid_w,
-                            [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
-                                s.flags[x] = k_unread;
-                                std::array<std::uint32_t, 4> regular;
-                                bool chain = false;
-                                if (s.regular->ring(x, regular.data(), chain) == n &&
-                                    chain == boundary && std::equal(ring, ring + n, regular.data())) {
-                                    s.record_of[x] = k_regular_ring;
-                                    return;
-                                }
-                                const std::size_t k = s.records.append(1);
-                                EraseRecord &record = s.records[k];
-                                record.ring_begin =
-                                    std::uint32_t(s.ring_pool.append(std::size_t(n)));
-                                record.ring_size = record.ring_capacity = std::uint8_t(n);
-                                record.boundary = boundary;
-                                std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
-                                s.record_of[x] = std::int32_t(k);
-                            });
+        const auto height = std::uint32_t(s.mesh->n_vertices() / s.grid_w);
+        s.regular = std::make_unique<RegularRings>(s.grid_w, height);
+        if (options.retrieval_tin && RegularRings::regular_for_retrievals(s.grid_w, height)) {
+            for (std::size_t x = 0; x < s.record_of.size(); ++x)
+                if (s.record_of[x] == k_absent) {
+                    s.flags[x] = k_unread;
+                    s.record_of[x] = k_regular_ring;
+                }
+        } else {
+            absent_sample_rings(
+                *s.mesh, s.grid_w,
+                [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                    s.flags[x] = k_unread;
+                    std::array<std::uint32_t, 4> regular;
+                    bool chain = false;
+                    if (s.regular->ring(x, regular.data(), chain) == n && chain == boundary &&
+                        std::equal(ring, ring + n, regular.data())) {
+                        s.record_of[x] = k_regular_ring;
+                        return;
+                    }
+                    const std::size_t k = s.records.append(1);
+                    EraseRecord &record = s.records[k];
+                    record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
+                    record.ring_size = record.ring_capacity = std::uint8_t(n);
+                    record.boundary = boundary;
+                    std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
+                    s.record_of[x] = std::int32_t(k);
+                });
+        }
     }
     if (absent > 0)
         swallow_absent(s);

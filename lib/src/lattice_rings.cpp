@@ -216,6 +216,10 @@ RegularRings::RegularRings(std::uint32_t width, std::uint32_t height)
     first_levels(layout_.y, level_y_);
 }
 
+bool RegularRings::regular_for_retrievals(std::uint32_t width, std::uint32_t height) {
+    return width == height && width >= 3 && ((width - 1) & (width - 2)) == 0;
+}
+
 std::size_t RegularRings::bytes() const {
     std::size_t b = level_x_.capacity() + level_y_.capacity();
     for (int d = 0; d < layout_.levels(); ++d) // each axis's bounds, parents and first children

@@ -42,6 +42,10 @@ void absent_sample_rings(const Mesh &tin, std::uint32_t width, const RingVisitor
 class RegularRings {
   public:
     RegularRings(std::uint32_t width, std::uint32_t height);
+    // Whether every sample a quad-tree retrieval's TIN leaves out on such a lattice gets the
+    // regular ring from absent_sample_rings: a square 2^k + 1 grid, whose every node splits into
+    // four equal ones (its centre lies on both its diagonals, each side's midpoint on the side).
+    static bool regular_for_retrievals(std::uint32_t width, std::uint32_t height);
     // Writes sample's ring to `ring` (room for 4) and returns its size (3 or 4); `boundary` tells
     // a chain. The sample must not be a corner of the lattice.
     int ring(std::uint32_t sample, std::uint32_t *ring, bool &boundary) const;

@@ -15,9 +15,11 @@ struct Refiner::Impl {
     FrameStats first;
 };
 
-static EraseOptions erase_options(const RefineOptions& options) {
+// `retrieval`: the mesh is the quad-tree retrieval's TIN (EraseOptions::retrieval_tin).
+static EraseOptions erase_options(const RefineOptions &options, bool retrieval) {
     EraseOptions eo;
     eo.absent_history = true;
+    eo.retrieval_tin = retrieval;
     eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
     eo.significance = options.significance;
     eo.max_valence = options.max_valence;
@@ -25,11 +27,11 @@ static EraseOptions erase_options(const RefineOptions& options) {
     return eo;
 }
 
-static void start(Refiner::Impl& s, const View& first) {
+static void start(Refiner::Impl &s, const View &first, bool retrieval) {
     assert(s.options.tol_px > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
     assert(s.options.significance.model != SpModel::vertical);
     Stopwatch clock;
-    s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first, erase_options(s.options));
+    s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first, erase_options(s.options, retrieval));
     s.first.ms_weights = clock.ms();
     clock.reset();
     const EraseStats e = s.eraser->erase();
@@ -76,14 +78,14 @@ Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& 
     // live_copy sets it again from the index.
     auto origin = find_origin_property(*impl_->mesh);
     impl_->mesh->remove_property(origin);
-    start(*impl_, first);
+    start(*impl_, first, share > 0);
 }
 
 Refiner::Refiner(Mesh mesh, const View& first, const RefineOptions& options)
     : impl_(std::make_unique<Impl>()) {
     impl_->mesh = std::make_unique<Mesh>(std::move(mesh));
     impl_->options = options;
-    start(*impl_, first);
+    start(*impl_, first, false);
 }
 
 Refiner::~Refiner() = default;
