@@ -1318,16 +1318,23 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
         return true;
     };
-    if (s.xy)
-        for (int t = 0; t < h.ntri; ++t) {
-            // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
-            // triangle next to it must not read more than the bound there either.
-            const std::uint8_t c[3] = {h.tri[t].a, h.tri[t].b, h.tri[t].c};
-            for (const std::uint8_t k : c)
-                raise(std::uint32_t(h.r[k].idx()),
-                      rounding_margin(std::max(std::abs(h.p[k].x), std::abs(h.p[k].y)),
-                                      h.frame[t].slope));
-        }
+    if (s.xy) {
+        // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
+        // triangle next to it must not read more than the bound there either. Each ring node is
+        // weighed once, for its steepest triangle, and only when k / OD says that could matter (the
+        // margins are a few ulp): weighing every corner of every triangle took 6 % of a 4097²
+        // flight's update time, and the erase at 30 fps takes 7-17 % less without it.
+        std::array<double, k_max_ring> margin;
+        std::fill_n(margin.begin(), n, 0.0);
+        for (int t = 0; t < h.ntri; ++t)
+            for (const std::uint8_t k : {h.tri[t].a, h.tri[t].b, h.tri[t].c})
+                margin[k] = std::max(
+                    margin[k], rounding_margin(std::max(std::abs(h.p[k].x), std::abs(h.p[k].y)),
+                                               h.frame[t].slope));
+        for (int i = 0; i < n; ++i)
+            if (margin[i] * s.weigher.upper(h.p[i]) * k_rounded_weight > h.cost)
+                raise(std::uint32_t(h.r[i].idx()), margin[i]);
+    }
     // The node whose deviation gave this node's last cost is tried first: when it still lies under
     // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
     // deviation settles most evaluations that fail without walking the fan.

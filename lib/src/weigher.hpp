@@ -67,6 +67,13 @@ class Weigher {
         const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
         return beyond <= 0.0 ? k_ / od : k_ / od * std::max(floor_, std::exp(-beyond / falloff_));
     }
+    // An upper bound of the weight at p without the peripheral factor's transcendental functions:
+    // k / OD (the factor is at most 1).
+    double upper(const glm::dvec3 &p) const {
+        if (unit_)
+            return 1.0;
+        return k_ / glm::length(p - eye_);
+    }
     // An upper bound of the weight anywhere in the box [lo, hi]: k over the box's distance to the
     // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the axis
     // (1 up to the cone through the margin-widened frustum's corners, whose points all have it).
