@@ -242,6 +242,44 @@ TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
     EXPECT_GT(entered, 0);
 }
 
+// On a square 2^k + 1 grid the refiner gives the samples its retrieval left out their rings from
+// the lattice, without replaying the insertions (EraseOptions::retrieval_tin): they still enter
+// where the observer comes, within tau at every sample of every frame, and going back up erases
+// them again.
+TEST(Refiner, PowerOfTwoCropsLetSamplesEnterWithoutAReplay) {
+    const Heightfield n42 = load_heightfield(asset("N42E001.hgt"));
+    for (const int side : {129, 257}) {
+        Heightfield hf = n42;
+        hf.width = hf.height = side;
+        hf.z.resize(std::size_t(side) * side);
+        for (int r = 0; r < side; ++r)
+            for (int c = 0; c < side; ++c)
+                hf.at(c, r) = n42.at(500 + c, 500 + r);
+        hf.void_mask.clear();
+        const double w = (side - 1) * hf.dx, h = (side - 1) * hf.dy;
+        const double top = hf.max_z();
+        const View high = look({-w, -h, top + 4 * std::max(w, h)}, {w / 2, h / 2, top});
+        Refiner refiner(hf, high);
+        std::int64_t entered = 0, lowest = 0, back = 0;
+        for (int i = 1; i <= 7; ++i) { // down to the ground, then back where it started
+            const double t = i / 6.0;
+            const View view =
+                i == 7 ? high
+                       : look({(t - 0.5) * w, 0.5 * h * t, top + 100 + 3000 * (1 - t)},
+                              {w, h / 2, hf.min_z()});
+            const FrameStats stats = refiner.update(view);
+            entered += stats.entered;
+            (i == 6 ? lowest : back) = stats.nodes;
+            ErrorOptions eo;
+            eo.view = &view;
+            EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0)
+                << side << "² frame " << i;
+        }
+        EXPECT_GT(entered, 0) << side;
+        EXPECT_LT(back, lowest) << side;
+    }
+}
+
 TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
