@@ -24,6 +24,19 @@ using tinlod::test::asset;
 
 namespace {
 
+// The w x h samples of `hf` from column x0, row y0.
+Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h) {
+    Heightfield c = hf;
+    c.width = w;
+    c.height = h;
+    c.z.resize(std::size_t(w) * h);
+    for (int r = 0; r < h; ++r)
+        for (int col = 0; col < w; ++col)
+            c.at(col, r) = hf.at(x0 + col, y0 + r);
+    c.void_mask.clear();
+    return c;
+}
+
 View look(const glm::dvec3& eye, const glm::dvec3& at) {
     View v;
     v.eye = eye;
@@ -217,14 +230,7 @@ TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
     const Heightfield n42 = load_heightfield(asset("N42E001.hgt"));
     std::int64_t entered = 0;
     for (const auto& [cw, ch] : {std::pair{100, 3}, {3, 100}, {9, 17}, {65, 40}, {200, 77}}) {
-        Heightfield hf = n42;
-        hf.width = cw;
-        hf.height = ch;
-        hf.z.resize(std::size_t(cw) * ch);
-        for (int r = 0; r < ch; ++r)
-            for (int c = 0; c < cw; ++c)
-                hf.at(c, r) = n42.at(600 + c, 600 + r);
-        hf.void_mask.clear();
+        const Heightfield hf = crop(n42, 600, 600, cw, ch);
         const double w = (cw - 1) * hf.dx, h = (ch - 1) * hf.dy;
         const double top = hf.max_z();
         Refiner refiner(hf, look({-w, -h, top + 4 * std::max(w, h)}, {w / 2, h / 2, top}));
@@ -249,13 +255,7 @@ TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
 TEST(Refiner, PowerOfTwoCropsLetSamplesEnterWithoutAReplay) {
     const Heightfield n42 = load_heightfield(asset("N42E001.hgt"));
     for (const int side : {129, 257}) {
-        Heightfield hf = n42;
-        hf.width = hf.height = side;
-        hf.z.resize(std::size_t(side) * side);
-        for (int r = 0; r < side; ++r)
-            for (int c = 0; c < side; ++c)
-                hf.at(c, r) = n42.at(500 + c, 500 + r);
-        hf.void_mask.clear();
+        const Heightfield hf = crop(n42, 500, 500, side, side);
         const double w = (side - 1) * hf.dx, h = (side - 1) * hf.dy;
         const double top = hf.max_z();
         const View high = look({-w, -h, top + 4 * std::max(w, h)}, {w / 2, h / 2, top});

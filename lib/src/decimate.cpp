@@ -1324,16 +1324,17 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
         // weighed once, for its steepest triangle, and only when k / OD says that could matter (the
         // margins are a few ulp): weighing every corner of every triangle took 6 % of a 4097²
         // flight's update time, and the erase at 30 fps takes 7-17 % less without it.
-        std::array<double, k_max_ring> margin;
-        std::fill_n(margin.begin(), n, 0.0);
+        std::array<double, k_max_ring> steepest;
+        std::fill_n(steepest.begin(), n, 0.0);
         for (int t = 0; t < h.ntri; ++t)
             for (const std::uint8_t k : {h.tri[t].a, h.tri[t].b, h.tri[t].c})
-                margin[k] = std::max(
-                    margin[k], rounding_margin(std::max(std::abs(h.p[k].x), std::abs(h.p[k].y)),
-                                               h.frame[t].slope));
-        for (int i = 0; i < n; ++i)
-            if (margin[i] * s.weigher.upper(h.p[i]) * k_rounded_weight > h.cost)
-                raise(std::uint32_t(h.r[i].idx()), margin[i]);
+                steepest[k] = std::max(steepest[k], h.frame[t].slope);
+        for (int i = 0; i < n; ++i) {
+            const double margin =
+                rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);
+            if (margin * s.weigher.upper(h.p[i]) * k_rounded_weight > h.cost)
+                raise(std::uint32_t(h.r[i].idx()), margin);
+        }
     }
     // The node whose deviation gave this node's last cost is tried first: when it still lies under
     // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
