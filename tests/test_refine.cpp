@@ -301,6 +301,45 @@ TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px);
 }
 
+// --hysteresis h trades triangles for changes: erasing down to (1 - h) tau keeps more nodes, and
+// fewer of them cross the band per frame (README, Flying). A low drive over a crop of a real DEM.
+TEST(Refiner, WiderHysteresisKeepsMoreNodesAndChangesFewer) {
+    const Heightfield n42 = load_heightfield(asset("N42E001.hgt"));
+    const Heightfield hf = crop(n42, 400, 400, 300, 300);
+    const double w = 299 * hf.dx, h = 299 * hf.dy;
+    const double z = hf.max_z() + 150;
+    std::vector<View> views;
+    for (int i = 0; i <= 20; ++i) {
+        const double x = w * (0.1 + 0.04 * i);
+        views.push_back(look({x, 0.3 * h, z}, {x + 0.3 * w, 0.6 * h, hf.min_z()}));
+    }
+    struct Flight {
+        double nodes = 0;          // mean over the frames after the first
+        std::int64_t changed = 0;  // erased + recovered over those frames
+    };
+    const auto fly = [&](double hysteresis) {
+        RefineOptions options;
+        options.hysteresis = hysteresis;
+        Refiner refiner(hf, views.front(), options);
+        Flight f;
+        for (std::size_t i = 1; i < views.size(); ++i) {
+            const FrameStats stats = refiner.update(views[i]);
+            f.nodes += double(stats.nodes) / double(views.size() - 1);
+            f.changed += stats.erased + stats.recovered;
+            if (i % 5 == 0) {
+                ErrorOptions eo;
+                eo.view = &views[i];
+                EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px)
+                    << "h " << hysteresis << " frame " << i;
+            }
+        }
+        return f;
+    };
+    const Flight narrow = fly(0.1), wide = fly(0.5);
+    EXPECT_GT(wide.nodes, narrow.nodes);
+    EXPECT_LT(wide.changed, narrow.changed) << "nodes " << narrow.nodes << " -> " << wide.nodes;
+}
+
 TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     const std::string dir = tinlod::test::temp_dir();
     const auto r = tinlod::test::run_cli("fly '" + asset("N42E001.hgt") + "' --path '" +
