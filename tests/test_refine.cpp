@@ -12,6 +12,7 @@
 #include "tinlod/render.hpp"
 
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -338,6 +339,29 @@ TEST(Refiner, WiderHysteresisKeepsMoreNodesAndChangesFewer) {
     const Flight narrow = fly(0.1), wide = fly(0.5);
     EXPECT_GT(wide.nodes, narrow.nodes);
     EXPECT_LT(wide.changed, narrow.changed) << "nodes " << narrow.nodes << " -> " << wide.nodes;
+}
+
+// Refiner::bytes(), which fly and the flight benchmark report per node, is what the structure
+// holds: the heap grows by that much when a refiner is built from a real DEM and flown a step
+// (glibc's count of the bytes malloc handed out; a sanitizer's allocator keeps its own).
+TEST(Refiner, BytesAreWhatTheHeapHolds) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "the sanitizer's allocator is not glibc's";
+#else
+    const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    const View start = look({0.3 * w, 0.2 * h, hf.max_z() + 300}, {0.6 * w, 0.7 * h, hf.min_z()});
+    const View next = look({0.35 * w, 0.25 * h, hf.max_z() + 300}, {0.65 * w, 0.75 * h, hf.min_z()});
+    const auto heap = [] {
+        const struct mallinfo2 m = mallinfo2();
+        return double(m.uordblks + m.hblkhd);
+    };
+    const double before = heap();
+    Refiner refiner(hf, start);
+    refiner.update(next);
+    const double held = heap() - before;
+    EXPECT_NEAR(double(refiner.bytes()), held, 0.01 * held);
+#endif
 }
 
 TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {

@@ -119,18 +119,28 @@ bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_e
 
 std::size_t Refiner::bytes() const {
     const Mesh& m = *impl_->mesh;
-    // OpenMesh's arrays: per vertex a point, an outgoing halfedge, a status byte and the origin
-    // property if it has one (a refiner from a heightfield drops it); per halfedge its vertex,
-    // next, prev and face; per edge and face a status byte, per face a halfedge. Edges and faces
-    // count their reserved room; past it an array has at most doubled.
+    // OpenMesh's arrays, each entry as large as the mesh's types make it (a malloc count of the
+    // mesh's copy agrees): per vertex a point, its item (an outgoing halfedge), a status word (4
+    // bytes, not 1), the traits' data (an empty struct, still a byte) and the origin property if
+    // it has one (a refiner from a heightfield drops it); per edge its two halfedges (vertex, next,
+    // prev and face each), a status word and the traits' data of the edge and of its halfedges;
+    // per face its item (a halfedge), a status word and the traits' data. Edges and faces count
+    // their reserved room; past it an array has at most doubled.
     const auto room = [](std::size_t n, std::size_t reserved) {
         return n <= reserved ? reserved : 2 * n;
     };
-    const std::size_t edges = room(m.n_edges(), impl_->edge_room);
+    const Mesh::VertexHandle v(0);
+    const Mesh::EdgeHandle e(0);
+    const Mesh::FaceHandle f(0);
     const std::size_t origin = find_origin_property(m).is_valid() ? sizeof(std::int64_t) : 0;
-    const std::size_t mesh_bytes = m.n_vertices() * (sizeof(Mesh::Point) + 4 + 1 + origin) +
-                                   edges * (2 * 16 + 1) +
-                                   room(m.n_faces(), impl_->face_room) * (4 + 1);
+    const std::size_t per_vertex = sizeof(m.point(v)) + sizeof(m.vertex(v)) + sizeof(m.status(v)) +
+                                   sizeof(Mesh::VertexData) + origin;
+    const std::size_t per_edge = sizeof(m.edge(e)) + sizeof(m.status(e)) + sizeof(Mesh::EdgeData) +
+                                 2 * sizeof(Mesh::HalfedgeData);
+    const std::size_t per_face = sizeof(m.face(f)) + sizeof(m.status(f)) + sizeof(Mesh::FaceData);
+    const std::size_t mesh_bytes = m.n_vertices() * per_vertex +
+                                   room(m.n_edges(), impl_->edge_room) * per_edge +
+                                   room(m.n_faces(), impl_->face_room) * per_face;
     return mesh_bytes + impl_->eraser->history_bytes();
 }
 
