@@ -151,15 +151,7 @@ Heightfield load_cropped(const DemAsset &a) {
     Heightfield hf = load_heightfield(asset(a.file), lo);
     if (a.crop == 0 || (a.crop >= hf.width && a.crop >= hf.height))
         return hf;
-    Heightfield c = hf;
-    c.width = std::min(a.crop, hf.width);
-    c.height = std::min(a.crop, hf.height);
-    c.z.resize(std::size_t(c.width) * c.height);
-    for (int r = 0; r < c.height; ++r)
-        for (int col = 0; col < c.width; ++col)
-            c.at(col, r) = hf.at(col, r);
-    c.void_mask.clear();
-    return c;
+    return tinlod::test::crop(hf, 0, 0, std::min(a.crop, hf.width), std::min(a.crop, hf.height));
 }
 
 // A view from above the south-west corner looking north-east across the terrain.

@@ -22,21 +22,9 @@
 
 using namespace tinlod;
 using tinlod::test::asset;
+using tinlod::test::crop;
 
 namespace {
-
-// The w x h samples of `hf` from column x0, row y0.
-Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h) {
-    Heightfield c = hf;
-    c.width = w;
-    c.height = h;
-    c.z.resize(std::size_t(w) * h);
-    for (int r = 0; r < h; ++r)
-        for (int col = 0; col < w; ++col)
-            c.at(col, r) = hf.at(x0 + col, y0 + r);
-    c.void_mask.clear();
-    return c;
-}
 
 View look(const glm::dvec3& eye, const glm::dvec3& at) {
     View v;

@@ -13,6 +13,18 @@ namespace fs = std::filesystem;
 
 std::string asset(const std::string& name) { return std::string(TINLOD_MESHES_DIR) + "/" + name; }
 
+Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h) {
+    Heightfield c = hf;
+    c.width = w;
+    c.height = h;
+    c.z.resize(std::size_t(w) * h);
+    for (int r = 0; r < h; ++r)
+        for (int col = 0; col < w; ++col)
+            c.at(col, r) = hf.at(x0 + col, y0 + r);
+    c.void_mask.clear();
+    return c;
+}
+
 namespace {
 struct TempDirs {
     std::vector<fs::path> dirs;

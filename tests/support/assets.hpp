@@ -10,6 +10,9 @@ namespace tinlod::test {
 
 // Absolute path of a file in meshes/.
 std::string asset(const std::string& name);
+// The w x h samples of `hf` from column x0, row y0 (a crop of a real DEM for a small test); the
+// void mask is dropped.
+Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h);
 // A fresh empty temporary folder for this test (removed at exit).
 std::string temp_dir();
 
