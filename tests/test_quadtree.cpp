@@ -41,19 +41,6 @@ const Heightfield& dem(const Asset& a) {
     return it->second;
 }
 
-// A window of a real DEM (sizes the tree must handle without padding).
-Heightfield crop(const Heightfield& hf, int c0, int r0, int w, int h) {
-    Heightfield out;
-    out.width = w;
-    out.height = h;
-    out.dx = hf.dx;
-    out.dy = hf.dy;
-    for (int r = 0; r < h; ++r)
-        for (int c = 0; c < w; ++c)
-            out.z.push_back(hf.at(c0 + c, r0 + r));
-    return out;
-}
-
 View make_view(glm::dvec3 eye, glm::dvec3 at) {
     View v;
     v.eye = eye;
