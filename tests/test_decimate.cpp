@@ -515,7 +515,7 @@ TEST(Erase, AbsentSamplesKeepOnlyTheRingsTheLatticeCannotTell) {
         const RegularRings regular(std::uint32_t(hf.width), std::uint32_t(hf.height));
         std::map<std::uint32_t, ErasedNodeRing> replay;
         std::int64_t regular_ones = 0;
-        absent_sample_rings(lattice, std::uint32_t(hf.width),
+        absent_sample_rings(lattice, std::uint32_t(hf.width), std::uint32_t(hf.height), {},
                             [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
                                 replay[x] = {{ring, ring + n}, boundary};
                                 std::array<std::uint32_t, 4> guess;
@@ -570,7 +570,7 @@ TEST(Erase, RetrievalTinsOnPowerOfTwoGridsNeedNoReplay) {
                 const Mesh lattice = to_lattice_mesh(retrieve(tree, view, {tol, false}), hf);
                 std::map<std::uint32_t, ErasedNodeRing> replay;
                 absent_sample_rings(
-                    lattice, std::uint32_t(hf.width),
+                    lattice, std::uint32_t(hf.width), std::uint32_t(hf.height), {},
                     [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
                         replay[x] = {{ring, ring + n}, boundary};
                     });

@@ -139,13 +139,34 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
         retrieved[id] = 1;
     ASSERT_LT(first.nodes.size(), std::size_t(hf.size()) / 4);
 
+    // The TIN's vertices are the samples that were ever live, each once, at its grid point: the
+    // retrieval's, then one more for each sample that enters.
+    std::int64_t entered = 0;
+    const auto check_vertices = [&] {
+        const Mesh& m = refiner.mesh();
+        const auto origin = find_origin_property(m);
+        ASSERT_TRUE(origin.is_valid());
+        EXPECT_EQ(std::int64_t(m.n_vertices()), std::int64_t(first.nodes.size()) + entered);
+        std::vector<std::uint8_t> seen(std::size_t(hf.size()), 0);
+        for (auto v : m.all_vertices()) {
+            const std::int64_t x = m.property(origin, v);
+            ASSERT_TRUE(x >= 0 && x < hf.size());
+            EXPECT_EQ(seen[std::size_t(x)]++, 0) << "sample " << x << " has two vertices";
+            const int c = int(x % hf.width), r = int(x / hf.width);
+            EXPECT_EQ(m.point(v), Mesh::Point(float(c * hf.dx), float(r * hf.dy), hf.at(c, r)));
+        }
+    };
+    check_vertices();
     for (const View& view : {low, high, low}) {
         const FrameStats f = refiner.update(view);
         const FrameStats g = from_grid.update(view);
         EXPECT_EQ(g.entered, 0);
+        entered += f.entered;
+        check_vertices();
+        const auto origin = find_origin_property(refiner.mesh());
         std::int64_t new_live = 0;
         for (auto v : refiner.mesh().vertices())
-            new_live += !retrieved[std::size_t(v.idx())];
+            new_live += !retrieved[std::size_t(refiner.mesh().property(origin, v))];
         if (&view != &high) { // close: samples the first retrieval did not take are live
             EXPECT_GT(new_live, 0);
         }

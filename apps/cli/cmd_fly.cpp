@@ -183,7 +183,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                     frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
                     (long long)erased_all, (long long)recovered_all, (long long)entered_all,
                     (long long)reerased_all,
-                    double(refiner->bytes()) / double(m.n_vertices()),
+                    double(refiner->bytes()) / double(hf ? hf->size() : std::int64_t(m.n_vertices())),
                     args->check ? (", measured max " + std::to_string(worst) + " px").c_str() : "");
     };
 });

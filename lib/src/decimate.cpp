@@ -436,6 +436,18 @@ struct NodeEraser::Impl {
     // inside them, scanned row by row: no lists (next_swallowed stays empty), and face_head holds
     // each face's worst sample.
     std::uint32_t grid_w = 0;
+    // A sparse grid TIN (EraseOptions::lattice): the lattice's samples, and the columns' x and the
+    // rows' y as the mesh's float points have them. Only the samples that are or were live have a
+    // vertex (slot: sample -> vertex, -1 none; sample_of: vertex -> sample); the others take their
+    // points from here, and a vertex when they enter. Node ids are samples either way; without a
+    // lattice (a dense grid TIN or any mesh) they are vertex indices, and slot and sample_of stay
+    // empty.
+    const Heightfield *lattice = nullptr;
+    std::vector<float> lattice_x, lattice_y;
+    std::vector<std::int32_t> slot;
+    std::vector<std::uint32_t> sample_of;
+    OpenMesh::VPropHandleT<std::int64_t> origin; // a sparse lattice's: its vertices' samples
+    std::uint32_t nodes = 0; // node ids: the lattice's samples, else the mesh's vertices
     // Per face: 1 when its list has blocks (face_blocks, see build_blocks), dropped when the list
     // is rebuilt.
     std::vector<std::uint8_t> face_blocked;
@@ -530,6 +542,61 @@ static float float_down(double d) {
     return double(f) > d ? std::nextafter(f, -INFINITY) : f;
 }
 
+// ---- Node ids and vertices (see Impl::slot) ----------------------------------------------------
+
+// The vertex of node x: invalid for a sparse lattice's sample that has none.
+static VH vh(const NodeEraser::Impl &s, std::uint32_t x) {
+    return s.slot.empty() ? VH(int(x)) : VH(s.slot[x]);
+}
+
+// The node id of vertex v.
+static std::uint32_t node_of(const NodeEraser::Impl &s, VH v) {
+    return s.sample_of.empty() ? std::uint32_t(v.idx()) : s.sample_of[std::size_t(v.idx())];
+}
+
+// The point of node x, live or erased (a sparse lattice's sample has it without a vertex).
+static Mesh::Point node_point(const NodeEraser::Impl &s, std::uint32_t x) {
+    if (!s.lattice)
+        return s.mesh->point(VH(int(x)));
+    const auto w = std::uint32_t(s.lattice->width);
+    return {s.lattice_x[x % w], s.lattice_y[x / w], s.lattice->z[x]};
+}
+
+// A grid TIN's samples by lattice column and row: the mesh's points, or a sparse lattice's.
+struct Samples {
+    const Mesh::Point *pts = nullptr; // dense: vertex = sample
+    const float *z = nullptr, *xs = nullptr, *ys = nullptr; // sparse
+    std::int64_t w = 0;
+
+    double x(std::int64_t c) const { return pts ? double(pts[c][0]) : double(xs[c]); }
+    double y(std::int64_t r) const { return pts ? double(pts[r * w][1]) : double(ys[r]); }
+    Mesh::Point at(std::int64_t c, std::int64_t r) const {
+        return pts ? pts[r * w + c] : Mesh::Point(xs[c], ys[r], z[r * w + c]);
+    }
+    // Asks for the memory of samples first..last of row r (see scan_lattice).
+    void prefetch(std::int64_t r, std::int64_t first, std::int64_t last) const {
+        const char *a = pts ? reinterpret_cast<const char *>(pts + r * w + first)
+                            : reinterpret_cast<const char *>(z + r * w + first);
+        const char *b = pts ? reinterpret_cast<const char *>(pts + r * w + last + 1)
+                            : reinterpret_cast<const char *>(z + r * w + last + 1);
+        for (const char *line = a; line < b; line += 64)
+            __builtin_prefetch(line);
+    }
+};
+
+static Samples samples(const NodeEraser::Impl &s) {
+    Samples g;
+    g.w = s.grid_w;
+    if (s.lattice) {
+        g.z = s.lattice->z.data();
+        g.xs = s.lattice_x.data();
+        g.ys = s.lattice_y.data();
+    } else {
+        g.pts = s.mesh->points();
+    }
+    return g;
+}
+
 static std::uint32_t cell_of(const NodeEraser::Impl &s, const glm::dvec3 &p) {
     const int cx = std::clamp(int(std::floor((p.x - s.grid_lo.x) / s.cell_side)), 0, s.grid_nx - 1);
     const int cy = std::clamp(int(std::floor((p.y - s.grid_lo.y) / s.cell_side)), 0, s.grid_ny - 1);
@@ -549,7 +616,8 @@ static std::pair<glm::dvec3, glm::dvec3> cell_box(const NodeEraser::Impl &s, std
 
 // Makes x live; `record` is its record from an earlier erase (-1 if none), kept for re-use.
 static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
-    const glm::dvec3 p = to_glm(s.mesh->point(VH(int(x))));
+    const Mesh::Point point = node_point(s, x);
+    const glm::dvec3 p = to_glm(point);
     const std::uint32_t c = cell_of(s, p);
     Cell &cell = s.cells[c];
     cell.zlo = std::min(cell.zlo, float_down(p.z));
@@ -559,7 +627,7 @@ static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) 
     s.record_of[x] = -2 - std::int32_t(s.live_list.size());
     LiveNode l{};
     l.node = x;
-    l.p = s.mesh->point(VH(int(x)));
+    l.p = point;
     l.star = x;
     l.last_record = record;
     l.cell = c;
@@ -828,7 +896,7 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
                          std::uint32_t c, const Band &band, const Visit &visit) {
     const std::int64_t w = s.grid_w;
     const LatticeTriangle t(s.grid_w, a, b, c);
-    const Mesh::Point *pts = s.mesh->points();
+    const Samples g = samples(s);
     // Left uninitialised (a std::pair would be zeroed on every call, 1 % of an erase's time): each
     // band writes the spans of its rows before it reads them.
     struct Span {
@@ -848,7 +916,7 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
         }
         if (lo > hi)
             continue;
-        const double xa = pts[lo][0], xb = pts[hi][0], ya = pts[y0 * w][1], yb = pts[y1 * w][1];
+        const double xa = g.x(lo), xb = g.x(hi), ya = g.y(y0), yb = g.y(y1);
         const double value = band(glm::dvec2(std::min(xa, xb), std::min(ya, yb)),
                                   glm::dvec2(std::max(xa, xb), std::max(ya, yb)));
         if (value < 0.0)
@@ -857,16 +925,12 @@ static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32
         // asking for all of them before the first is read overlaps their cache misses. The 4097²
         // flight's updates at 30 frames per second took 4-16 % less (scratch runs, p50 of 300
         // frames of each path); the 1201² erase, whose rows stay cached, the same.
-        for (std::int64_t y = y0; y <= y1; ++y) {
-            const char *first = reinterpret_cast<const char *>(pts + y * w + spans[y - y0].first);
-            const char *last = reinterpret_cast<const char *>(pts + y * w + spans[y - y0].second + 1);
-            for (const char *line = first; line < last; line += 64)
-                __builtin_prefetch(line);
-        }
+        for (std::int64_t y = y0; y <= y1; ++y)
+            g.prefetch(y, spans[y - y0].first, spans[y - y0].second);
         for (std::int64_t y = y0; y <= y1; ++y)
             for (std::int64_t x = spans[y - y0].first; x <= spans[y - y0].second; ++x) {
                 const std::uint32_t u = std::uint32_t(y * w + x);
-                if (u != a && u != b && u != c && !visit(u, pts[u], value))
+                if (u != a && u != b && u != c && !visit(u, g.at(x, y), value))
                     return false;
             }
     }
@@ -895,17 +959,17 @@ static std::int64_t tile_columns(const NodeEraser::Impl &s) {
 
 // The least and largest height of each tile of a grid TIN's lattice (one pass over the samples).
 static void build_tile_z(NodeEraser::Impl &s) {
-    const std::int64_t w = s.grid_w, rows = std::int64_t(s.mesh->n_vertices()) / w;
+    const std::int64_t w = s.grid_w, rows = std::int64_t(s.nodes) / w;
     const std::int64_t columns = tile_columns(s);
     s.tile_z.assign(std::size_t(2 * columns * ((rows - 1) / k_band_rows + 1)), 0.0f);
-    const Mesh::Point *pts = s.mesh->points();
+    const Samples g = samples(s);
     for (std::int64_t r = 0; r < rows; ++r) {
         float *band = s.tile_z.data() + 2 * (r / k_band_rows) * columns;
         for (std::int64_t c0 = 0; c0 < w; c0 += k_tile_cols) {
             float lo = INFINITY, hi = -INFINITY;
             for (std::int64_t c = c0; c < std::min(w, c0 + k_tile_cols); ++c) {
-                lo = std::min(lo, pts[r * w + c][2]);
-                hi = std::max(hi, pts[r * w + c][2]);
+                lo = std::min(lo, g.at(c, r)[2]);
+                hi = std::max(hi, g.at(c, r)[2]);
             }
             float *tile = band + 2 * (c0 / k_tile_cols);
             if (r % k_band_rows == 0) {
@@ -945,7 +1009,7 @@ static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t
                        const Deviation &deviation, const Visit &visit) {
     const std::int64_t w = s.grid_w;
     const Tiling g = tiling(s, a, b, c);
-    const Mesh::Point *pts = s.mesh->points();
+    const Samples lattice = samples(s);
     std::array<std::pair<std::int64_t, std::int64_t>, k_band_rows> spans;
     for (std::int64_t y0 = g.row0; y0 <= g.t.last_row; y0 += k_band_rows) {
         const std::int64_t ya = std::max(y0, g.t.first_row),
@@ -965,7 +1029,8 @@ static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t
             float &bound = dev[std::size_t(band * g.columns + k)];
             const std::int64_t c0 = std::max(lo, g.x0 + k * k_tile_cols),
                                c1 = std::min(hi, g.x0 + (k + 1) * k_tile_cols - 1);
-            const double xa = pts[c0][0], xb = pts[c1][0], yl = pts[ya * w][1], yh = pts[y1 * w][1];
+            const double xa = lattice.x(c0), xb = lattice.x(c1), yl = lattice.y(ya),
+                         yh = lattice.y(y1);
             const double value = tile(glm::dvec2(std::min(xa, xb), std::min(yl, yh)),
                                       glm::dvec2(std::max(xa, xb), std::max(yl, yh)),
                                       double(bound));
@@ -979,7 +1044,7 @@ static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t
                     const std::uint32_t u = std::uint32_t(y * w + x);
                     if (u == a || u == b || u == c)
                         continue;
-                    const glm::dvec3 q = to_glm(pts[u]);
+                    const glm::dvec3 q = to_glm(lattice.at(x, y));
                     const double d = deviation(q);
                     most = std::max(most, d);
                     visit(u, q, d, value);
@@ -1010,17 +1075,17 @@ static std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::uint32_
         build_tile_z(s);
     const std::int64_t w = s.grid_w, columns = tile_columns(s);
     const std::int64_t x_lo = std::min({a % w, b % w, c % w}), x_hi = std::max({a % w, b % w, c % w});
-    const Mesh::Point *pts = s.mesh->points();
+    const Samples lattice = samples(s);
     const std::int64_t bands = (g.t.last_row - g.row0) / k_band_rows + 1;
     std::vector<float> dev(std::size_t(bands * g.columns));
     for (std::int64_t j = 0; j < bands; ++j) {
         const std::int64_t r0 = std::max(g.row0 + j * k_band_rows, g.t.first_row),
                            r1 = std::min(g.row0 + (j + 1) * k_band_rows - 1, g.t.last_row);
-        const double y0 = pts[r0 * w][1], y1 = pts[r1 * w][1];
+        const double y0 = lattice.y(r0), y1 = lattice.y(r1);
         for (std::int64_t k = 0; k < g.columns; ++k) {
             const std::int64_t c0 = std::max(g.x0 + k * k_tile_cols, x_lo),
                                c1 = std::min(g.x0 + (k + 1) * k_tile_cols - 1, x_hi);
-            const double x0 = pts[c0][0], x1 = pts[c1][0];
+            const double x0 = lattice.x(c0), x1 = lattice.x(c1);
             const float *z = s.tile_z.data() +
                              2 * ((g.row0 / k_band_rows + j) * columns + (g.x0 / k_tile_cols + k));
             const double p[4] = {plane(x0, y0), plane(x1, y0), plane(x0, y1), plane(x1, y1)};
@@ -1044,7 +1109,7 @@ static std::int64_t lattice_inside(const NodeEraser::Impl &s, const Hole &h) {
     const std::int64_t w = s.grid_w;
     std::int64_t twice = 0, on_ring = 0;
     for (int i = 0; i < h.n; ++i) {
-        const std::int64_t a = h.r[i].idx(), b = h.r[(i + 1) % h.n].idx();
+        const std::int64_t a = node_of(s, h.r[i]), b = node_of(s, h.r[(i + 1) % h.n]);
         twice += (a % w) * (b / w) - (b % w) * (a / w);
         on_ring += std::gcd(std::abs(b % w - a % w), std::abs(b / w - a / w));
     }
@@ -1122,7 +1187,7 @@ static double weight_of(const NodeEraser::Impl &s, std::uint32_t node) {
         return 1.0;
     if (!s.weight.empty())
         return double(s.weight[node]);
-    return double(float_up(s.weigher(to_glm(s.mesh->point(VH(int(node)))))));
+    return double(float_up(s.weigher(to_glm(node_point(s, node)))));
 }
 
 static double weighted(const NodeEraser::Impl &s, std::uint32_t node, double dev) {
@@ -1137,10 +1202,9 @@ static void new_weights(NodeEraser::Impl &s, bool keep) {
         std::vector<float>().swap(s.weight);
         return;
     }
-    const Mesh &m = *s.mesh;
-    s.weight.resize(m.n_vertices());
-    for (std::size_t x = 0; x < s.weight.size(); ++x)
-        s.weight[x] = float_up(s.weigher(to_glm(m.point(VH(int(x))))));
+    s.weight.resize(s.nodes);
+    for (std::uint32_t x = 0; x < s.nodes; ++x)
+        s.weight[x] = float_up(s.weigher(to_glm(node_point(s, x))));
 }
 
 // ---- Stages ------------------------------------------------------------------------------------
@@ -1148,19 +1212,19 @@ static void new_weights(NodeEraser::Impl &s, bool keep) {
 // classify: which nodes may ever be erased, and each node's weight.
 static void classify_nodes(NodeEraser::Impl &s) {
     const Mesh &m = *s.mesh;
-    s.flags.resize(m.n_vertices());
+    s.flags.resize(s.nodes);
     for (std::uint8_t &f : s.flags)
         f &= k_unread;
     if (s.node_keys)
         for (LiveNode &l : s.live_list)
             l.stamp = 0;
     else
-        s.stamp.assign(m.n_vertices(), 0);
+        s.stamp.assign(s.nodes, 0);
     s.pass = 0;
     for (auto v : m.vertices()) {
         const HH he = m.halfedge_handle(v);
         if (!he.is_valid() || (m.is_boundary(he) && (!s.xy || !s.options.erase_boundary)))
-            s.flags[v.idx()] |= k_locked;
+            s.flags[node_of(s, v)] |= k_locked;
     }
     for (std::size_t x = 0; x < s.record_of.size(); ++x)
         if (s.record_of[x] == k_absent)
@@ -1212,8 +1276,8 @@ static void scan_hole(const NodeEraser::Impl &s, Hole &h, const glm::dvec3 &pv, 
         double maxdev = 0.0;
         std::int32_t worst = -1;
         const bool whole = scan_lattice(
-            s, std::uint32_t(h.r[h.tri[t].a].idx()), std::uint32_t(h.r[h.tri[t].b].idx()),
-            std::uint32_t(h.r[h.tri[t].c].idx()), band,
+            s, node_of(s, h.r[h.tri[t].a]), node_of(s, h.r[h.tri[t].b]),
+            node_of(s, h.r[h.tri[t].c]), band,
             [&](std::uint32_t u, const Mesh::Point &p, double bound) {
                 const double dev = deviation(p);
                 if (dev > maxdev) {
@@ -1296,10 +1360,11 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     s.assign.clear();
     double dev = 0.0;
     const std::uint8_t own = locate(s, h, pv, dev);
-    s.assign.push_back({std::uint32_t(v.idx()), own, float(dev)});
+    const std::uint32_t x = node_of(s, v);
+    s.assign.push_back({x, own, float(dev)});
     h.delta = dev;
-    h.cost = weighted(s, std::uint32_t(v.idx()), dev);
-    h.star = std::uint32_t(v.idx());
+    h.cost = weighted(s, x, dev);
+    h.star = x;
     h.star_dev = dev;
     auto raise = [&](std::uint32_t node, double d) {
         const double w = weighted(s, node, d);
@@ -1311,7 +1376,7 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     };
     // The cost so far is a lower bound of the erase's cost under any view: remembered for update().
     auto remember = [&] {
-        LiveNode &l = live_node(s, std::uint32_t(v.idx()));
+        LiveNode &l = live_node(s, x);
         l.star = h.star;
         l.star_dev = float_down(h.star_dev);
         Cell &cell = s.cells[l.cell];
@@ -1333,17 +1398,16 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
             const double margin =
                 rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);
             if (margin * s.weigher.upper(h.p[i]) * k_rounded_weight > h.cost)
-                raise(std::uint32_t(h.r[i].idx()), margin);
+                raise(node_of(s, h.r[i]), margin);
         }
     }
     // The node whose deviation gave this node's last cost is tried first: when it still lies under
     // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
     // deviation settles most evaluations that fail without walking the fan.
-    const std::uint32_t last_star = live_node(s, std::uint32_t(v.idx())).star;
-    if (s.xy && h.cost <= limit && last_star != std::uint32_t(v.idx()) &&
-        s.record_of[last_star] >= k_absent) {
+    const std::uint32_t last_star = live_node(s, x).star;
+    if (s.xy && h.cost <= limit && last_star != x && s.record_of[last_star] >= k_absent) {
         bool inside = false;
-        locate(s, h, to_glm(m.point(VH(int(last_star)))), dev, &inside);
+        locate(s, h, to_glm(node_point(s, last_star)), dev, &inside);
         if (inside) {
             raise(last_star, dev);
             if (h.cost > limit)
@@ -1355,7 +1419,7 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     for (int i = 0; i < fans && h.cost <= limit; ++i) {
         const std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()];
         if (u >= 0 && std::uint32_t(u) != last_star) {
-            locate(s, h, to_glm(m.point(VH(u))), dev);
+            locate(s, h, to_glm(node_point(s, std::uint32_t(u))), dev);
             raise(std::uint32_t(u), dev);
         }
     }
@@ -1379,7 +1443,7 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
                 h.deferred = true;
                 return remember();
             }
-            const std::uint8_t t = locate(s, h, to_glm(m.point(VH(u))), dev);
+            const std::uint8_t t = locate(s, h, to_glm(node_point(s, std::uint32_t(u))), dev);
             s.assign.push_back({std::uint32_t(u), t, float(dev)});
             if (!(dev * weight_bound > h.cost))
                 continue;
@@ -1409,17 +1473,18 @@ static float key_of(const NodeEraser::Impl &s, const Hole &h) {
 
 // rank: every erasable node enters the queue keyed by the cost of its erase.
 static void rank_nodes(NodeEraser::Impl &s) {
-    s.heap.reset(s.mesh->n_vertices());
+    s.heap.reset(s.nodes);
     std::vector<std::uint32_t> ranked;
     ranked.reserve(std::size_t(s.live));
     for (auto v : s.mesh->vertices()) {
-        if (s.flags[v.idx()] & k_locked)
+        const std::uint32_t x = node_of(s, v);
+        if (s.flags[x] & k_locked)
             continue;
-        s.flags[v.idx()] &= std::uint8_t(~k_dirty);
+        s.flags[x] &= std::uint8_t(~k_dirty);
         const bool erasable = evaluate(s, v, s.options.tolerance);
-        s.heap.store_key(std::uint32_t(v.idx()), erasable ? key_of(s, s.hole) : INFINITY);
+        s.heap.store_key(x, erasable ? key_of(s, s.hole) : INFINITY);
         if (erasable)
-            ranked.push_back(std::uint32_t(v.idx()));
+            ranked.push_back(x);
     }
     s.heap.build(std::move(ranked));
 }
@@ -1504,7 +1569,7 @@ static void retriangulate(NodeEraser::Impl &s) {
         m.status(e).set_deleted(true);
         s.free_edges.push_back(e);
     }
-    const std::uint32_t x = std::uint32_t(h.v.idx());
+    const std::uint32_t x = node_of(s, h.v);
     if (s.grid_w > 0 && s.options.shallow_history && lattice_inside(s, h) > k_kept_fan_samples) {
         KeptFan &kept = s.kept_fans[x];
         kept.head.resize(std::size_t(fans));
@@ -1557,7 +1622,7 @@ static void retriangulate(NodeEraser::Impl &s) {
     record.boundary = h.boundary;
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
-        ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = std::uint32_t(h.r[i].idx());
+        ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
     remove_live(s, x, k);
     widen_fans(s, h.p.data(), ids.data(), n, h.tri.data(), tri_dev.data(), h.ntri);
     --s.live;
@@ -1572,7 +1637,7 @@ static double erase_limit(const NodeEraser::Impl &s) { return s.options.toleranc
 static void touch_ring(NodeEraser::Impl &s) {
     const Hole &h = s.hole;
     for (int i = 0; i < h.n; ++i) {
-        const std::uint32_t u = std::uint32_t(h.r[i].idx());
+        const std::uint32_t u = node_of(s, h.r[i]);
         if (s.flags[u] & k_locked)
             continue;
         mark_dirty(s, u);
@@ -1599,14 +1664,14 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
         // Half of the queue's scanning on N42E001 went to such nodes, scanned whole.
         const double second = double(s.heap.second_key());
         const bool by_cost = s.options.significance.model != SpModel::paper;
-        bool erasable = evaluate(s, VH(int(v)), dirty && by_cost ? std::min(tau, second) : tau);
+        bool erasable = evaluate(s, vh(s, v), dirty && by_cost ? std::min(tau, second) : tau);
         if (erasable && dirty && by_cost && second < tau && s.hole.cost > second) {
             if (float(s.hole.cost) > float(second)) {
                 s.heap.set(v, float(s.hole.cost));
                 s.flags[v] |= k_dirty;
                 continue;
             }
-            erasable = evaluate(s, VH(int(v)), tau); // equal as floats: the exact cost decides
+            erasable = evaluate(s, vh(s, v), tau); // equal as floats: the exact cost decides
         }
         if (!erasable || !(s.hole.cost <= tau)) {
             s.heap.pop(); // cannot be erased now; touch_ring brings it back when its ring changes
@@ -1706,7 +1771,7 @@ static void next_pass(NodeEraser::Impl &s) {
             std::fill(s.stamp.begin(), s.stamp.end(), std::uint8_t(0));
         s.pass = 1;
     }
-    s.chain_cap = std::size_t(double(k_chain_swallowed) * double(s.mesh->n_vertices()) /
+    s.chain_cap = std::size_t(double(k_chain_swallowed) * double(s.nodes) /
                               double(std::max<std::int64_t>(s.live, 1)));
 }
 
@@ -1714,7 +1779,7 @@ static void next_pass(NodeEraser::Impl &s) {
 // where the input does not fill its box).
 static double covered_estimate(const NodeEraser::Impl &s, std::uint32_t x) {
     const Mesh &m = *s.mesh;
-    const VH v{int(x)};
+    const VH v = vh(s, x);
     const glm::dvec2 c(to_glm(m.point(v)));
     double twice = 0.0;
     for (const HH he : m.voh_range(v)) {
@@ -1775,7 +1840,7 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
         park(s, x);
         return false;
     }
-    if (!evaluate(s, VH(int(x)), limit, fresh ? std::min(cap, s.chain_cap) : cap)) {
+    if (!evaluate(s, vh(s, x), limit, fresh ? std::min(cap, s.chain_cap) : cap)) {
         park(s, x);
         return false;
     }
@@ -1793,8 +1858,8 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
     s.reerased += (s.flags[x] & k_recovered) != 0;
     retriangulate(s);
     for (int i = 0; i < s.hole.n; ++i) {
-        mark_dirty(s, std::uint32_t(s.hole.r[i].idx()));
-        node_stamp(s, std::uint32_t(s.hole.r[i].idx())) = s.pass;
+        mark_dirty(s, node_of(s, s.hole.r[i]));
+        node_stamp(s, node_of(s, s.hole.r[i])) = s.pass;
     }
     return true;
 }
@@ -1850,7 +1915,7 @@ static std::int64_t sweep_dirty(NodeEraser::Impl &s, double limit, std::vector<s
             if (sweep_node(s, x, limit, cap)) {
                 ++erased;
                 for (int i = 0; i < s.hole.n; ++i)
-                    next.push_back(std::uint32_t(s.hole.r[i].idx()));
+                    next.push_back(node_of(s, s.hole.r[i]));
             } else if (s.flags[x] & k_dirty) {
                 next.push_back(x); // waits for the next pass
             }
@@ -1898,12 +1963,12 @@ static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, st
 // classify -> erase: SP models whose key is the cost (not `paper`), see the sweep above.
 static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     const double tau = erase_limit(s);
-    s.heap.reset(s.mesh->n_vertices()); // keys only: 0 until a node is first measured
+    s.heap.reset(s.nodes); // keys only: 0 until a node is first measured
     for (auto v : s.mesh->vertices())
-        s.flags[v.idx()] &= std::uint8_t(~k_dirty);
+        s.flags[node_of(s, v)] &= std::uint8_t(~k_dirty);
     std::vector<std::uint32_t> order;
     order.reserve(std::size_t(s.live));
-    for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x)
+    for (std::uint32_t x = 0; x < s.nodes; ++x)
         if (!(s.flags[x] & k_locked) && s.record_of[x] < 0)
             order.push_back(x);
     const std::function<void(double)> &progress = s.options.progress;
@@ -1949,11 +2014,10 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
         // first cost (estimated on every k_sample_stride-th node) is about the least bound the
         // output can reach; rungs below it only add passes.
         std::vector<float> costs;
-        const std::uint32_t n = std::uint32_t(s.mesh->n_vertices());
-        for (std::uint32_t x = 0; x < n; x += k_sample_stride) {
+        for (std::uint32_t x = 0; x < s.nodes; x += k_sample_stride) {
             if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
                 continue;
-            const float cost = evaluate(s, VH(int(x)), INFINITY) ? float(s.hole.cost) : INFINITY;
+            const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.hole.cost) : INFINITY;
             s.heap.store_key(x, cost);
             costs.push_back(cost);
         }
@@ -2001,6 +2065,20 @@ static FH take_face(NodeEraser::Impl &s) {
     return f;
 }
 
+// The vertex of node x, made now for a sparse lattice's sample that enters for the first time
+// (marked deleted, without edges, as erased nodes are).
+static VH vertex_for(NodeEraser::Impl &s, std::uint32_t x) {
+    if (s.slot.empty() || s.slot[x] >= 0)
+        return vh(s, x);
+    Mesh &m = *s.mesh;
+    const VH v = m.add_vertex(node_point(s, x));
+    m.status(v).set_deleted(true);
+    m.property(s.origin, v) = std::int64_t(x);
+    s.slot[x] = v.idx();
+    s.sample_of.push_back(x);
+    return v;
+}
+
 // Re-inserts erased node x, whose ring nodes are all live: the faces inside its ring become its
 // fan again, the diagonals and two free edges its spokes.
 static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
@@ -2010,10 +2088,11 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     const int n = erased.size;
     const bool boundary = erased.boundary;
     const std::uint32_t *ring = erased.nodes;
-    const VH v{int(x)};
+    const VH v = vertex_for(s, x);
     auto ring_index = [&](VH u) {
+        const std::uint32_t id = node_of(s, u);
         for (int i = 0; i < n; ++i)
-            if (ring[i] == std::uint32_t(u.idx()))
+            if (ring[i] == id)
                 return i;
         return -1;
     };
@@ -2024,7 +2103,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     std::array<EH, k_max_ring> spoke_edge;
     int n_faces = 0, n_edges = 0;
     HH closing;
-    face[n_faces++] = m.face_handle(find_halfedge(m, VH(int(ring[0])), VH(int(ring[1]))));
+    face[n_faces++] = m.face_handle(find_halfedge(m, vh(s, ring[0]), vh(s, ring[1])));
     for (int k = 0; k < n_faces; ++k) {
         HH he = m.halfedge_handle(face[k]);
         for (int c = 0; c < 3; ++c, he = m.next_halfedge_handle(he)) {
@@ -2069,7 +2148,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     }
     std::array<bool, k_max_ring> fix_out;
     for (int i = 0; i < n; ++i) {
-        const EH out = m.edge_handle(m.halfedge_handle(VH(int(ring[i]))));
+        const EH out = m.edge_handle(m.halfedge_handle(vh(s, ring[i])));
         fix_out[i] = false;
         for (int k = 0; k < n_edges; ++k)
             fix_out[i] |= spoke_edge[k] == out;
@@ -2083,7 +2162,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     std::array<HH, k_max_ring> spoke; // x -> r_i
     for (int i = 0; i < n; ++i) {
         spoke[i] = m.halfedge_handle(spoke_edge[i], 0);
-        m.set_vertex_handle(spoke[i], VH(int(ring[i])));
+        m.set_vertex_handle(spoke[i], vh(s, ring[i]));
         m.set_vertex_handle(m.opposite_halfedge_handle(spoke[i]), v);
         m.status(spoke_edge[i]).set_deleted(false);
     }
@@ -2113,11 +2192,11 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         if (!fix_out[i])
             continue;
         if (boundary && i == 0)
-            m.set_halfedge_handle(VH(int(ring[i])), m.opposite_halfedge_handle(spoke[0]));
+            m.set_halfedge_handle(vh(s, ring[i]), m.opposite_halfedge_handle(spoke[0]));
         else if (boundary && i == n - 1)
-            m.set_halfedge_handle(VH(int(ring[i])), boundary_next);
+            m.set_halfedge_handle(vh(s, ring[i]), boundary_next);
         else
-            m.set_halfedge_handle(VH(int(ring[i])), ring_he[i]);
+            m.set_halfedge_handle(vh(s, ring[i]), ring_he[i]);
     }
     m.status(v).set_deleted(false);
     if (s.flags[x] & k_unread) {
@@ -2132,7 +2211,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     h.boundary = boundary;
     const glm::dvec3 pv = to_glm(m.point(v));
     for (int i = 0; i < n; ++i)
-        h.p[i] = to_glm(m.point(VH(int(ring[i]))));
+        h.p[i] = to_glm(m.point(vh(s, ring[i])));
     h.p[n] = pv;
     if (s.xy) {
         h.origin = glm::dvec3(0.0);
@@ -2179,7 +2258,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     for (std::size_t k = swallowed_begin; k < swallowed.size(); ++k) {
         const std::uint32_t u = swallowed[k];
         double dev = 0.0;
-        const FH f = face[locate(s, h, to_glm(m.point(VH(int(u)))), dev)];
+        const FH f = face[locate(s, h, to_glm(node_point(s, u)), dev)];
         push_swallowed(s, f.idx(), u, float(dev));
     }
     swallowed.resize(swallowed_begin);
@@ -2221,6 +2300,8 @@ static void advise_huge(const NodeEraser::Impl &s) {
         advise_huge_pages(&m.face(FH(0)), m.n_faces() * sizeof(m.face(FH(0))));
     const auto whole = [](const auto &v) { advise_huge_pages(v.data(), v.size() * sizeof(v[0])); };
     whole(s.record_of);
+    whole(s.slot);
+    whole(s.sample_of);
     whole(s.flags);
     whole(s.stamp);
     whole(s.weight);
@@ -2237,12 +2318,11 @@ static void swallow_absent(NodeEraser::Impl &s) {
     for (auto f : m.faces()) {
         const HH he = m.halfedge_handle(f);
         const std::array<std::uint32_t, 3> ids = {
-            std::uint32_t(m.from_vertex_handle(he).idx()),
-            std::uint32_t(m.to_vertex_handle(he).idx()),
-            std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx())};
+            node_of(s, m.from_vertex_handle(he)), node_of(s, m.to_vertex_handle(he)),
+            node_of(s, m.to_vertex_handle(m.next_halfedge_handle(he)))};
         std::array<glm::dvec3, 3> p;
         for (int k = 0; k < 3; ++k)
-            p[k] = to_glm(m.point(VH(int(ids[k]))));
+            p[k] = to_glm(node_point(s, ids[k]));
         const TriangleFrame frame = triangle_frame(glm::dvec2(p[0]), glm::dvec2(p[1]),
                                                    glm::dvec2(p[2]), true, p[0].z, p[1].z, p[2].z);
         const auto [maxdev, worst] = face_worst(s, ids[0], ids[1], ids[2], frame, p[0], p[1], p[2]);
@@ -2266,7 +2346,36 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
                 throw std::invalid_argument("NodeEraser: a deleted vertex still has edges");
             ++absent;
         }
-    s.live = std::int64_t(s.mesh->n_vertices()) - absent;
+    s.nodes = std::uint32_t(s.mesh->n_vertices());
+    if (options.lattice) {
+        const Heightfield &hf = *options.lattice;
+        if (absent > 0)
+            throw std::invalid_argument("NodeEraser: a sparse lattice TIN with deleted vertices");
+        s.origin = find_origin_property(*s.mesh);
+        if (!s.origin.is_valid())
+            throw std::invalid_argument("NodeEraser: a sparse lattice TIN without its samples");
+        s.lattice = &hf;
+        s.nodes = std::uint32_t(hf.size());
+        s.lattice_x.resize(std::size_t(hf.width));
+        s.lattice_y.resize(std::size_t(hf.height));
+        for (int c = 0; c < hf.width; ++c) // as grid_vertices has them
+            s.lattice_x[std::size_t(c)] = float(c * hf.dx);
+        for (int r = 0; r < hf.height; ++r)
+            s.lattice_y[std::size_t(r)] = float(r * hf.dy);
+        s.slot.assign(s.nodes, -1);
+        s.sample_of.resize(s.mesh->n_vertices());
+        for (auto v : s.mesh->vertices()) {
+            const std::int64_t x = s.mesh->property(s.origin, v);
+            if (x < 0 || x >= hf.size() || s.slot[std::size_t(x)] >= 0 ||
+                s.mesh->point(v) != node_point(s, std::uint32_t(x)))
+                throw std::invalid_argument("NodeEraser: a sparse lattice TIN's vertex is not "
+                                            "its sample");
+            s.slot[std::size_t(x)] = v.idx();
+            s.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
+        }
+        absent = std::int64_t(s.nodes) - std::int64_t(s.mesh->n_vertices());
+    }
+    s.live = std::int64_t(s.nodes) - absent;
     s.live_faces = std::int64_t(s.mesh->n_faces());
     bool all_ccw = true;
     for (auto f : s.mesh->faces()) {
@@ -2281,18 +2390,20 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     }
     s.xy = options.projection == Projection::xy ||
            (options.projection == Projection::automatic && all_ccw);
-    s.grid_w = s.xy ? grid_width(*s.mesh) : 0;
+    s.grid_w = !s.xy ? 0 : s.lattice ? std::uint32_t(s.lattice->width) : grid_width(*s.mesh);
+    if (s.lattice && s.grid_w == 0)
+        throw std::invalid_argument("NodeEraser: a sparse lattice TIN is not counter-clockwise");
     if (absent > 0 && s.grid_w == 0)
         throw std::invalid_argument(
             "NodeEraser: deleted vertices in a mesh that is not a grid TIN");
     if (s.grid_w == 0)
-        s.next_swallowed.assign(s.mesh->n_vertices(), -1);
+        s.next_swallowed.assign(s.nodes, -1);
     s.face_head.assign(s.mesh->n_faces(), -1);
     s.face_blocked.assign(s.mesh->n_faces(), 0);
     s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
     s.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
     s.face_seen.assign(s.mesh->n_faces(), 0);
-    s.record_of.resize(s.mesh->n_vertices());
+    s.record_of.resize(s.nodes);
     s.live_list.reserve(std::size_t(s.live));
     // The update's grid: about k_nodes_per_cell input nodes per cell.
     glm::dvec2 lo(INFINITY), hi(-INFINITY);
@@ -2301,29 +2412,30 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
         lo = glm::min(lo, glm::dvec2(p));
         hi = glm::max(hi, glm::dvec2(p));
     }
-    if (s.mesh->n_vertices() > 0) {
+    if (s.nodes > 0) {
         const glm::dvec2 extent = hi - lo;
-        const double cells = std::max(1.0, double(s.mesh->n_vertices()) / k_nodes_per_cell);
+        const double cells = std::max(1.0, double(s.nodes) / k_nodes_per_cell);
         const double area = extent.x * extent.y;
         // At most ~4000 cells a side, however thin the mesh's outline.
         s.cell_side = std::max({area > 0.0 ? std::sqrt(area / cells) : 0.0,
                                 std::max(extent.x, extent.y) / 4000.0, 1e-30});
-        s.area_per_node = area / double(s.mesh->n_vertices());
+        s.area_per_node = area / double(s.nodes);
         s.grid_lo = lo;
         s.grid_nx = int(extent.x / s.cell_side) + 1;
         s.grid_ny = int(extent.y / s.cell_side) + 1;
     }
     s.cells.assign(std::size_t(s.grid_nx) * std::size_t(s.grid_ny), Cell{});
-    for (std::uint32_t x = 0; x < std::uint32_t(s.mesh->n_vertices()); ++x) {
-        if (s.mesh->status(VH(int(x))).deleted())
+    for (std::uint32_t x = 0; x < s.nodes; ++x) {
+        const VH v = vh(s, x);
+        if (!v.is_valid() || s.mesh->status(v).deleted())
             s.record_of[x] = k_absent;
         else
             add_live(s, x, -1);
     }
     s.absent_for_good = absent > 0 && !options.absent_history;
     if (absent > 0 && options.absent_history) {
-        s.flags.assign(s.mesh->n_vertices(), 0);
-        const auto height = std::uint32_t(s.mesh->n_vertices() / s.grid_w);
+        s.flags.assign(s.nodes, 0);
+        const auto height = s.nodes / s.grid_w;
         s.regular = std::make_unique<RegularRings>(s.grid_w, height);
         if (options.retrieval_tin && RegularRings::regular_for_retrievals(s.grid_w, height)) {
             for (std::size_t x = 0; x < s.record_of.size(); ++x)
@@ -2333,7 +2445,7 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
                 }
         } else {
             absent_sample_rings(
-                *s.mesh, s.grid_w,
+                *s.mesh, s.grid_w, height, s.sample_of,
                 [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
                     s.flags[x] = k_unread;
                     std::array<std::uint32_t, 4> regular;
@@ -2394,7 +2506,7 @@ EraseStats NodeEraser::erase() {
     stats.input_triangles = s.live_faces;
     const std::int64_t evaluations = s.evaluations;
     if (s.node_keys) { // back to the per-vertex keys (reset below) and stamps
-        s.stamp.assign(s.mesh->n_vertices(), 0);
+        s.stamp.assign(s.nodes, 0);
         for (const LiveNode &l : s.live_list)
             s.stamp[l.node] = l.stamp;
         s.node_keys = false;
@@ -2453,7 +2565,7 @@ static std::int64_t recover_closure(NodeEraser::Impl &s, std::uint32_t v,
 }
 
 std::int64_t NodeEraser::recover(Mesh::VertexHandle v) {
-    return recover_closure(*impl_, std::uint32_t(v.idx()), nullptr);
+    return recover_closure(*impl_, node_of(*impl_, v), nullptr);
 }
 
 std::int64_t NodeEraser::recover_all() {
@@ -2467,16 +2579,18 @@ std::int64_t NodeEraser::recover_all() {
     std::sort(erased.begin(), erased.end(), std::greater<>());
     std::int64_t recovered = 0;
     for (const auto &[record, x] : erased)
-        recovered += recover(VH(int(x)));
+        recovered += recover_closure(s, x, nullptr);
     return recovered;
 }
 
-bool NodeEraser::is_erased(Mesh::VertexHandle v) const { return impl_->record_of[v.idx()] >= 0; }
+bool NodeEraser::is_erased(Mesh::VertexHandle v) const {
+    return impl_->record_of[node_of(*impl_, v)] >= 0;
+}
 
 ErasedNodeRing NodeEraser::ring(Mesh::VertexHandle v) const {
     assert(is_erased(v));
     std::array<std::uint32_t, 4> scratch;
-    const ErasedRing ring = erased_ring(*impl_, std::uint32_t(v.idx()), scratch);
+    const ErasedRing ring = erased_ring(*impl_, node_of(*impl_, v), scratch);
     return {{ring.nodes, ring.nodes + ring.size}, ring.boundary};
 }
 
@@ -2556,7 +2670,7 @@ static std::uint32_t ready_dependency(NodeEraser::Impl &s, std::uint32_t v) {
             ++kept;
         chain.resize(kept);
     }
-    const glm::dvec3 target = to_glm(s.mesh->point(VH(int(v))));
+    const glm::dvec3 target = to_glm(node_point(s, v));
     for (;;) {
         const std::uint32_t at = chain.back();
         std::array<std::uint32_t, 4> scratch;
@@ -2566,7 +2680,7 @@ static std::uint32_t ready_dependency(NodeEraser::Impl &s, std::uint32_t v) {
         double nearest = INFINITY;
         for (int i = 0; i < erased.size; ++i)
             if (s.record_of[ring[i]] >= 0) {
-                glm::dvec3 d = to_glm(s.mesh->point(VH(int(ring[i])))) - target;
+                glm::dvec3 d = to_glm(node_point(s, ring[i])) - target;
                 if (s.xy)
                     d.z = 0.0;
                 if (glm::dot(d, d) < nearest) {
@@ -2594,7 +2708,6 @@ constexpr std::size_t k_kept_scratch = 4096; // larger scratch is released after
 template <class Deviation>
 static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi,
                          const Deviation &deviation) {
-    const Mesh &m = *s.mesh;
     std::vector<std::int32_t> &nodes = s.block_scratch;
     nodes.clear();
     for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u])
@@ -2605,7 +2718,7 @@ static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const 
     cell_of_node.resize(nodes.size());
     const glm::dvec2 scale = double(k_block_side) / glm::max(hi - lo, glm::dvec2(1e-300));
     for (std::size_t k = 0; k < nodes.size(); ++k) {
-        const glm::dvec3 p = to_glm(m.point(VH(nodes[k])));
+        const glm::dvec3 p = to_glm(node_point(s, std::uint32_t(nodes[k])));
         const int cx = std::clamp(int((p.x - lo.x) * scale.x), 0, k_block_side - 1);
         const int cy = std::clamp(int((p.y - lo.y) * scale.y), 0, k_block_side - 1);
         cell_of_node[k] = std::uint8_t(cy * k_block_side + cx);
@@ -2630,7 +2743,7 @@ static void build_blocks(NodeEraser::Impl &s, FH f, const glm::dvec2 &lo, const 
         double dev = 0.0;
         for (std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
             const std::int32_t u = nodes[std::size_t(order[k])];
-            const glm::dvec3 p = to_glm(m.point(VH(u)));
+            const glm::dvec3 p = to_glm(node_point(s, std::uint32_t(u)));
             blo = glm::min(blo, p);
             bhi = glm::max(bhi, p);
             dev = std::max(dev, double(float_up(deviation(u))));
@@ -2799,7 +2912,9 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         return std::abs(p.z - plane_at(p.x, p.y)) +
                rounding_margin(std::max(std::abs(p.x), std::abs(p.y)), slope);
     };
-    auto deviation = [&](std::int32_t u) { return deviation_at(to_glm(m.point(VH(u)))); };
+    auto deviation = [&](std::int32_t u) {
+        return deviation_at(to_glm(node_point(s, std::uint32_t(u))));
+    };
     auto visit = [&](std::int32_t u, double dev, double bound) {
         if (!(dev * bound > worst.second))
             return;
@@ -2812,9 +2927,9 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
         // deviation matter; or, on a large face, tile by tile with each tile's.
         const double dz = 1.001 * double(s.face_maxdev[f.idx()]);
         const double zlo = std::min({a.z, b.z, c.z}) - dz, zhi = std::max({a.z, b.z, c.z}) + dz;
-        const std::uint32_t ia = std::uint32_t(m.from_vertex_handle(he).idx()),
-                            ib = std::uint32_t(m.to_vertex_handle(he).idx()),
-                            ic = std::uint32_t(m.to_vertex_handle(m.next_halfedge_handle(he)).idx());
+        const std::uint32_t ia = node_of(s, m.from_vertex_handle(he)),
+                            ib = node_of(s, m.to_vertex_handle(he)),
+                            ic = node_of(s, m.to_vertex_handle(m.next_halfedge_handle(he)));
         std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane_at, slope);
         // Visits sample(u, q, dev, bound) for each sample (point q, deviation dev) of a tile or
         // band whose largest deviation times its largest weight (`bound`) may exceed `above`.
@@ -2876,7 +2991,7 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     std::size_t length = 0;
     double seen = 0.0;
     for (; u >= 0; u = s.next_swallowed[u], ++length) {
-        const glm::dvec3 q = to_glm(m.point(VH(u)));
+        const glm::dvec3 q = to_glm(node_point(s, std::uint32_t(u)));
         const double dev = deviation_at(q);
         visit(u, dev, weight_bound);
         if (screen)
@@ -2961,7 +3076,7 @@ static void fan_extent(const NodeEraser::Impl &s, LiveNode &l) {
     const glm::dvec3 px = to_glm(l.p);
     double far2 = 0.0;
     float fan_dev = 0.0f;
-    for (auto he : m.voh_range(VH(int(l.node)))) {
+    for (auto he : m.voh_range(vh(s, l.node))) {
         const glm::dvec3 d = to_glm(m.point(m.to_vertex_handle(he))) - px;
         far2 = std::max(far2, glm::dot(d, d));
         const FH f = m.face_handle(he);
@@ -2998,7 +3113,7 @@ static void rebuild_fans(NodeEraser::Impl &s) {
 static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
                      std::vector<FH> &work) {
     const Mesh &m = *s.mesh;
-    const VH x{int(l.node)};
+    const VH x = vh(s, l.node);
     if (!l.fan_exact)
         fan_extent(s, l); // else its bounds are what the walk would give
     const double box = fan_bound(s, l);
@@ -3099,7 +3214,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         // Re-evaluated by this update's erase: a node recovered only because a worse one depended
         // on it may cost little, and a key of "significant" would keep it forever.
         mark_dirty(s, x);
-        for (auto g : m.vf_range(VH(int(x))))
+        for (auto g : m.vf_range(vh(s, x)))
             work.push_back(g);
         if (!m.status(f).deleted())
             work.push_back(f);
@@ -3224,7 +3339,7 @@ EraseStats NodeEraser::measure() const {
         const glm::dvec3 normal = glm::cross(b - a, c - a);
         const double area = normal.z;
         auto add = [&](std::int32_t node) {
-            const glm::dvec3 p = to_glm(m.point(VH(node)));
+            const glm::dvec3 p = to_glm(node_point(s, std::uint32_t(node)));
             double dev;
             if (s.xy) {
                 const glm::dvec2 x(p.x, p.y);
@@ -3242,7 +3357,7 @@ EraseStats NodeEraser::measure() const {
         };
         if (s.grid_w > 0)
             scan_lattice(
-                s, std::uint32_t(va.idx()), std::uint32_t(vb.idx()), std::uint32_t(vc.idx()),
+                s, node_of(s, va), node_of(s, vb), node_of(s, vc),
                 [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
                 [&](std::uint32_t v, const Mesh::Point &, double) {
                     add(std::int32_t(v));
@@ -3281,7 +3396,9 @@ std::size_t NodeEraser::history_bytes() const {
            s.cell_visit.capacity() +
            s.records.bytes() + s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
-           s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views);
+           s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
+           s.slot.capacity() * sizeof(std::int32_t) + s.sample_of.capacity() * sizeof(std::uint32_t) +
+           (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float);
 }
 
 EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options) {

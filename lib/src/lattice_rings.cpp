@@ -23,15 +23,20 @@ struct Tri {
 
 class Lattice {
   public:
-    Lattice(const Mesh &tin, std::uint32_t width)
-        : w_(width), held_(tin.n_vertices(), 0), vface_(tin.n_vertices(), -1) {
-        const std::size_t cells = (tin.n_vertices() / width - 1) * std::size_t(width - 1);
+    Lattice(const Mesh &tin, std::uint32_t width, std::uint32_t height,
+            std::span<const std::uint32_t> sample_of)
+        : w_(width), held_(std::size_t(width) * height, 0),
+          vface_(std::size_t(width) * height, -1) {
+        const auto sample = [&](Mesh::VertexHandle v) {
+            return sample_of.empty() ? std::uint32_t(v.idx()) : sample_of[std::size_t(v.idx())];
+        };
+        const std::size_t cells = (height - 1) * std::size_t(width - 1);
         tris_.reserve(2 * cells);
         for (auto f : tin.faces()) {
             Tri t;
             auto he = tin.halfedge_handle(f);
             for (int k = 0; k < 3; ++k, he = tin.next_halfedge_handle(he)) {
-                t.v[k] = std::uint32_t(tin.from_vertex_handle(he).idx());
+                t.v[k] = sample(tin.from_vertex_handle(he));
                 const auto across = tin.opposite_face_handle(he);
                 t.adj[k] = across.is_valid() ? across.idx() : -1;
                 vface_[t.v[k]] = f.idx();
@@ -41,7 +46,7 @@ class Lattice {
             tris_.push_back(t);
         }
         for (auto v : tin.vertices())
-            held_[v.idx()] = 1;
+            held_[sample(v)] = 1;
     }
 
     bool held(std::uint32_t c, std::uint32_t r) const { return held_[std::size_t(r) * w_ + c]; }
@@ -159,9 +164,9 @@ class Lattice {
 
 } // namespace
 
-void absent_sample_rings(const Mesh &tin, std::uint32_t width, const RingVisitor &visit) {
-    const auto height = std::uint32_t(tin.n_vertices() / width);
-    Lattice lattice(tin, width);
+void absent_sample_rings(const Mesh &tin, std::uint32_t width, std::uint32_t height,
+                         std::span<const std::uint32_t> sample_of, const RingVisitor &visit) {
+    Lattice lattice(tin, width, height, sample_of);
     const QuadLayout layout{int(width), int(height)};
     const auto enter = [&](std::uint32_t c, std::uint32_t r, std::uint32_t from) {
         if (!lattice.held(c, r))

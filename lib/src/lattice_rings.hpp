@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace tinlod {
@@ -17,9 +18,10 @@ namespace tinlod {
 using RingVisitor =
     std::function<void(std::uint32_t node, const std::uint32_t *ring, int n, bool boundary)>;
 
-// `tin` holds every sample of a width-wide lattice as vertex r * width + c, the ones it left out
-// deleted and without edges (to_lattice_mesh), the others triangulated over the lattice's whole
-// rectangle, counter-clockwise in xy. The samples left out enter level by level of the quad-tree
+// `tin` holds samples of a width x height lattice, triangulated over the lattice's whole
+// rectangle, counter-clockwise in xy: vertex v is sample sample_of[v] (r * width + c), or sample v
+// when sample_of is empty (then the samples it left out are vertices too, deleted and without
+// edges, as to_lattice_mesh has them). The samples left out enter level by level of the quad-tree
 // (QuadLayout): each level's node centres, then its side midpoints. Each is inserted into the
 // triangle that holds it (ring: its 3 corners) or into the two that share the edge it lies on
 // (ring: their 4 corners; an outline edge gives the chain of its triangle's 3 corners from the
@@ -27,7 +29,8 @@ using RingVisitor =
 // in reverse, these insertions are erases whose records the eraser can recover from. A ring
 // that closes starts at its least sample id (a chain keeps its order). Cost: O(samples) time, 32
 // bytes per sample while it runs.
-void absent_sample_rings(const Mesh &tin, std::uint32_t width, const RingVisitor &visit);
+void absent_sample_rings(const Mesh &tin, std::uint32_t width, std::uint32_t height,
+                         std::span<const std::uint32_t> sample_of, const RingVisitor &visit);
 
 // The ring absent_sample_rings gives a sample where the lattice is regular (every 2^k + 1 grid),
 // from the sample's place in the quad-tree alone: so the eraser keeps only the rings that differ

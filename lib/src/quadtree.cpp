@@ -691,25 +691,17 @@ Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame) {
     return mesh;
 }
 
-Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
-    Mesh mesh = grid_vertices(hf);
-    std::vector<std::uint8_t> held(mesh.n_vertices(), 0);
-    for (const std::uint32_t id : retrieval.nodes)
-        held[id] = 1;
-    for (auto v : mesh.vertices())
-        if (!held[v.idx()])
-            mesh.status(v).set_deleted(true);
-    // Faces in the order of their first sample (row-major), so the half-edges of nearby nodes lie
-    // near each other in memory: an erase sweeping the nodes row by row walked the retrieval's
-    // level order before, 16 % slower on N42E001. A counting sort on the first sample, stable
-    // (ties keep the retrieval's order): a comparison sort of the keys took 24 ms of N42E001's
-    // 352 k-node budget retrieval.
-    const auto& t = retrieval.triangles;
+// Adds the triangles t (3 vertex indices each, over `vertices` vertices) in the order of their
+// first vertex, so the half-edges of nearby nodes lie near each other in memory: an erase sweeping
+// the nodes row by row walked the retrieval's level order before, 16 % slower on N42E001. A
+// counting sort on the first vertex, stable (ties keep the retrieval's order): a comparison sort of
+// the keys took 24 ms of N42E001's 352 k-node budget retrieval.
+static void add_in_row_order(Mesh& mesh, const std::vector<std::uint32_t>& t, std::size_t vertices) {
     const std::size_t faces = t.size() / 3;
     const auto first = [&](std::size_t k) {
         return std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]});
     };
-    std::vector<std::uint32_t> start(mesh.n_vertices() + 1, 0);
+    std::vector<std::uint32_t> start(vertices + 1, 0);
     for (std::size_t k = 0; k < faces; ++k)
         ++start[first(k) + 1];
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
@@ -720,6 +712,39 @@ Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
         std::copy_n(t.begin() + std::ptrdiff_t(3 * k), 3, corners.begin() + std::ptrdiff_t(at));
     }
     add_triangles(mesh, corners);
+}
+
+Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
+    Mesh mesh = grid_vertices(hf);
+    std::vector<std::uint8_t> held(mesh.n_vertices(), 0);
+    for (const std::uint32_t id : retrieval.nodes)
+        held[id] = 1;
+    for (auto v : mesh.vertices())
+        if (!held[v.idx()])
+            mesh.status(v).set_deleted(true);
+    add_in_row_order(mesh, retrieval.triangles, mesh.n_vertices());
+    return mesh;
+}
+
+Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
+    std::vector<std::uint32_t> nodes = retrieval.nodes;
+    std::sort(nodes.begin(), nodes.end());
+    Mesh mesh;
+    mesh.reserve(nodes.size(), 3 * nodes.size(), retrieval.triangles.size() / 3);
+    auto origin = get_origin_property(mesh);
+    mesh.resize(nodes.size(), 0, 0);
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+        const int c = int(nodes[k] % std::uint32_t(hf.width)), r = int(nodes[k] / std::uint32_t(hf.width));
+        const Mesh::VertexHandle v{int(k)};
+        mesh.set_point(v, Mesh::Point(float(c * hf.dx), float(r * hf.dy), hf.at(c, r)));
+        mesh.property(origin, v) = nodes[k];
+    }
+    // Vertices in sample order: the triangles' order by first vertex is to_lattice_mesh's.
+    std::vector<std::uint32_t> t(retrieval.triangles.size());
+    for (std::size_t i = 0; i < t.size(); ++i)
+        t[i] = std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), retrieval.triangles[i]) -
+                             nodes.begin());
+    add_in_row_order(mesh, t, nodes.size());
     return mesh;
 }
 

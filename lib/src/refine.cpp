@@ -11,13 +11,17 @@ struct Refiner::Impl {
     std::unique_ptr<Mesh> mesh;
     RefineOptions options;
     std::unique_ptr<NodeEraser> eraser;
-    std::size_t edge_room = 0, face_room = 0; // the mesh's reserved edges and faces
+    const Heightfield *lattice = nullptr; // the grid a heightfield's TIN holds samples of
+    // The mesh's reserved vertices (a sample entering the TIN gets one), edges and faces.
+    std::size_t vertex_room = 0, edge_room = 0, face_room = 0;
     FrameStats first;
 };
 
 // `retrieval`: the mesh is the quad-tree retrieval's TIN (EraseOptions::retrieval_tin).
-static EraseOptions erase_options(const RefineOptions &options, bool retrieval) {
+static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
+                                  const Heightfield *lattice) {
     EraseOptions eo;
+    eo.lattice = lattice;
     eo.absent_history = true;
     eo.retrieval_tin = retrieval;
     eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
@@ -31,17 +35,21 @@ static void start(Refiner::Impl &s, const View &first, bool retrieval) {
     assert(s.options.tol_px > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
     assert(s.options.significance.model != SpModel::vertical);
     Stopwatch clock;
-    s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first, erase_options(s.options, retrieval));
+    s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first,
+                                            erase_options(s.options, retrieval, s.lattice));
     s.first.ms_weights = clock.ms();
     clock.reset();
     const EraseStats e = s.eraser->erase();
     // The grid's erased edges and faces leave memory (a copy gets arrays of the compacted size),
-    // with room for the TIN to grow by half before its arrays reallocate.
+    // with room for the TIN to grow by half before its arrays reallocate (and, from a heightfield,
+    // for as many samples again as it has live nodes to enter).
     s.eraser->compact();
     auto compacted = std::make_unique<Mesh>(*s.mesh);
+    s.vertex_room = compacted->n_vertices() +
+                    (s.lattice ? std::size_t(s.eraser->live_nodes()) : std::size_t(0));
     s.edge_room = compacted->n_edges() * 3 / 2;
     s.face_room = compacted->n_faces() * 3 / 2;
-    compacted->reserve(compacted->n_vertices(), s.edge_room, s.face_room);
+    compacted->reserve(s.vertex_room, s.edge_room, s.face_room);
     s.eraser->rebind(*compacted);
     s.mesh = std::move(compacted);
     // An update from the same view makes the bounds that later updates carry over (each fan's and
@@ -69,15 +77,13 @@ Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& 
         RetrieveOptions ro;
         ro.tol_px = share * options.tol_px * (1.0 - options.hysteresis);
         ro.peripheral = &options.significance;
-        impl_->mesh = std::make_unique<Mesh>(to_lattice_mesh(retrieve(tree, first, ro), hf));
+        impl_->mesh =
+            std::make_unique<Mesh>(to_sparse_lattice_mesh(retrieve(tree, first, ro), hf));
         impl_->first.ms_retrieve = clock.ms();
     } else {
         impl_->mesh = std::make_unique<Mesh>(grid_tin(hf));
     }
-    // Node i is grid sample i: the origin property (8 bytes per sample) would only repeat it.
-    // live_copy sets it again from the index.
-    auto origin = find_origin_property(*impl_->mesh);
-    impl_->mesh->remove_property(origin);
+    impl_->lattice = &hf;
     start(*impl_, first, share > 0);
 }
 
@@ -122,10 +128,10 @@ std::size_t Refiner::bytes() const {
     // OpenMesh's arrays, each entry as large as the mesh's types make it (a malloc count of the
     // mesh's copy agrees): per vertex a point, its item (an outgoing halfedge), a status word (4
     // bytes, not 1), the traits' data (an empty struct, still a byte) and the origin property if
-    // it has one (a refiner from a heightfield drops it); per edge its two halfedges (vertex, next,
+    // it has one; per edge its two halfedges (vertex, next,
     // prev and face each), a status word and the traits' data of the edge and of its halfedges;
-    // per face its item (a halfedge), a status word and the traits' data. Edges and faces count
-    // their reserved room; past it an array has at most doubled.
+    // per face its item (a halfedge), a status word and the traits' data. Each array counts its
+    // reserved room; past it an array has at most doubled.
     const auto room = [](std::size_t n, std::size_t reserved) {
         return n <= reserved ? reserved : 2 * n;
     };
@@ -138,7 +144,7 @@ std::size_t Refiner::bytes() const {
     const std::size_t per_edge = sizeof(m.edge(e)) + sizeof(m.status(e)) + sizeof(Mesh::EdgeData) +
                                  2 * sizeof(Mesh::HalfedgeData);
     const std::size_t per_face = sizeof(m.face(f)) + sizeof(m.status(f)) + sizeof(Mesh::FaceData);
-    const std::size_t mesh_bytes = m.n_vertices() * per_vertex +
+    const std::size_t mesh_bytes = room(m.n_vertices(), impl_->vertex_room) * per_vertex +
                                    room(m.n_edges(), impl_->edge_room) * per_edge +
                                    room(m.n_faces(), impl_->face_room) * per_face;
     return mesh_bytes + impl_->eraser->history_bytes();

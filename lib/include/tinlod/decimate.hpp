@@ -101,6 +101,14 @@ struct EraseOptions {
     // refiner's 11 s first frame on 4097², and the replay's 32 bytes per sample while it runs.
     // Other sizes replay as without it.
     bool retrieval_tin = false;
+    // A sparse grid TIN: the mesh's vertices are some of this lattice's samples (the origin
+    // property names each, its point as grid_vertices has it), triangulated over the lattice's
+    // whole rectangle; the samples it left out have no vertex (as with to_lattice_mesh, see
+    // absent_history) until they enter, when a vertex is added for them. Its memory follows the
+    // nodes that are or were live, not the lattice (a 4097² flight's TIN held 4-5 % of its
+    // samples). Node ids (recover, is_erased, ring) are then samples, not vertex indices. Must
+    // outlive the eraser.
+    const Heightfield *lattice = nullptr;
     // Called now and then by erase() (screen and vertical models) with the share of its work done,
     // non-decreasing in [0, 1] (for a progress bar). With a budget: the erases made over those it needs; with a bound
     // alone: the first sweep over the nodes (most of the time) takes 0.9 of it, each next one 0.9
@@ -130,7 +138,7 @@ struct EraseStats {
 // inside the ring, so they need not be stored: they are present exactly when every ring node is
 // live.
 struct ErasedNodeRing {
-    std::vector<std::uint32_t> nodes; // vertex idx values
+    std::vector<std::uint32_t> nodes; // vertex idx values (samples with EraseOptions::lattice)
     bool boundary = false;
 };
 

@@ -193,5 +193,9 @@ Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame);
 // r * width + c for every sample (as grid_tin), the samples the retrieval left out deleted and
 // isolated. A NodeEraser on it bounds every sample of the grid, retrieved or not.
 Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf);
+// The same TIN with only the retrieval's samples as vertices (origin property = sample id,
+// vertices in sample order, points as grid_vertices has them), for a NodeEraser told the lattice
+// (EraseOptions::lattice): its arrays follow the retrieval's nodes, not the grid's samples.
+Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf);
 
 } // namespace tinlod

@@ -68,9 +68,10 @@ class Refiner {
     // (1 - hysteresis) tau. Afterwards every frame-visible deviation is <= tau pixels.
     FrameStats update(const View& view);
 
-    // The current TIN: erased nodes and their faces are marked deleted, not removed; vertex idx =
-    // input vertex (grid sample id for a heightfield, whose TIN then has no origin property: the
-    // index says it, and live_copy sets the property from it).
+    // The current TIN: erased nodes and their faces are marked deleted, not removed. From a mesh,
+    // vertex idx = input vertex. From a heightfield, the vertices are the samples that are or
+    // were live (the origin property names each; a sample gets its vertex when it first enters),
+    // so the TIN's memory follows its nodes, not the grid.
     const Mesh& mesh() const;
     bool is_erased(Mesh::VertexHandle v) const;
     // Bytes of the whole structure: the mesh's arrays and the erase history.
