@@ -298,11 +298,13 @@ struct EraseRecord {
     std::uint8_t ring_size = 0;
     std::uint8_t ring_capacity = 0; // room at ring_begin (a node erased again re-uses it)
     bool boundary = false;
+    std::int32_t vertex = -1; // a sparse lattice's: the node's vertex, -1 none yet (Impl::lattice)
 };
 
 // What an update needs to know of a live node without walking its fan (see update()).
 struct LiveNode {
     std::uint32_t node;
+    std::int32_t vertex; // its vertex (the node id itself unless Impl::lattice)
     Mesh::Point p; // its point (an update reads it for every node it visits)
     // The node whose deviation gave the last evaluated cost, and that deviation: the cost under
     // any later view is at least star_dev times the star's weight there while the fan stands.
@@ -438,13 +440,13 @@ struct NodeEraser::Impl {
     std::uint32_t grid_w = 0;
     // A sparse grid TIN (EraseOptions::lattice): the lattice's samples, and the columns' x and the
     // rows' y as the mesh's float points have them. Only the samples that are or were live have a
-    // vertex (slot: sample -> vertex, -1 none; sample_of: vertex -> sample); the others take their
-    // points from here, and a vertex when they enter. Node ids are samples either way; without a
-    // lattice (a dense grid TIN or any mesh) they are vertex indices, and slot and sample_of stay
-    // empty.
+    // vertex: a live node's is in its LiveNode, an erased node's in its record (see vh), and
+    // sample_of maps each vertex to its sample; the others take their points from here, and a
+    // vertex when they enter. Node ids are samples; without a lattice (a dense grid TIN or any
+    // mesh) they are vertex indices, and sample_of stays empty.
     const Heightfield *lattice = nullptr;
     std::vector<float> lattice_x, lattice_y;
-    std::vector<std::int32_t> slot;
+    double inverse_width = 0.0;
     std::vector<std::uint32_t> sample_of;
     OpenMesh::VPropHandleT<std::int64_t> origin; // a sparse lattice's: its vertices' samples
     std::uint32_t nodes = 0; // node ids: the lattice's samples, else the mesh's vertices
@@ -542,24 +544,43 @@ static float float_down(double d) {
     return double(f) > d ? std::nextafter(f, -INFINITY) : f;
 }
 
-// ---- Node ids and vertices (see Impl::slot) ----------------------------------------------------
+// ---- Node ids and vertices (see Impl::lattice) -------------------------------------------------
 
-// The vertex of node x: invalid for a sparse lattice's sample that has none.
-static VH vh(const NodeEraser::Impl &s, std::uint32_t x) {
-    return s.slot.empty() ? VH(int(x)) : VH(s.slot[x]);
+// These three run for most nodes an update touches: inlined wherever they are called (as calls
+// they took 6 % of a 4097² fly-over's update time, scratch profile).
+
+// The vertex of node x: invalid for a sparse lattice's sample that has none. A live node's is in
+// its LiveNode and an erased one's in its record, not in an array over the samples (4 bytes each).
+[[gnu::always_inline]] static inline VH vh(const NodeEraser::Impl &s, std::uint32_t x) {
+    if (!s.lattice)
+        return VH(int(x));
+    const std::int32_t r = s.record_of[x];
+    if (r < -1)
+        return VH(s.live_list[std::size_t(-2 - r)].vertex);
+    if (r >= 0 && r != k_regular_ring)
+        return VH(s.records[std::size_t(r)].vertex);
+    return VH();
 }
 
 // The node id of vertex v.
-static std::uint32_t node_of(const NodeEraser::Impl &s, VH v) {
+[[gnu::always_inline]] static inline std::uint32_t node_of(const NodeEraser::Impl &s, VH v) {
     return s.sample_of.empty() ? std::uint32_t(v.idx()) : s.sample_of[std::size_t(v.idx())];
 }
 
-// The point of node x, live or erased (a sparse lattice's sample has it without a vertex).
-static Mesh::Point node_point(const NodeEraser::Impl &s, std::uint32_t x) {
+// The point of node x, live or erased (a sparse lattice's sample has it without a vertex). Its
+// row comes from a multiplication by 1 / width, corrected once: a division took most of the
+// function's time.
+[[gnu::always_inline]] static inline Mesh::Point node_point(const NodeEraser::Impl &s,
+                                                            std::uint32_t x) {
     if (!s.lattice)
         return s.mesh->point(VH(int(x)));
     const auto w = std::uint32_t(s.lattice->width);
-    return {s.lattice_x[x % w], s.lattice_y[x / w], s.lattice->z[x]};
+    auto r = std::uint32_t(double(x) * s.inverse_width);
+    if (r * w > x)
+        --r;
+    else if ((r + 1) * w <= x)
+        ++r;
+    return {s.lattice_x[x - r * w], s.lattice_y[r], s.lattice->z[x]};
 }
 
 // A grid TIN's samples by lattice column and row: the mesh's points, or a sparse lattice's.
@@ -614,8 +635,9 @@ static std::pair<glm::dvec3, glm::dvec3> cell_box(const NodeEraser::Impl &s, std
             {lo.x + s.cell_side + margin, lo.y + s.cell_side + margin, double(cell.zhi) + margin}};
 }
 
-// Makes x live; `record` is its record from an earlier erase (-1 if none), kept for re-use.
-static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) {
+// Makes x (vertex v) live; `record` is its record from an earlier erase (-1 if none), kept for
+// re-use.
+static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record, VH v) {
     const Mesh::Point point = node_point(s, x);
     const glm::dvec3 p = to_glm(point);
     const std::uint32_t c = cell_of(s, p);
@@ -627,6 +649,7 @@ static void add_live(NodeEraser::Impl &s, std::uint32_t x, std::int32_t record) 
     s.record_of[x] = -2 - std::int32_t(s.live_list.size());
     LiveNode l{};
     l.node = x;
+    l.vertex = v.idx();
     l.p = point;
     l.star = x;
     l.last_record = record;
@@ -1620,6 +1643,7 @@ static void retriangulate(NodeEraser::Impl &s) {
     }
     record.ring_size = std::uint8_t(n);
     record.boundary = h.boundary;
+    record.vertex = h.v.idx();
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
         ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
@@ -2068,13 +2092,13 @@ static FH take_face(NodeEraser::Impl &s) {
 // The vertex of node x, made now for a sparse lattice's sample that enters for the first time
 // (marked deleted, without edges, as erased nodes are).
 static VH vertex_for(NodeEraser::Impl &s, std::uint32_t x) {
-    if (s.slot.empty() || s.slot[x] >= 0)
-        return vh(s, x);
+    const VH known = vh(s, x);
+    if (known.is_valid())
+        return known;
     Mesh &m = *s.mesh;
     const VH v = m.add_vertex(node_point(s, x));
     m.status(v).set_deleted(true);
     m.property(s.origin, v) = std::int64_t(x);
-    s.slot[x] = v.idx();
     s.sample_of.push_back(x);
     return v;
 }
@@ -2262,7 +2286,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         push_swallowed(s, f.idx(), u, float(dev));
     }
     swallowed.resize(swallowed_begin);
-    add_live(s, x, s.record_of[x] == k_regular_ring ? -1 : s.record_of[x]);
+    add_live(s, x, s.record_of[x] == k_regular_ring ? -1 : s.record_of[x], v);
     // Its key from before its erase says nothing of the fan it has now (an infinite one kept the
     // update's pick from ever re-evaluating it).
     if (s.node_keys || s.heap.has_key(x))
@@ -2300,7 +2324,6 @@ static void advise_huge(const NodeEraser::Impl &s) {
         advise_huge_pages(&m.face(FH(0)), m.n_faces() * sizeof(m.face(FH(0))));
     const auto whole = [](const auto &v) { advise_huge_pages(v.data(), v.size() * sizeof(v[0])); };
     whole(s.record_of);
-    whole(s.slot);
     whole(s.sample_of);
     whole(s.flags);
     whole(s.stamp);
@@ -2347,6 +2370,7 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
             ++absent;
         }
     s.nodes = std::uint32_t(s.mesh->n_vertices());
+    std::vector<std::int32_t> vertex_of; // a sparse lattice's, while the constructor runs
     if (options.lattice) {
         const Heightfield &hf = *options.lattice;
         if (absent > 0)
@@ -2356,21 +2380,22 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
             throw std::invalid_argument("NodeEraser: a sparse lattice TIN without its samples");
         s.lattice = &hf;
         s.nodes = std::uint32_t(hf.size());
+        s.inverse_width = 1.0 / double(hf.width);
         s.lattice_x.resize(std::size_t(hf.width));
         s.lattice_y.resize(std::size_t(hf.height));
         for (int c = 0; c < hf.width; ++c) // as grid_vertices has them
             s.lattice_x[std::size_t(c)] = float(c * hf.dx);
         for (int r = 0; r < hf.height; ++r)
             s.lattice_y[std::size_t(r)] = float(r * hf.dy);
-        s.slot.assign(s.nodes, -1);
+        vertex_of.assign(s.nodes, -1);
         s.sample_of.resize(s.mesh->n_vertices());
         for (auto v : s.mesh->vertices()) {
             const std::int64_t x = s.mesh->property(s.origin, v);
-            if (x < 0 || x >= hf.size() || s.slot[std::size_t(x)] >= 0 ||
+            if (x < 0 || x >= hf.size() || vertex_of[std::size_t(x)] >= 0 ||
                 s.mesh->point(v) != node_point(s, std::uint32_t(x)))
                 throw std::invalid_argument("NodeEraser: a sparse lattice TIN's vertex is not "
                                             "its sample");
-            s.slot[std::size_t(x)] = v.idx();
+            vertex_of[std::size_t(x)] = v.idx();
             s.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
         }
         absent = std::int64_t(s.nodes) - std::int64_t(s.mesh->n_vertices());
@@ -2426,12 +2451,13 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     }
     s.cells.assign(std::size_t(s.grid_nx) * std::size_t(s.grid_ny), Cell{});
     for (std::uint32_t x = 0; x < s.nodes; ++x) {
-        const VH v = vh(s, x);
+        const VH v = s.lattice ? VH(vertex_of[x]) : VH(int(x));
         if (!v.is_valid() || s.mesh->status(v).deleted())
             s.record_of[x] = k_absent;
         else
-            add_live(s, x, -1);
+            add_live(s, x, -1, v);
     }
+    std::vector<std::int32_t>().swap(vertex_of);
     s.absent_for_good = absent > 0 && !options.absent_history;
     if (absent > 0 && options.absent_history) {
         s.flags.assign(s.nodes, 0);
@@ -3397,7 +3423,7 @@ std::size_t NodeEraser::history_bytes() const {
            s.records.bytes() + s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
            s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
-           s.slot.capacity() * sizeof(std::int32_t) + s.sample_of.capacity() * sizeof(std::uint32_t) +
+           s.sample_of.capacity() * sizeof(std::uint32_t) +
            (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float);
 }
 
