@@ -2397,10 +2397,10 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
         s.inverse_width = 1.0 / double(hf.width);
         s.lattice_x.resize(std::size_t(hf.width));
         s.lattice_y.resize(std::size_t(hf.height));
-        for (int c = 0; c < hf.width; ++c) // as grid_vertices has them
-            s.lattice_x[std::size_t(c)] = float(c * hf.dx);
+        for (int c = 0; c < hf.width; ++c)
+            s.lattice_x[std::size_t(c)] = grid_point(hf, c, 0)[0];
         for (int r = 0; r < hf.height; ++r)
-            s.lattice_y[std::size_t(r)] = float(r * hf.dy);
+            s.lattice_y[std::size_t(r)] = grid_point(hf, 0, r)[1];
         vertex_of.assign(s.nodes, -1);
         s.sample_of.resize(s.mesh->n_vertices());
         for (auto v : s.mesh->vertices()) {

@@ -734,9 +734,10 @@ Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
     auto origin = get_origin_property(mesh);
     mesh.resize(nodes.size(), 0, 0);
     for (std::size_t k = 0; k < nodes.size(); ++k) {
-        const int c = int(nodes[k] % std::uint32_t(hf.width)), r = int(nodes[k] / std::uint32_t(hf.width));
+        const auto w = std::uint32_t(hf.width);
+        const int c = int(nodes[k] % w), r = int(nodes[k] / w);
         const Mesh::VertexHandle v{int(k)};
-        mesh.set_point(v, Mesh::Point(float(c * hf.dx), float(r * hf.dy), hf.at(c, r)));
+        mesh.set_point(v, grid_point(hf, c, r));
         mesh.property(origin, v) = nodes[k];
     }
     // Vertices in sample order: the triangles' order by first vertex is to_lattice_mesh's.

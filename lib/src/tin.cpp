@@ -143,7 +143,7 @@ Mesh grid_vertices(const Heightfield& hf) {
         for (int c = 0; c < hf.width; ++c) {
             const std::int64_t id = static_cast<std::int64_t>(r) * hf.width + c;
             const Mesh::VertexHandle v{int(id)};
-            mesh.set_point(v, Mesh::Point(float(c * hf.dx), float(r * hf.dy), hf.at(c, r)));
+            mesh.set_point(v, grid_point(hf, c, r));
             mesh.property(origin, v) = id;
         }
     return mesh;
@@ -228,7 +228,7 @@ Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& t
         if (fresh) {
             const int c = static_cast<int>(id % static_cast<std::uint32_t>(hf.width));
             const int r = static_cast<int>(id / static_cast<std::uint32_t>(hf.width));
-            it->second = mesh.add_vertex(Mesh::Point(float(c * hf.dx), float(r * hf.dy), hf.at(c, r)));
+            it->second = mesh.add_vertex(grid_point(hf, c, r));
             mesh.property(origin, it->second) = id;
         }
         return it->second;

@@ -51,6 +51,12 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners);
 // live: 42 ms against 130).
 Mesh live_copy(const Mesh& mesh);
 
+// Sample (c, r)'s node point in grid_tin(hf): the local frame, in the mesh's floats. Every TIN
+// over a heightfield's samples places them here, and a lattice's scans rely on it.
+inline Mesh::Point grid_point(const Heightfield& hf, int c, int r) {
+    return {float(c * hf.dx), float(r * hf.dy), hf.at(c, r)};
+}
+
 // Full-resolution grid TIN: W*H nodes, 2(W-1)(H-1) triangles, every triangle counter-clockwise
 // seen from above, node i = grid sample i (origin property set).
 Mesh grid_tin(const Heightfield& hf);
