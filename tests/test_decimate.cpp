@@ -280,6 +280,16 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
         if (share == 0.5) {
             EXPECT_NEAR(double(out.n_vertices()), double(full.n_vertices()),
                         0.05 * double(full.n_vertices()));
+            // erase_dem's TIN holds vertices for the retrieved samples only; the erase of the
+            // retrieval's TIN with a vertex for every sample (the others deleted) gives the same
+            // triangles over the same samples.
+            RetrieveOptions ro;
+            ro.tol_px = share * options.tolerance;
+            ro.peripheral = &options.significance;
+            Mesh dense = to_lattice_mesh(retrieve(QuadTree(hf), view, ro), hf);
+            erase_nodes(dense, &view, options);
+            Mesh sparse = out;
+            EXPECT_EQ(triangle_set(sparse), triangle_set(dense));
         }
     }
     EraseOptions budget;

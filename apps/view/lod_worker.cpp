@@ -97,13 +97,15 @@ float quantile(std::vector<float> values, double share) {
 // What every engine does after making its TIN: erase when asked, colours, the focal index.
 class EngineBase : public LodEngine {
   protected:
+    // `lattice`: the grid a sparse lattice TIN holds samples of (EraseOptions::lattice).
     void finish(LodResult& result, const View& view, const LodSettings& settings, double extent,
-                bool tin) {
+                bool tin, const Heightfield* lattice = nullptr) {
         Stopwatch clock;
         if (settings.stages == LodStages::retrieve_erase) {
             EraseOptions eo;
             eo.tolerance = settings.tol_px;
             eo.significance = settings.significance;
+            eo.lattice = lattice;
             const EraseStats erased = erase_nodes(result.mesh, &view, eo);
             result.erase_ms = clock.ms();
             result.erase_max_px = erased.max_screen_px;
@@ -176,12 +178,12 @@ class GridEngine final : public EngineBase {
         if (lattice && settings.significance.model == SpModel::screen)
             ro.peripheral = &settings.significance; // the erase's weighted bound, as erase_dem
         const Retrieval& r = lod_.retrieve(view, ro);
-        result->mesh = lattice ? to_lattice_mesh(r, *hf_) : to_mesh(r, lod_.frame());
+        result->mesh = lattice ? to_sparse_lattice_mesh(r, *hf_) : to_mesh(r, lod_.frame());
         result->bound_px = r.bound_px;
         result->retrieve_ms = total.ms();
         const GridFrame& g = lod_.frame();
         finish(*result, view, settings, std::max((g.width - 1) * g.dx, (g.height - 1) * g.dy),
-               true);
+               true, lattice ? &*hf_ : nullptr);
         result->total_ms = total.ms();
         return result;
     }

@@ -3553,12 +3553,16 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
             r = &lod.retrieve(eye, ro);
         out.retrieved_nodes = std::int64_t(r->nodes.size());
         out.retrieve_tol = ro.tol_px;
-        return to_lattice_mesh(*r, hf);
+        return to_sparse_lattice_mesh(*r, hf);
     };
+    // A retrieval's or an insertion's TIN holds vertices for its samples only (the lattice gives
+    // the eraser the others' heights), the full grid one per sample.
     const auto erase = [&](Mesh &mesh, FirstStage stage) {
         out.first_stage = stage;
         out.retrieve_ms = clock.ms();
-        out.erase = NodeEraser(mesh, view, options).erase();
+        EraseOptions eo = options;
+        eo.lattice = stage == FirstStage::grid ? nullptr : &hf;
+        out.erase = NodeEraser(mesh, view, eo).erase();
         clock.reset();
         Mesh tin = live_copy(mesh);
         out.erase.ms += clock.ms();
@@ -3582,7 +3586,7 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         if (greedy_pays(hf, go)) {
             const GreedyTin greedy = greedy_tin(hf, go);
             if (!greedy.stopped) {
-                Mesh mesh = to_lattice_mesh(greedy.tin, hf);
+                Mesh mesh = to_sparse_lattice_mesh(greedy.tin, hf);
                 out.retrieved_nodes = std::int64_t(greedy.tin.nodes.size());
                 out.retrieve_tol = options.tolerance;
                 return erase(mesh, FirstStage::greedy);
