@@ -12,8 +12,6 @@ struct Refiner::Impl {
     RefineOptions options;
     std::unique_ptr<NodeEraser> eraser;
     const Heightfield *lattice = nullptr; // the grid a heightfield's TIN holds samples of
-    // The mesh's reserved vertices (a sample entering the TIN gets one), edges and faces.
-    std::size_t vertex_room = 0, edge_room = 0, face_room = 0;
     FrameStats first;
 };
 
@@ -45,11 +43,9 @@ static void start(Refiner::Impl &s, const View &first, bool retrieval) {
     // for as many samples again as it has live nodes to enter).
     s.eraser->compact();
     auto compacted = std::make_unique<Mesh>(*s.mesh);
-    s.vertex_room = compacted->n_vertices() +
-                    (s.lattice ? std::size_t(s.eraser->live_nodes()) : std::size_t(0));
-    s.edge_room = compacted->n_edges() * 3 / 2;
-    s.face_room = compacted->n_faces() * 3 / 2;
-    compacted->reserve(s.vertex_room, s.edge_room, s.face_room);
+    compacted->reserve(compacted->n_vertices() +
+                           (s.lattice ? std::size_t(s.eraser->live_nodes()) : std::size_t(0)),
+                       compacted->n_edges() * 3 / 2, compacted->n_faces() * 3 / 2);
     s.eraser->rebind(*compacted);
     s.mesh = std::move(compacted);
     // An update from the same view makes the bounds that later updates carry over (each fan's and
@@ -131,10 +127,7 @@ std::size_t Refiner::bytes() const {
     // it has one; per edge its two halfedges (vertex, next,
     // prev and face each), a status word and the traits' data of the edge and of its halfedges;
     // per face its item (a halfedge), a status word and the traits' data. Each array counts its
-    // reserved room; past it an array has at most doubled.
-    const auto room = [](std::size_t n, std::size_t reserved) {
-        return n <= reserved ? reserved : 2 * n;
-    };
+    // capacity, the status array's: every array of an element kind is reserved and grows with it.
     const Mesh::VertexHandle v(0);
     const Mesh::EdgeHandle e(0);
     const Mesh::FaceHandle f(0);
@@ -144,9 +137,10 @@ std::size_t Refiner::bytes() const {
     const std::size_t per_edge = sizeof(m.edge(e)) + sizeof(m.status(e)) + sizeof(Mesh::EdgeData) +
                                  2 * sizeof(Mesh::HalfedgeData);
     const std::size_t per_face = sizeof(m.face(f)) + sizeof(m.status(f)) + sizeof(Mesh::FaceData);
-    const std::size_t mesh_bytes = room(m.n_vertices(), impl_->vertex_room) * per_vertex +
-                                   room(m.n_edges(), impl_->edge_room) * per_edge +
-                                   room(m.n_faces(), impl_->face_room) * per_face;
+    const std::size_t mesh_bytes =
+        m.property(m.vertex_status_pph()).data_vector().capacity() * per_vertex +
+        m.property(m.edge_status_pph()).data_vector().capacity() * per_edge +
+        m.property(m.face_status_pph()).data_vector().capacity() * per_face;
     return mesh_bytes + impl_->eraser->history_bytes();
 }
 
