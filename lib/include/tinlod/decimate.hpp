@@ -278,15 +278,15 @@ struct DemEraseStats {
 // A DEM's TIN by both methods of the paper: the quad-tree retrieval (method 1) as a TIN on the
 // whole lattice with vertices for its samples only (to_sparse_lattice_mesh, EraseOptions::lattice:
 // the memory follows the retrieval, not the grid), then node erase (method 2) of its nodes, which
-// measures every sample of the grid under a new triangle, retrieved or not: the bound holds for
-// the whole grid exactly as an erase from the full grid. The retrieval does in one traversal what the erase would
-// do node by node where the terrain is smooth. Only the screen model retrieves: the paper model's
-// SP is not a screen error a retrieval could share, and for the vertical model the quad-tree's
-// bounds (any subset of side midpoints) are too loose to spare the erase any work (N42E001 at 1,
-// 5 and 20 m: 0.7-1.3x the time): it starts from greedy insertion instead, where that keeps few
-// samples (DemEraseOptions::greedy_cap), and erases from there. The others erase from the full grid. Returns the TIN's live
-// nodes and faces (live_copy: the nodes and triangles erase_nodes leaves, in sample order; origin
-// = sample id).
+// measures every sample of the grid under a new triangle, retrieved or not: the bound holds for the
+// whole grid exactly as an erase from the full grid. The retrieval does in one traversal what the
+// erase would do node by node where the terrain is smooth. Only the screen model retrieves: the
+// paper model's SP is not a screen error a retrieval could share, and for the vertical model the
+// quad-tree's bounds (any subset of side midpoints) are too loose to spare the erase any work
+// (N42E001 at 1, 5 and 20 m: 0.7-1.3x the time): it starts from greedy insertion instead, where
+// that keeps few samples (DemEraseOptions::greedy_cap), and erases from there. The others erase
+// from the full grid. Returns the TIN's live nodes and faces (live_copy: the nodes and triangles
+// erase_nodes leaves, in sample order; origin = sample id).
 Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
                const DemEraseOptions &dem = {}, DemEraseStats *stats = nullptr);
 
