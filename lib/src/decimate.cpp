@@ -670,11 +670,22 @@ static LiveNode &live_node(NodeEraser::Impl &s, std::uint32_t x) {
 static float node_key(NodeEraser::Impl &s, std::uint32_t x) {
     return s.node_keys ? live_node(s, x).key : s.heap.key(x);
 }
+// The same for live node l at hand: without the look-up of its place in the live list (a cache
+// miss per node of an update's walks over them).
+static float node_key(const NodeEraser::Impl &s, const LiveNode &l) {
+    return s.node_keys ? l.key : s.heap.key(l.node);
+}
 static void store_node_key(NodeEraser::Impl &s, std::uint32_t x, float key) {
     if (s.node_keys)
         live_node(s, x).key = key;
     else
         s.heap.store_key(x, key);
+}
+static void store_node_key(NodeEraser::Impl &s, LiveNode &l, float key) {
+    if (s.node_keys)
+        l.key = key;
+    else
+        s.heap.store_key(l.node, key);
 }
 static std::uint8_t &node_stamp(NodeEraser::Impl &s, std::uint32_t x) {
     return s.node_keys ? live_node(s, x).stamp : s.stamp[x];
@@ -1970,7 +1981,7 @@ static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, st
         std::vector<std::uint32_t> list;
         for (const LiveNode &l : s.live_list)
             if (!(s.flags[l.node] & k_locked) &&
-                ((s.flags[l.node] & k_dirty) || double(node_key(s, l.node)) <= limit))
+                ((s.flags[l.node] & k_dirty) || double(node_key(s, l)) <= limit))
                 list.push_back(l.node);
         erased += sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(),
                               budget);
@@ -1979,7 +1990,7 @@ static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, st
         double least = INFINITY;
         for (const LiveNode &l : s.live_list)
             if (!(s.flags[l.node] & k_locked))
-                least = std::min(least, double(node_key(s, l.node)));
+                least = std::min(least, double(node_key(s, l)));
         if (!(least < INFINITY))
             break; // no live node can be erased
         limit = std::min(tau, std::max(limit * k_fine_rung_ratio, least));
@@ -3116,7 +3127,7 @@ static void fan_extent(const NodeEraser::Impl &s, LiveNode &l) {
     const glm::dvec3 px = to_glm(l.p);
     double far2 = 0.0;
     float fan_dev = 0.0f;
-    for (auto he : m.voh_range(vh(s, l.node))) {
+    for (auto he : m.voh_range(VH(l.vertex))) {
         const glm::dvec3 d = to_glm(m.point(m.to_vertex_handle(he))) - px;
         far2 = std::max(far2, glm::dot(d, d));
         const FH f = m.face_handle(he);
@@ -3153,7 +3164,7 @@ static void rebuild_fans(NodeEraser::Impl &s) {
 static void seed_fan(NodeEraser::Impl &s, LiveNode &l, double recover_above,
                      std::vector<FH> &work) {
     const Mesh &m = *s.mesh;
-    const VH x = vh(s, l.node);
+    const VH x(l.vertex);
     if (!l.fan_exact)
         fan_extent(s, l); // else its bounds are what the walk would give
     const double box = fan_bound(s, l);
@@ -3305,14 +3316,14 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         }
         if (s.flags[x] & k_locked)
             continue;
-        const float key = node_key(s, x);
+        const float key = node_key(s, l);
         if (!std::isfinite(key))
             continue; // its hole cannot be re-triangulated: only a change of its ring can help
         if (!(s.flags[x] & k_dirty)) {
             // The cost under this view is at least the star's deviation times its weight now.
             const double least = double(l.star_dev) * weight_of(s, l.star);
             if (least > erase_below) {
-                store_node_key(s, x, float_down(least));
+                store_node_key(s, l, float_down(least));
                 remember_low(s, l, least);
                 continue;
             }
