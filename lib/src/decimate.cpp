@@ -298,7 +298,6 @@ struct EraseRecord {
     std::uint8_t ring_size = 0;
     std::uint8_t ring_capacity = 0; // room at ring_begin (a node erased again re-uses it)
     bool boundary = false;
-    std::int32_t vertex = -1; // a sparse lattice's: the node's vertex, -1 none yet (Impl::lattice)
 };
 
 // What an update needs to know of a live node without walking its fan (see update()).
@@ -439,11 +438,11 @@ struct NodeEraser::Impl {
     // each face's worst sample.
     std::uint32_t grid_w = 0;
     // A sparse grid TIN (EraseOptions::lattice): the lattice's samples, and the columns' x and the
-    // rows' y as the mesh's float points have them. Only the samples that are or were live have a
-    // vertex: a live node's is in its LiveNode, an erased node's in its record (see vh), and
-    // sample_of maps each vertex to its sample; the others take their points from here, and a
-    // vertex when they enter. Node ids are samples; without a lattice (a dense grid TIN or any
-    // mesh) they are vertex indices, and sample_of stays empty.
+    // rows' y as the mesh's float points have them. Only the live samples have a vertex, in their
+    // LiveNode (see vh), and sample_of maps each vertex to its sample; an erase frees its node's
+    // vertex (free_vertices) for the next sample that enters or comes back, which takes its point
+    // from here. Node ids are samples; without a lattice (a dense grid TIN or any mesh) they are
+    // vertex indices, and sample_of stays empty.
     const Heightfield *lattice = nullptr;
     std::vector<float> lattice_x, lattice_y;
     double inverse_width = 0.0;
@@ -520,6 +519,7 @@ struct NodeEraser::Impl {
     ChunkedPool<std::uint32_t> ring_pool;
     std::vector<EH> free_edges;
     std::vector<FH> free_faces;
+    std::vector<VH> free_vertices; // a sparse lattice's: the vertices its erases freed
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
     std::int64_t reerased = 0; // the update under way's erases of nodes it recovered
@@ -552,17 +552,13 @@ static float float_down(double d) {
 // These three run for most nodes an update touches: inlined wherever they are called (as calls
 // they took 6 % of a 4097² fly-over's update time, scratch profile).
 
-// The vertex of node x: invalid for a sparse lattice's sample that has none. A live node's is in
-// its LiveNode and an erased one's in its record, not in an array over the samples (4 bytes each).
+// The vertex of node x: invalid for a sparse lattice's sample that is not live. A live node's is
+// in its LiveNode, not in an array over the samples (4 bytes each).
 [[gnu::always_inline]] static inline VH vh(const NodeEraser::Impl &s, std::uint32_t x) {
     if (!s.lattice)
         return VH(int(x));
     const std::int32_t r = s.record_of[x];
-    if (r < -1)
-        return VH(s.live_list[std::size_t(-2 - r)].vertex);
-    if (r >= 0 && r != k_regular_ring)
-        return VH(s.records[std::size_t(r)].vertex);
-    return VH();
+    return r < -1 ? VH(s.live_list[std::size_t(-2 - r)].vertex) : VH();
 }
 
 // The node id of vertex v.
@@ -1601,6 +1597,8 @@ static void retriangulate(NodeEraser::Impl &s) {
     }
 
     m.status(h.v).set_deleted(true);
+    if (s.lattice)
+        s.free_vertices.push_back(h.v);
     for (int i = next_spoke; i < n; ++i) {
         const EH e = m.edge_handle(h.h[i]);
         m.status(e).set_deleted(true);
@@ -1657,7 +1655,6 @@ static void retriangulate(NodeEraser::Impl &s) {
     }
     record.ring_size = std::uint8_t(n);
     record.boundary = h.boundary;
-    record.vertex = h.v.idx();
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
         ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
@@ -2103,17 +2100,24 @@ static FH take_face(NodeEraser::Impl &s) {
     return f;
 }
 
-// The vertex of node x, made now for a sparse lattice's sample that enters for the first time
-// (marked deleted, without edges, as erased nodes are).
+// The vertex of erased node x: its own without a lattice, else one an erase freed or a new one,
+// given x's point and sample (marked deleted, without edges, as erased nodes are).
 static VH vertex_for(NodeEraser::Impl &s, std::uint32_t x) {
-    const VH known = vh(s, x);
-    if (known.is_valid())
-        return known;
+    if (!s.lattice)
+        return VH(int(x));
     Mesh &m = *s.mesh;
-    const VH v = m.add_vertex(node_point(s, x));
-    m.status(v).set_deleted(true);
+    VH v;
+    if (s.free_vertices.empty()) {
+        v = m.add_vertex(node_point(s, x));
+        m.status(v).set_deleted(true);
+        s.sample_of.push_back(x);
+    } else {
+        v = s.free_vertices.back();
+        s.free_vertices.pop_back();
+        m.point(v) = node_point(s, x);
+        s.sample_of[std::size_t(v.idx())] = x;
+    }
     m.property(s.origin, v) = std::int64_t(x);
-    s.sample_of.push_back(x);
     return v;
 }
 
@@ -2655,7 +2659,19 @@ void NodeEraser::compact() {
     m.add_property(head);
     m.property(maxdev).data_vector() = std::move(s.face_maxdev);
     m.property(head).data_vector() = std::move(s.face_head);
-    m.garbage_collection(false, true, true);
+    // A sparse lattice's erased vertices go too (its erased nodes have none): each live node's
+    // vertex is found again from the origin property, which the collection moves with it.
+    m.garbage_collection(s.lattice != nullptr, true, true);
+    if (s.lattice) {
+        std::vector<VH>().swap(s.free_vertices);
+        s.sample_of.resize(m.n_vertices());
+        s.sample_of.shrink_to_fit();
+        for (auto v : m.vertices()) {
+            const std::uint32_t x = std::uint32_t(m.property(s.origin, v));
+            s.sample_of[std::size_t(v.idx())] = x;
+            live_node(s, x).vertex = v.idx();
+        }
+    }
     s.face_maxdev = std::move(m.property(maxdev).data_vector());
     s.face_head = std::move(m.property(head).data_vector());
     m.remove_property(maxdev);
@@ -3451,6 +3467,7 @@ std::size_t NodeEraser::history_bytes() const {
            s.cell_visit.capacity() +
            s.records.bytes() + s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
            s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
+           s.free_vertices.capacity() * sizeof(VH) +
            s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
            s.sample_of.capacity() * sizeof(std::uint32_t) +
            (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float);

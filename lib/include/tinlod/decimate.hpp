@@ -104,10 +104,11 @@ struct EraseOptions {
     // A sparse grid TIN: the mesh's vertices are some of this lattice's samples (the origin
     // property names each, its point as grid_vertices has it), triangulated over the lattice's
     // whole rectangle; the samples it left out have no vertex (as with to_lattice_mesh, see
-    // absent_history) until they enter, when a vertex is added for them. Its memory follows the
-    // nodes that are or were live, not the lattice (a 4097² flight's TIN held 4-5 % of its
-    // samples). Node ids (recover, is_erased, ring) are then samples, not vertex indices. Must
-    // outlive the eraser.
+    // absent_history) until they enter. An erase frees its node's vertex, and a sample that enters
+    // or comes back takes a freed one (or a new one when none is free), so the mesh's memory
+    // follows the live nodes, not the lattice. A vertex handle given to recover, is_erased or ring
+    // names the sample its origin property names (a deleted vertex: the last sample it held).
+    // Must outlive the eraser.
     const Heightfield *lattice = nullptr;
     // Called now and then by erase() (screen and vertical models) with the share of its work done,
     // non-decreasing in [0, 1] (for a progress bar). With a budget: the erases made over those it needs; with a bound
@@ -209,7 +210,8 @@ class NodeEraser {
 
     // Drops the erased edges and faces from the mesh's arrays (an erase from a grid keeps a few
     // percent of them): edge and face handles change, vertex handles stay (erased vertices remain,
-    // marked deleted: they name the history). Re-inserts then add edges and faces as they need.
+    // marked deleted: they name the history), except with EraseOptions::lattice, where the erased
+    // vertices go too and the live ones move down in order. Re-inserts then add what they need.
     // OpenMesh keeps the arrays' capacity; to give the memory back, copy the mesh and rebind.
     void compact();
     // Continues on `mesh`, a copy of the eraser's current mesh, for a long run of updates: the

@@ -69,9 +69,9 @@ class Refiner {
     FrameStats update(const View& view);
 
     // The current TIN: erased nodes and their faces are marked deleted, not removed. From a mesh,
-    // vertex idx = input vertex. From a heightfield, the vertices are the samples that are or
-    // were live (the origin property names each; a sample gets its vertex when it first enters),
-    // so the TIN's memory follows its nodes, not the grid.
+    // vertex idx = input vertex. From a heightfield, a vertex per live sample (the origin property
+    // names each): an erase frees its node's vertex for the next sample that enters or comes back,
+    // so the TIN's memory follows its live nodes, not the grid or the samples ever live.
     const Mesh& mesh() const;
     bool is_erased(Mesh::VertexHandle v) const;
     // Bytes of the whole structure: the mesh's arrays and the erase history.
