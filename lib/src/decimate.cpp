@@ -327,8 +327,9 @@ struct LiveNode {
     // For the screen model's updates, as logarithms (see Impl::face_seen_dev for the motion
     // factor that carries them to a later view): under the view of update seen_at, every node the
     // faces it seeds (see seed_fan) swallowed had a weighted deviation <= exp(seen_log) (+inf:
-    // none known, dropped when the fan changes); under the view of update low_at, its erase cost
-    // was >= exp(low_log) (-inf: none known, dropped when it turns dirty; +inf: parked, see park).
+    // none known, dropped when the fan changes but by an update's erase, see carry_seen); under
+    // the view of update low_at, its erase cost was >= exp(low_log) (-inf: none known, dropped
+    // when it turns dirty; +inf: parked, see park).
     float seen_log = INFINITY;
     float low_log = -INFINITY;
     std::uint32_t seen_at = 0;
@@ -1911,6 +1912,11 @@ static void remember_low(const NodeEraser::Impl &s, LiveNode &l, double cost) {
     }
 }
 
+static void seen_before(const NodeEraser::Impl &s, const Hole &h,
+                        std::array<double, k_max_ring> &old);
+static void carry_seen(NodeEraser::Impl &s, const Hole &h,
+                       const std::array<double, k_max_ring> &old);
+
 // One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
 // cost is within the limit; a node whose fan swallowed more than `cap` nodes is left as it is
 // until its ring changes. s.stamp holds, per node, the pass (mod 256) in which its ring last
@@ -1954,7 +1960,10 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
         return false;
     }
     s.reerased += (s.flags[x] & k_recovered) != 0;
+    std::array<double, k_max_ring> seen;
+    seen_before(s, s.hole, seen);
     retriangulate(s);
+    carry_seen(s, s.hole, seen);
     for (int i = 0; i < s.hole.n; ++i) {
         mark_dirty(s, node_of(s, s.hole.r[i]));
         node_stamp(s, node_of(s, s.hole.r[i])) = s.pass;
@@ -2974,6 +2983,52 @@ static bool moved_within(const glm::dvec3 &eye, const glm::dvec3 &p, double r, d
     // slack (|p - eye| - r) > per_x moved, squared: both sides are positive.
     const double rhs = slack * r + per_x * moved * (1.0 + 1e-9);
     return slack * slack * d2 > rhs * rhs * (1.0 + 1e-9);
+}
+
+// Live node l's seen bound (LiveNode::seen_log) carried to the current view, as a logarithm
+// (+inf: none that carries over).
+static double seen_now(const NodeEraser::Impl &s, const LiveNode &l) {
+    if (!(l.seen_log < INFINITY))
+        return INFINITY;
+    if (l.seen_at == s.updates)
+        return double(l.seen_log);
+    const NodeEraser::Impl::Since *d = since(s, l.seen_at);
+    if (!d)
+        return INFINITY;
+    const double nearest = glm::length(to_glm(l.p) - s.view.eye) - double(l.reach);
+    return double(l.seen_log) + log_growth(s, *d, nearest, l.seen_cone);
+}
+
+// Before an update's erase of h.v: its ring nodes' seen bounds carried to this view (+inf: none),
+// for carry_seen.
+static void seen_before(const NodeEraser::Impl &s, const Hole &h,
+                        std::array<double, k_max_ring> &old) {
+    for (int i = 0; i < h.n; ++i) {
+        const std::uint32_t x = node_of(s, h.r[i]);
+        old[std::size_t(i)] = !s.fans_stale && keeps_bounds(s) && s.record_of[x] < 0
+                                  ? seen_now(s, s.live_list[std::size_t(-2 - s.record_of[x])])
+                                  : INFINITY;
+    }
+}
+
+// After it: each ring node gets back a seen bound, which widen_fans dropped, made under this view:
+// its faces the erase left as they were are within their old bound (`old`), and the new ones
+// within the erase's cost, the exact largest weighted deviation of the samples in the hole. Else
+// the next update walked their fans again: on the 4097² valley drive at 30 frames per second,
+// 1,020 nodes per frame had their fans walked for want of a seen bound, 580 with it, and the frames
+// took 1-5 % less (scratch runs, the same nodes erased and recovered).
+static void carry_seen(NodeEraser::Impl &s, const Hole &h,
+                       const std::array<double, k_max_ring> &old) {
+    const double cost = h.cost > 0.0 ? std::log(h.cost * (1.0 + 1e-6)) : -INFINITY;
+    for (int i = 0; i < h.n; ++i) {
+        if (!(old[std::size_t(i)] < INFINITY))
+            continue;
+        LiveNode &l = live_node(s, node_of(s, h.r[i]));
+        const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
+        l.seen_log = float_up(std::max(old[std::size_t(i)], cost) + 1e-6);
+        l.seen_at = s.updates;
+        l.seen_cone = s.weigher.in_cone(p - r, p + r);
+    }
 }
 
 // The bound face f's seen bound gives under the current view for nodes in the box [lo, hi] (its
