@@ -527,6 +527,10 @@ Claim p99_claim(const std::string &claim, const std::vector<PathResult> &results
 // "1/k" for a camera k times slower than the paths, "1" for the paths' own speed.
 std::string speed_name(int slower) { return slower == 1 ? "1" : "1/" + std::to_string(slower); }
 
+// How many times slower than the paths the camera of ssums[k] below flies (k = 0: the 30 fps
+// flight at the paths' own speed).
+int slower_of(std::size_t k) { return k == 0 ? 1 : k_slower[k - 1]; }
+
 // The p99 ≤ 8 ms claim at 30 fps against the camera's speed: the fastest of the speeds flown
 // (the paths' own and the slowed ones) from which on every slower one keeps every path's p99 within
 // the goal. ssums[0] is the 30 fps flight's, ssums[k] the one k_slower[k - 1] times slower.
@@ -539,11 +543,10 @@ Claim speed_claim(const Flight &flight, const std::vector<std::vector<Summary>> 
             all = all && s.p99 <= 8;
         if (!all)
             break;
-        holds_from = k == 0 ? 1 : k_slower[k - 1];
+        holds_from = slower_of(k);
     }
     for (std::size_t k = 0; k < ssums.size(); ++k) {
-        const int slower = k == 0 ? 1 : k_slower[k - 1];
-        text += (k ? "; " : "") + speed_name(slower) + ": p99";
+        text += (k ? "; " : "") + speed_name(slower_of(k)) + ": p99";
         for (std::size_t i = 0; i < ssums[k].size(); ++i)
             text += (i ? " / " : " ") + fmt("%.1f", ssums[k][i].p99);
         text += " ms";
@@ -767,7 +770,7 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
           "|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < flight.interactive.size(); ++i)
         for (std::size_t k = 0; k < ssums.size(); ++k) {
-            const int slower = k == 0 ? 1 : k_slower[k - 1];
+            const int slower = slower_of(k);
             const PathResult &p = k == 0 ? flight.interactive[i] : flight.slowed[k - 1][i];
             const Summary &s = ssums[k][i];
             md += "| " + p.name + " | " + speed_name(slower) + " | " +

@@ -1912,8 +1912,7 @@ static void remember_low(const NodeEraser::Impl &s, LiveNode &l, double cost) {
     }
 }
 
-static void seen_before(const NodeEraser::Impl &s, const Hole &h,
-                        std::array<double, k_max_ring> &old);
+static void seen_before(NodeEraser::Impl &s, const Hole &h, std::array<double, k_max_ring> &old);
 static void carry_seen(NodeEraser::Impl &s, const Hole &h,
                        const std::array<double, k_max_ring> &old);
 
@@ -3001,14 +3000,10 @@ static double seen_now(const NodeEraser::Impl &s, const LiveNode &l) {
 
 // Before an update's erase of h.v: its ring nodes' seen bounds carried to this view (+inf: none),
 // for carry_seen.
-static void seen_before(const NodeEraser::Impl &s, const Hole &h,
-                        std::array<double, k_max_ring> &old) {
-    for (int i = 0; i < h.n; ++i) {
-        const std::uint32_t x = node_of(s, h.r[i]);
-        old[std::size_t(i)] = !s.fans_stale && keeps_bounds(s) && s.record_of[x] < 0
-                                  ? seen_now(s, s.live_list[std::size_t(-2 - s.record_of[x])])
-                                  : INFINITY;
-    }
+static void seen_before(NodeEraser::Impl &s, const Hole &h, std::array<double, k_max_ring> &old) {
+    const bool kept = !s.fans_stale && keeps_bounds(s);
+    for (int i = 0; i < h.n; ++i)
+        old[std::size_t(i)] = kept ? seen_now(s, live_node(s, node_of(s, h.r[i]))) : INFINITY;
 }
 
 // After it: each ring node gets back a seen bound, which widen_fans dropped, made under this view:
@@ -3241,8 +3236,7 @@ static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_a
                              log_recover - double(l.seen_log) - (l.seen_cone ? 0.0 : d->turn / falloff),
                              l.seen_cone ? 1.0 : 1.0 + k_asin_quarter / falloff))
                 return true;
-            const double nearest = glm::length(to_glm(l.p) - s.view.eye) - double(l.reach);
-            if (double(l.seen_log) + log_growth(s, *d, nearest, l.seen_cone) <= log_recover)
+            if (seen_now(s, l) <= log_recover)
                 return true;
         }
     }
