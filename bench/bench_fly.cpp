@@ -14,7 +14,8 @@
 //     from scratch by retrieval at share * tau and node erase to tau over every sample (erase_dem,
 //     as `tinlod simplify`, the quad-tree built once beforehand), with its time as a ratio to that
 //     frame's update and both TINs' screen error measured exhaustively over every DEM sample
-//     (measure_error).
+//     (measure_error), and the share of the heights the refiner's TIN needs in memory for its
+//     bound from that view (height_working_set: what a refiner that paged its heights would keep).
 // Each path's frames after the first stop once their updates took a time budget (the suite's 30
 // minutes; the rebuilds and error measurements come on top); the results say how many of the
 // path's frames were flown.
@@ -40,6 +41,7 @@
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/refine.hpp"
+#include "tinlod/store.hpp"
 #include "tinlod/tin.hpp"
 #include "tinlod/util.hpp"
 #include "tinlod/view.hpp"
@@ -81,6 +83,7 @@ constexpr int k_slower[] = {2, 4, 8};
 // The rebuild runs on every 20th frame: on 4097² it takes about 10 s (erase_dem's per-sample
 // arrays and its mesh span the whole grid).
 constexpr int k_rebuild_every = 20;
+constexpr int k_block_cells = 16;       // the finer blocks a paging refiner could read heights by
 constexpr int k_quick_frames = 21;      // the quick run flies at most the first 5 s of each path
 constexpr double k_budget_s = 60;       // each path's updates stop once they took this long (wall,
 constexpr double k_quick_budget_s = 10; // full / quick run); rebuilds and measurements not counted
@@ -225,6 +228,9 @@ struct FrameRow {
     double rebuild_ms = 0.0, rebuild_cpu_ms = 0.0;
     std::int64_t rebuild_nodes = 0, rebuild_triangles = 0;
     double max_px = 0.0, rebuild_max_px = 0.0;
+    // The share of the heights the refiner's TIN needs for its bound from the frame's view
+    // (height_working_set): of the store's tiles, and of 16-cell blocks (rebuild frames).
+    double heights_tiles = 0.0, heights_blocks = 0.0;
     std::int64_t changed() const { return stats.erased + stats.recovered; }
 };
 
@@ -245,6 +251,7 @@ struct Flight {
     std::vector<double> eye_speed;               // each path's mean eye speed, m/s
     double built_bytes_mb = 0.0; // Refiner::bytes() right after the constructor
     double built_rss_mb = 0.0;   // resident memory the constructor added
+    std::int64_t samples = 0;    // the terrain's
 };
 
 double measured_px(const Heightfield &hf, const Mesh &tin, const View &view) {
@@ -328,6 +335,14 @@ PathResult fly(const Heightfield &hf, const QuadTree &tree, const FlightPath &p,
             row.rebuild_triangles = std::int64_t(rebuilt.n_faces());
             row.max_px = measured_px(hf, refiner->mesh(), views[i]);
             row.rebuild_max_px = measured_px(hf, rebuilt, views[i]);
+            const SignificanceOptions weights = RefineOptions{}.significance;
+            row.heights_tiles =
+                height_working_set(tree, refiner->mesh(), views[i], weights, k_tau,
+                                   level_for_cells(tree.layout(), k_store_tile_cells))
+                    .share();
+            row.heights_blocks = height_working_set(tree, refiner->mesh(), views[i], weights, k_tau,
+                                                    level_for_cells(tree.layout(), k_block_cells))
+                                     .share();
             std::printf("r");
         } else {
             std::printf(".");
@@ -397,6 +412,9 @@ struct Summary {
     double rebuild_cpu_median = 0, ratio_median = 0, ratio_min = 0;
     double max_px = 0, rebuild_max_px = 0; // over the rebuild (or checked) frames
     int checks = 0;
+    // The shares of the heights the TIN's bound needs (FrameRow), least and most over the rebuild
+    // frames.
+    double tiles_min = 1, tiles_max = 0, blocks_min = 1, blocks_max = 0;
 };
 
 Summary summarise(const std::vector<FrameRow> &rows) {
@@ -419,6 +437,10 @@ Summary summarise(const std::vector<FrameRow> &rows) {
         ratio.push_back(r.rebuild_cpu_ms / std::max(1e-3, r.cpu_ms));
         s.max_px = std::max(s.max_px, r.max_px);
         s.rebuild_max_px = std::max(s.rebuild_max_px, r.rebuild_max_px);
+        s.tiles_min = std::min(s.tiles_min, r.heights_tiles);
+        s.tiles_max = std::max(s.tiles_max, r.heights_tiles);
+        s.blocks_min = std::min(s.blocks_min, r.heights_blocks);
+        s.blocks_max = std::max(s.blocks_max, r.heights_blocks);
     }
     if (rows.empty())
         return s;
@@ -461,7 +483,8 @@ void write_csv(const std::string &file, const Flight &flight) {
     out << "path,fps,frame,t,ms,cpu_ms,changed,erased,recovered,reerased,entered,candidates,nodes,"
            "triangles,"
            "bytes_per_node,rebuild_ms,rebuild_cpu_ms,rebuild_nodes,rebuild_triangles,"
-           "rebuild_ratio,max_screen_px,rebuild_max_screen_px\n";
+           "rebuild_ratio,max_screen_px,rebuild_max_screen_px,heights_tiles_share,"
+           "heights_blocks_share\n";
     for (const auto &[fps, results] :
          {std::pair{k_fps, &flight.paths}, std::pair{k_fps_interactive, &flight.interactive}})
         for (const PathResult &p : *results)
@@ -476,11 +499,12 @@ void write_csv(const std::string &file, const Flight &flight) {
                 out << fmt("%.2f", r.rebuild_ms) << "," << fmt("%.2f", r.rebuild_cpu_ms) << ","
                     << r.rebuild_nodes << "," << r.rebuild_triangles << ","
                     << fmt("%.1f", r.rebuild_cpu_ms / std::max(1e-3, r.cpu_ms)) << ","
-                    << fmt("%.4f", r.max_px) << "," << fmt("%.4f", r.rebuild_max_px);
+                    << fmt("%.4f", r.max_px) << "," << fmt("%.4f", r.rebuild_max_px) << ","
+                    << fmt("%.4f", r.heights_tiles) << "," << fmt("%.4f", r.heights_blocks);
             else if (r.checked)
-                out << ",,,,," << fmt("%.4f", r.max_px) << ",";
+                out << ",,,,," << fmt("%.4f", r.max_px) << ",,,";
             else
-                out << ",,,,,,";
+                out << ",,,,,,,,";
             out << "\n";
         }
 }
@@ -739,6 +763,26 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               fmt("%.3f", s.max_px) + " | " + fmt("%.3f", s.rebuild_max_px) + " | " +
               fmt("%.3f", results[i].first_max_px) + " |\n";
     }
+    md += "\nThe heights the refiner keeps in memory, all of them (" +
+          fmt("%.0f", double(flight.samples) * sizeof(float) / (1024.0 * 1024.0)) +
+          " MB here): which of them would a refiner that paged them need, on those same frames? "
+          "Those under a face whose deviation from it the quad-tree's node bounds cannot clear "
+          "(`height_working_set`: a node's bound plus its fan's distance from the face's plane, "
+          "times the largest weight over the node, within τ), by blocks of heights: the store's "
+          "tiles (" +
+          std::to_string(k_store_tile_cells) + " cells a side) and blocks of " +
+          std::to_string(k_block_cells) +
+          " cells; the share of all blocks, least–most over the frames.\n\n"
+          "| path | frames | store tiles needed | " +
+          std::to_string(k_block_cells) + "-cell blocks needed |\n|---|---|---|---|\n";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const Summary &s = sums[i];
+        if (s.rebuilds == 0)
+            continue;
+        md += "| " + results[i].name + " | " + std::to_string(s.rebuilds) + " | " +
+              fmt("%.0f", 100 * s.tiles_min) + "–" + fmt("%.0f %%", 100 * s.tiles_max) + " | " +
+              fmt("%.0f", 100 * s.blocks_min) + "–" + fmt("%.0f %%", 100 * s.blocks_max) + " |\n";
+    }
     md += "\nThe same refiner then flies the three paths again at " +
           fmt("%.0f", k_fps_interactive) +
           " frames per second of path time, as an interactive viewer samples them: the camera "
@@ -819,6 +863,7 @@ void run(const FlyOptions &options) {
     std::printf("== flight on %s, made in %.1f s\n", terrain.c_str(), total.ms() / 1e3);
 
     Flight flight;
+    flight.samples = hf.size();
     std::unique_ptr<Refiner> refiner;
     const std::vector<FlightPath> paths = flight_paths(hf);
     for (const FlightPath &p : paths)
@@ -848,9 +893,11 @@ void run(const FlyOptions &options) {
         const Summary &s = sums.back();
         std::printf("  %-8s p50 %.2f ms, p99 %.2f ms (CPU); r(time, changed) %.2f, r(time, "
                     "nodes) %.2f; %.0f B/node; rebuild ratio median %.0fx (lowest %.0fx); max px "
-                    "flight %.3f, rebuild %.3f\n",
+                    "flight %.3f, rebuild %.3f; heights needed: tiles %.0f-%.0f %%, blocks "
+                    "%.0f-%.0f %%\n",
                     p.name.c_str(), s.p50, s.p99, s.r_changed, s.r_nodes, s.bytes_per_node,
-                    s.ratio_median, s.ratio_min, s.max_px, s.rebuild_max_px);
+                    s.ratio_median, s.ratio_min, s.max_px, s.rebuild_max_px, 100 * s.tiles_min,
+                    100 * s.tiles_max, 100 * s.blocks_min, 100 * s.blocks_max);
     }
     const Summary pooled = summarise(all);
     std::vector<Summary> isums;

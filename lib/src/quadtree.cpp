@@ -10,11 +10,14 @@
 #include "tinlod/util.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace tinlod {
 
@@ -747,6 +750,154 @@ Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
                              nodes.begin());
     add_in_row_order(mesh, t, nodes.size());
     return mesh;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The heights a TIN's bound rests on
+
+int level_for_cells(const QuadLayout& layout, int cells) {
+    const auto widest = [](const AxisSplit& axis, int d) {
+        std::uint32_t most = 0;
+        for (std::uint32_t k = 0; k < axis.count(d); ++k)
+            most = std::max(most, axis.length(d, k));
+        return most;
+    };
+    int d = 0;
+    while (d < layout.levels() - 2 &&
+           std::max(widest(layout.x, d), widest(layout.y, d)) > std::uint32_t(std::max(cells, 1)))
+        ++d;
+    return d;
+}
+
+namespace {
+
+// Within this many cells of a face counts as on it: the face's corners are the grid's float
+// coordinates over the spacing, a few 1e-5 cells off the lattice on a 4097² grid.
+constexpr double k_on_face = 1e-3;
+
+// One live face in lattice units (u = column, v = row) with its plane in the world frame.
+struct WorkingFace {
+    std::array<glm::dvec2, 3> q; // corners, lattice units
+    std::array<glm::dvec3, 3> p; // corners, world
+    glm::dvec2 lo, hi;           // its box, lattice units
+    glm::dvec3 normal;           // cross(p1 - p0, p2 - p0): normal.z > 0 for a CCW face
+
+    double plane(double x, double y) const {
+        return p[0].z - (normal.x * (x - p[0].x) + normal.y * (y - p[0].y)) / normal.z;
+    }
+    // Whether the closed face meets the closed rectangle [x0, x1] x [y0, y1] (separating axes: the
+    // box's, then each edge's normal).
+    bool meets(double x0, double y0, double x1, double y1) const {
+        if (hi.x < x0 || lo.x > x1 || hi.y < y0 || lo.y > y1)
+            return false;
+        for (int i = 0; i < 3; ++i) {
+            const glm::dvec2 a = q[i], b = q[(i + 1) % 3];
+            const glm::dvec2 inward(a.y - b.y, b.x - a.x); // left of a -> b: inside a CCW face
+            double most = -INFINITY;
+            for (const double x : {x0, x1})
+                for (const double y : {y0, y1})
+                    most = std::max(most, glm::dot(inward, glm::dvec2(x, y) - a));
+            if (most < -k_on_face * glm::length(inward))
+                return false;
+        }
+        return true;
+    }
+    // Whether lattice sample (c, r), not a corner, lies inside or on the face.
+    bool holds(std::uint32_t c, std::uint32_t r) const {
+        const glm::dvec2 s(c, r);
+        for (int i = 0; i < 3; ++i) {
+            if (glm::length(s - q[i]) < k_on_face)
+                return false;
+            const glm::dvec2 a = q[i], b = q[(i + 1) % 3];
+            const double left = (b.x - a.x) * (s.y - a.y) - (b.y - a.y) * (s.x - a.x);
+            if (left < -k_on_face * glm::length(b - a))
+                return false;
+        }
+        return true;
+    }
+};
+
+} // namespace
+
+WorkingSet height_working_set(const QuadTree& tree, const Mesh& tin, const View& view,
+                              const SignificanceOptions& significance, double tol_px, int level) {
+    const QuadLayout& lay = tree.layout();
+    const GridFrame& frame = tree.frame();
+    if (lay.levels() < 2 || level < 0 || level > lay.levels() - 2)
+        throw std::invalid_argument("height_working_set: level " + std::to_string(level) +
+                                    " has no node bounds");
+    const Weigher weigher(&view, significance);
+    WorkingSet out;
+    out.level = level;
+    out.needed.assign(std::size_t(lay.level_nodes(level)), 0);
+    struct Node {
+        int d;
+        std::uint32_t i, j;
+    };
+    std::vector<Node> stack;
+    for (const auto f : tin.faces()) {
+        if (tin.status(f).deleted())
+            continue;
+        WorkingFace face;
+        int k = 0;
+        for (const auto v : tin.fv_range(f)) {
+            const Mesh::Point& point = tin.point(v);
+            face.p[k] = glm::dvec3(point[0], point[1], point[2]);
+            face.q[k] = glm::dvec2(face.p[k].x / frame.dx, face.p[k].y / frame.dy);
+            ++k;
+        }
+        face.normal = glm::cross(face.p[1] - face.p[0], face.p[2] - face.p[0]);
+        if (!(face.normal.z > 0.0))
+            continue; // degenerate in xy: it covers no sample
+        face.lo = glm::min(face.q[0], glm::min(face.q[1], face.q[2]));
+        face.hi = glm::max(face.q[0], glm::max(face.q[1], face.q[2]));
+        stack.assign(1, {0, 0, 0});
+        while (!stack.empty()) {
+            const Node n = stack.back();
+            stack.pop_back();
+            const std::uint32_t x0 = lay.x.lo(n.d, n.i), x1 = lay.x.hi(n.d, n.i);
+            const std::uint32_t y0 = lay.y.lo(n.d, n.j), y1 = lay.y.hi(n.d, n.j);
+            if (!face.meets(x0, y0, x1, y1))
+                continue;
+            const NodeBound& b = tree.bound(n.d, n.i, n.j);
+            if (x1 - x0 >= 2 && y1 - y0 >= 2) {
+                const std::uint32_t mx = (x0 + x1) / 2, my = (y0 + y1) / 2;
+                double dev = 0.0;
+                for (const auto& [c, r] : {std::pair{x0, y0}, std::pair{x1, y0}, std::pair{x0, y1},
+                                          std::pair{x1, y1}, std::pair{mx, my}}) {
+                    const double x = double(float(c * frame.dx)), y = double(float(r * frame.dy));
+                    dev = std::max(dev, std::abs(double(tree.elevation(c, r)) - face.plane(x, y)));
+                }
+                const glm::dvec3 lo(std::max(double(x0), face.lo.x) * frame.dx,
+                                    std::max(double(y0), face.lo.y) * frame.dy, b.zmin);
+                const glm::dvec3 hi(std::min(double(x1), face.hi.x) * frame.dx,
+                                    std::min(double(y1), face.hi.y) * frame.dy, b.zmax);
+                // A hair over the sum, for its rounding and the float grid coordinates.
+                if ((double(b.error) + dev) * (1.0 + 1e-9) * weigher.bound(lo, hi) <= tol_px)
+                    continue;
+            }
+            if (n.d < level) {
+                const std::uint32_t ci = lay.x.first_child(n.d, n.i);
+                const std::uint32_t cj = lay.y.first_child(n.d, n.j);
+                for (std::uint32_t a = 0; a < (x1 - x0 >= 2 ? 2u : 1u); ++a)
+                    for (std::uint32_t c = 0; c < (y1 - y0 >= 2 ? 2u : 1u); ++c)
+                        stack.push_back({n.d + 1, ci + a, cj + c});
+                continue;
+            }
+            std::uint8_t& need = out.needed[std::size_t(n.j) * lay.x.count(level) + n.i];
+            if (need)
+                continue;
+            const auto c0 = std::uint32_t(std::max(double(x0), std::ceil(face.lo.x - 1e-6)));
+            const auto c1 = std::uint32_t(std::min(double(x1), std::floor(face.hi.x + 1e-6)));
+            const auto r0 = std::uint32_t(std::max(double(y0), std::ceil(face.lo.y - 1e-6)));
+            const auto r1 = std::uint32_t(std::min(double(y1), std::floor(face.hi.y + 1e-6)));
+            for (std::uint32_t r = r0; r <= r1 && !need; ++r)
+                for (std::uint32_t c = c0; c <= c1 && !need; ++c)
+                    need = face.holds(c, r);
+            out.count += need;
+        }
+    }
+    return out;
 }
 
 } // namespace tinlod
