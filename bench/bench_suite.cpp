@@ -64,6 +64,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -1072,8 +1073,8 @@ std::vector<Claim> claims(const Suite &s) {
                 largest = &r;
         if (largest) {
             const double rate = (*largest)["mtris_per_s"];
-            out.push_back({"quad-tree build ≥ 25 M samples/s (bounds in memory; the store write "
-                           "is not timed here)",
+            out.push_back({"quad-tree build ≥ 25 M samples/s (bounds in memory, from the loaded "
+                           "raster as `tinlod build` makes them; the store write is not timed here)",
                            fmt("%.1f", rate) + " M samples/s on " + cell(*largest, "input"),
                            rate >= 25 ? "ahead by " + fmt("%.1f×", rate / 25)
                                       : "behind: " + fmt("%.2f×", rate / 25) + " of the goal"});
@@ -1442,8 +1443,10 @@ void run(const SuiteOptions &options) {
         in->name = "enlarged_" + std::to_string(side);
         in->hf = bench::enlarge(n42, double(side - 1) / (n42.width - 1));
         const double made_ms = clock.ms();
+        // As `tinlod build` makes the bounds: the tree takes the loaded raster's elevations over.
+        Heightfield raster = in->hf;
         clock.reset();
-        in->tree = std::make_unique<QuadTree>(in->hf);
+        in->tree = std::make_unique<QuadTree>(std::move(raster));
         const double build_ms = clock.ms();
         s.scaling.push_back({{"contender", "tinlod QuadTree build (in memory)"},
                              {"input", in->name},

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <utility>
 
 using namespace tinlod;
 using namespace tinlod::test;
@@ -175,6 +176,48 @@ TEST(QuadTree, BoundsAreMonotoneAndBoxesNested) {
                             ASSERT_LE(p.zmin, ch.zmin) << a.name;
                             ASSERT_GE(p.zmax, ch.zmax) << a.name;
                         }
+                }
+    }
+}
+
+// A node's z box is the least and largest of its samples, exactly: the build folds the children's
+// boxes into their parent's instead of reading the samples again.
+TEST(QuadTree, BoxesAreTheExtremesOfTheNodesSamples) {
+    for (const Asset& a : dem_assets()) {
+        const Heightfield& hf = dem(a);
+        const QuadTree tree(hf);
+        const QuadLayout& lay = tree.layout();
+        for (int d = 0; d + 1 < lay.levels(); ++d)
+            for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
+                for (std::uint32_t i = 0; i < lay.x.count(d); ++i) {
+                    float lo = INFINITY, hi = -INFINITY;
+                    for (std::uint32_t r = lay.y.lo(d, j); r <= lay.y.hi(d, j); ++r)
+                        for (std::uint32_t c = lay.x.lo(d, i); c <= lay.x.hi(d, i); ++c) {
+                            lo = std::min(lo, hf.at(int(c), int(r)));
+                            hi = std::max(hi, hf.at(int(c), int(r)));
+                        }
+                    ASSERT_EQ(tree.bound(d, i, j).zmin, lo) << a.name << " level " << d;
+                    ASSERT_EQ(tree.bound(d, i, j).zmax, hi) << a.name << " level " << d;
+                }
+    }
+}
+
+// Built from a raster it takes over (`tinlod build`), the tree is the one built from a copy.
+TEST(QuadTree, TakingTheRasterOverBuildsTheSameTree) {
+    for (const Asset& a : dem_assets()) {
+        const QuadTree copied(dem(a));
+        Heightfield raster = dem(a);
+        const QuadTree taken(std::move(raster));
+        ASSERT_EQ(taken.elevations(), dem(a).z) << a.name;
+        ASSERT_EQ(taken.layout().levels(), copied.layout().levels()) << a.name;
+        const QuadLayout& lay = copied.layout();
+        for (int d = 0; d + 1 < lay.levels(); ++d)
+            for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
+                for (std::uint32_t i = 0; i < lay.x.count(d); ++i) {
+                    const NodeBound &x = copied.bound(d, i, j), &y = taken.bound(d, i, j);
+                    ASSERT_EQ(x.error, y.error) << a.name;
+                    ASSERT_EQ(x.zmin, y.zmin) << a.name;
+                    ASSERT_EQ(x.zmax, y.zmax) << a.name;
                 }
     }
 }

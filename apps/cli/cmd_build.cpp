@@ -9,6 +9,7 @@
 #include "tinlod/util.hpp"
 
 #include <cstdio>
+#include <utility>
 
 namespace tinlod::cli {
 
@@ -29,12 +30,13 @@ static Register build("build", 20, [](CLI::App& cmd) {
             throw Error(args->output, "a store is not a mesh file; name it .tlq");
         Stopwatch clock;
         const LoadOptions lo = args->raster.load_options();
-        const Heightfield hf = load_heightfield(args->input, lo);
+        Heightfield hf = load_heightfield(args->input, lo);
         const double ms_load = clock.ms();
         clock.reset();
         const int levels = QuadLayout(hf.width, hf.height).levels();
         Progress bounds_bar("bounds", hf.size() * std::max(levels - 1, 1));
-        const QuadTree tree(hf, &bounds_bar);
+        // The tree takes the elevations over: the raster is not held twice.
+        const QuadTree tree(std::move(hf), &bounds_bar);
         bounds_bar.finish();
         const double ms_bounds = clock.ms();
         clock.reset();

@@ -115,6 +115,8 @@ class QuadTree {
     // Builds the bounds in O(samples * levels). `progress` (optional) advances by samples per level.
     // Throws Error when the grid is smaller than 2x2 or larger than 2^31 samples.
     explicit QuadTree(const Heightfield& hf, Progress* progress = nullptr);
+    // The same, taking hf's elevations over instead of copying them (1 GB on a 16385² grid).
+    explicit QuadTree(Heightfield&& hf, Progress* progress = nullptr);
 
     const QuadLayout& layout() const { return layout_; }
     const GridFrame& frame() const { return frame_; }
@@ -129,6 +131,8 @@ class QuadTree {
     std::int64_t node_count() const; // nodes with a stored bound
 
   private:
+    void build(const Heightfield& hf, Progress* progress); // the bounds, once z_ holds hf's
+
     QuadLayout layout_;
     GridFrame frame_;
     std::vector<float> z_;
