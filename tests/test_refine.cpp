@@ -390,18 +390,20 @@ TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     std::string line;
     std::getline(in, line);
     EXPECT_EQ(line, "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,ms_erase,ms_recover,"
-                    "ms_total,max_screen_px,entered");
+                    "ms_total,max_screen_px,entered,evaluations");
     int frames = 0;
     std::int64_t first_nodes = 0, last_nodes = 0, entered = 0;
     while (std::getline(in, line)) {
         const std::vector<std::string> f = csv_cells(line);
-        ASSERT_EQ(f.size(), 12u) << line;
+        ASSERT_EQ(f.size(), 13u) << line;
         EXPECT_LE(std::stod(f[10]), 1.0) << line;
         last_nodes = std::stoll(f[1]);
         entered += std::stoll(f[11]);
         if (frames++ == 0) {
             first_nodes = last_nodes;
             EXPECT_GT(std::stod(f[6]), 0.0) << "the first frame retrieves";
+        } else {
+            EXPECT_GE(std::stoll(f[12]), std::stoll(f[3])) << "every erase was tried: " << line;
         }
     }
     EXPECT_EQ(frames, 11); // 20 s of path at 0.5 frames per second, both ends included
@@ -433,9 +435,9 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
         tiles.push_back(0);
         while (std::getline(in, line)) {
             const std::vector<std::string> f = csv_cells(line);
-            ASSERT_EQ(f.size(), 12u) << line;
+            ASSERT_EQ(f.size(), 13u) << line;
             EXPECT_LE(std::stod(f[10]), 1.0) << input << ": " << line;
-            nodes.push_back(f[1] + "," + f[2] + "," + f[3] + "," + f[4]);
+            nodes.push_back(f[1] + "," + f[2] + "," + f[3] + "," + f[4] + "," + f[12]);
             tiles.back() += std::stoll(f[5]);
         }
         runs.push_back(nodes);

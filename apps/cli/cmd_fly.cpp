@@ -28,8 +28,9 @@ namespace fs = std::filesystem;
 
 // tiles_read: a store's tiles, all on the first frame (fly reads a store whole), 0 for a DEM.
 // entered: recovered samples there for the first time (the first frame's retrieval left them out).
+// evaluations: erases tried by the update (each erased node's, and those that kept their node).
 static const char* k_frame_header = "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
-                                    "ms_erase,ms_recover,ms_total,max_screen_px,entered";
+                                    "ms_erase,ms_recover,ms_total,max_screen_px,entered,evaluations";
 
 static double percentile(std::vector<double> v, double q) {
     if (v.empty())
@@ -131,6 +132,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         std::vector<double> totals;
         double worst = 0.0;
         std::int64_t recovered_all = 0, erased_all = 0, reerased_all = 0, entered_all = 0;
+        std::int64_t evaluations_all = 0, erased_after_first = 0;
         Progress progress("fly", frames);
         for (int i = 0; i < frames; ++i) {
             FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
@@ -140,6 +142,10 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             erased_all += f.erased;
             reerased_all += f.reerased;
             entered_all += f.entered;
+            if (i > 0) {
+                evaluations_all += f.evaluations;
+                erased_after_first += f.erased;
+            }
             double max_px = -1.0; // not measured
             if (args->check) {
                 ErrorOptions eo;
@@ -158,12 +164,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
             std::snprintf(line, sizeof line,
-                          "%.3f,%lld,%lld,%lld,%lld,%lld,%.3f,%.3f,%.3f,%.3f,%s,%lld", t,
+                          "%.3f,%lld,%lld,%lld,%lld,%lld,%.3f,%.3f,%.3f,%.3f,%s,%lld,%lld", t,
                           (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
                           (long long)f.recovered, (long long)(i == 0 ? store_tiles : 0),
                           f.ms_retrieve, f.ms_erase + f.ms_weights,
                           f.ms_recover, f.ms_total,
-                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered);
+                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered,
+                          (long long)(i == 0 ? 0 : f.evaluations));
             csv << line << '\n';
             progress.update(i + 1);
         }
@@ -179,10 +186,12 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), "
                     "then per frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all "
                     "(%lld there for the first time, %lld erased again by the update that "
-                    "recovered them); %.0f bytes per node (TIN + history)%s\n",
+                    "recovered them); %.0f erases tried per frame, %.0f made; %.0f bytes per "
+                    "node (TIN + history)%s\n",
                     frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
                     (long long)erased_all, (long long)recovered_all, (long long)entered_all,
-                    (long long)reerased_all,
+                    (long long)reerased_all, double(evaluations_all) / std::max(frames - 1, 1),
+                    double(erased_after_first) / std::max(frames - 1, 1),
                     double(refiner->bytes()) / double(hf ? hf->size() : std::int64_t(m.n_vertices())),
                     args->check ? (", measured max " + std::to_string(worst) + " px").c_str() : "");
     };

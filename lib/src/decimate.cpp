@@ -3467,7 +3467,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         candidates.push_back(x);
     }
     s.reerased = 0;
+    const std::int64_t evaluations = s.evaluations;
     stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_swallowed);
+    stats.evaluations = s.evaluations - evaluations;
     stats.reerased = s.reerased;
     for (const std::uint32_t x : recovered)
         s.flags[x] &= std::uint8_t(~k_recovered);

@@ -106,6 +106,7 @@ FrameStats Refiner::update(const View& view) {
     f.fans_kept = u.fans_kept;
     f.reerased = u.reerased;
     f.candidates = u.candidates;
+    f.evaluations = u.evaluations;
     f.ms_weights = u.ms_weights;
     f.ms_recover = u.ms_recover;
     f.ms_erase = u.ms_erase;

@@ -154,6 +154,8 @@ struct UpdateStats {
     std::int64_t reerased = 0;    // of those, nodes this update had recovered (a recovery another
                                   // node's waited on, undone once that node was back)
     std::int64_t candidates = 0;  // live nodes whose erase was re-evaluated
+    std::int64_t evaluations = 0; // erases tried: the candidates, then the ring nodes of the erases
+                                  // made (an erase that fails keeps its node)
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
     double ms_weights = 0.0;      // the new view's weigher (node weights follow on demand)
     double ms_recover = 0.0;      // the recover pass

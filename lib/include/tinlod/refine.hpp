@@ -40,6 +40,7 @@ struct FrameStats {
                                  // they knew of their samples at the erase (UpdateStats)
     std::int64_t reerased = 0;   // nodes this update recovered and then erased again
     std::int64_t candidates = 0; // live nodes re-evaluated for erase
+    std::int64_t evaluations = 0; // erases tried (UpdateStats): those that fail keep their node
     double ms_retrieve = 0.0;    // the first frame: quad-tree build and retrieval
     double ms_weights = 0.0;     // per-node weights for the new view
     double ms_recover = 0.0;
