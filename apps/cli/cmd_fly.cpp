@@ -19,6 +19,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -110,16 +111,21 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             refiner.emplace(read_mesh(args->input), views.front(), options);
         } else {
             const LoadOptions lo = args->raster.load_options();
+            // A store's first retrieval reads the bounds it holds: no quad-tree is built.
+            std::unique_ptr<TileStore> store;
             if (is_store_file(args->input)) {
-                const TileStore store(args->input);
-                hf = store.heightfield();
-                store_tiles = store.tile_count();
+                store = std::make_unique<TileStore>(args->input);
+                hf = store->heightfield();
+                store_tiles = store->tile_count();
             } else {
                 hf = load_heightfield(args->input, lo);
             }
             for (const View& v : views)
                 check_eye_above(*hf, v.eye, args->path);
-            refiner.emplace(*hf, views.front(), options);
+            if (store)
+                refiner.emplace(*hf, std::move(store), views.front(), options);
+            else
+                refiner.emplace(*hf, views.front(), options);
         }
         const double ms_start = clock.ms();
 

@@ -63,24 +63,47 @@ static void start(Refiner::Impl &s, const View &first, bool retrieval) {
     s.first.ms_total = s.first.ms_retrieve + s.first.ms_weights + s.first.ms_erase;
 }
 
+// Starts from the TIN `retrieved(options)` gives, the quad-tree retrieval at the first retrieval's
+// share of the erase tolerance (`retrieved` holds its quad-tree only while it runs, so the tree
+// leaves memory before the erase), or from the full grid when the options ask for no retrieval
+// (a 0 share, or a model other than the screen one).
+template <class Retrieved>
+static void start_on_grid(Refiner::Impl &s, const Heightfield &hf, const View &first,
+                          Retrieved retrieved) {
+    const Stopwatch clock;
+    const double share =
+        s.options.significance.model == SpModel::screen ? s.options.retrieve_share : 0;
+    if (share > 0) {
+        RetrieveOptions ro;
+        ro.tol_px = share * s.options.tol_px * (1.0 - s.options.hysteresis);
+        ro.peripheral = &s.options.significance;
+        s.mesh = std::make_unique<Mesh>(retrieved(ro));
+        s.first.ms_retrieve = clock.ms();
+    } else {
+        s.mesh = std::make_unique<Mesh>(grid_tin(hf));
+    }
+    s.lattice = &hf;
+    start(s, first, share > 0);
+}
+
 Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& options)
     : impl_(std::make_unique<Impl>()) {
     impl_->options = options;
-    const double share = options.significance.model == SpModel::screen ? options.retrieve_share : 0;
-    if (share > 0) {
-        Stopwatch clock;
+    start_on_grid(*impl_, hf, first, [&](const RetrieveOptions &ro) {
         const QuadTree tree(hf);
-        RetrieveOptions ro;
-        ro.tol_px = share * options.tol_px * (1.0 - options.hysteresis);
-        ro.peripheral = &options.significance;
-        impl_->mesh =
-            std::make_unique<Mesh>(to_sparse_lattice_mesh(retrieve(tree, first, ro), hf));
-        impl_->first.ms_retrieve = clock.ms();
-    } else {
-        impl_->mesh = std::make_unique<Mesh>(grid_tin(hf));
-    }
-    impl_->lattice = &hf;
-    start(*impl_, first, share > 0);
+        return to_sparse_lattice_mesh(retrieve(tree, first, ro), hf);
+    });
+}
+
+Refiner::Refiner(const Heightfield& hf, std::unique_ptr<NodeSource> tree, const View& first,
+                 const RefineOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    assert(tree->frame().width == hf.width && tree->frame().height == hf.height);
+    impl_->options = options;
+    start_on_grid(*impl_, hf, first, [&](const RetrieveOptions &ro) {
+        QuadTreeLod lod(std::move(tree));
+        return to_sparse_lattice_mesh(lod.retrieve(first, ro), hf);
+    });
 }
 
 Refiner::Refiner(Mesh mesh, const View& first, const RefineOptions& options)

@@ -624,6 +624,11 @@ Heightfield TileStore::heightfield() const {
             const std::uint8_t* p = s.base + tile.offset;
             for (std::uint32_t r = y0; r <= y1; ++r, p += 4 * (x1 - x0 + 1))
                 std::memcpy(&hf.z[std::size_t{r} * hf.width + x0], p, 4 * (x1 - x0 + 1));
+            // Its pages leave memory again unless the cache holds the tile: the heights returned
+            // are a copy, and the file's pages stayed resident beside them.
+            if (!tile.resident)
+                ::madvise(const_cast<std::uint8_t*>(s.base) + tile.offset,
+                          align(tile.bytes, k_page), MADV_DONTNEED);
         }
     return hf;
 }

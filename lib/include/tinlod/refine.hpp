@@ -16,6 +16,8 @@
 
 namespace tinlod {
 
+class NodeSource;
+
 struct RefineOptions {
     double tol_px = 1.0;     // tau: screen-space error every frame may show, pixels
     double hysteresis = 0.25; // erase only down to (1 - hysteresis) * tau, recover above tau, so a
@@ -57,6 +59,10 @@ class Refiner {
     // (see RefineOptions::retrieve_share), then one update from `first` that makes the bounds the
     // updates carry over. `hf` must outlive the refiner.
     Refiner(const Heightfield& hf, const View& first, const RefineOptions& options = {});
+    // The same, the first retrieval read from `tree`, a quad-tree of hf's grid (a store, whose
+    // bounds are on disk already: no quad-tree is built over hf), dropped once it has.
+    Refiner(const Heightfield& hf, std::unique_ptr<NodeSource> tree, const View& first,
+            const RefineOptions& options = {});
     // Starts from a mesh (a TIN or a surface mesh).
     Refiner(Mesh mesh, const View& first, const RefineOptions& options = {});
     ~Refiner();
