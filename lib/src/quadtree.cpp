@@ -265,14 +265,14 @@ void QuadTree::build(const Heightfield& hf, Progress* progress) {
         level.reserve(std::size_t{nx} * ny);
         advise_huge_pages(level.data(), std::size_t{nx} * ny * sizeof(NodeBound));
         level.resize(std::size_t{nx} * ny);
+        // A node with children gets its z box from theirs, which cover its samples: a pass over
+        // every sample per level took a third of the build.
+        const bool leaf = d + 1 >= levels - 1;
         auto rows = [&](std::uint32_t j0, std::uint32_t j1) {
             for (std::uint32_t j = j0; j < j1; ++j)
                 for (std::uint32_t i = 0; i < nx; ++i) {
                     const std::uint32_t x0 = layout_.x.lo(d, i), x1 = layout_.x.hi(d, i);
                     const std::uint32_t y0 = layout_.y.lo(d, j), y1 = layout_.y.hi(d, j);
-                    // A node with children gets its z box from theirs, which cover its samples:
-                    // a pass over every sample per level took a third of the build.
-                    const bool leaf = d + 1 >= levels - 1;
                     OwnBound own =
                         x1 - x0 == 2 && y1 - y0 == 2 ? small_bound(z_, hf.width, x0, y0)
                         : x1 - x0 >= 2 && y1 - y0 >= 2

@@ -538,6 +538,12 @@ struct TileStore::Impl {
         return z;
     }
 
+    // Gives tile's pages back to the kernel: they are read from the file again when touched.
+    void drop_pages(const Tile& tile) const {
+        ::madvise(const_cast<std::uint8_t*>(base) + tile.offset, align(tile.bytes, k_page),
+                  MADV_DONTNEED);
+    }
+
     // Drops the least recently used tiles until the cap holds (at the end of a retrieval, so the
     // tiles of the view in progress stay mapped while it runs); their pages leave memory and are
     // read and verified again if a later view needs them.
@@ -554,8 +560,7 @@ struct TileStore::Impl {
             if (resident_bytes <= cap_bytes)
                 break;
             Tile& tile = tiles[t];
-            ::madvise(const_cast<std::uint8_t*>(base) + tile.offset, align(tile.bytes, k_page),
-                      MADV_DONTNEED);
+            drop_pages(tile);
             tile.resident = false;
             resident_bytes -= tile.bytes;
             --resident_count;
@@ -627,8 +632,7 @@ Heightfield TileStore::heightfield() const {
             // Its pages leave memory again unless the cache holds the tile: the heights returned
             // are a copy, and the file's pages stayed resident beside them.
             if (!tile.resident)
-                ::madvise(const_cast<std::uint8_t*>(s.base) + tile.offset,
-                          align(tile.bytes, k_page), MADV_DONTNEED);
+                s.drop_pages(tile);
         }
     return hf;
 }
