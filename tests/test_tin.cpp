@@ -83,6 +83,44 @@ TEST(MeshIo, RoundTripThroughEachFormatKeepsVerticesAndFaces) {
     EXPECT_EQ(stl.n_vertices(), mesh.n_vertices());
 }
 
+// A mesh erased in place keeps its erased vertices, edges and faces in its arrays, marked deleted
+// (as a refiner's TIN does between frames): a file gets the live part, and only it.
+TEST(MeshIo, WritesTheLivePartOfAMeshWithDeletedElements) {
+    const Heightfield hf = load_heightfield(asset("crater_u16.png"));
+    Mesh erased = grid_tin(hf);
+    EraseOptions eo;
+    eo.significance.model = SpModel::vertical;
+    eo.tolerance = 2.0;
+    NodeEraser(erased, nullptr, eo).erase();
+    const std::size_t live_vertices = std::size_t(std::distance(erased.vertices_sbegin(), erased.vertices_end()));
+    const std::size_t live_faces = std::size_t(std::distance(erased.faces_sbegin(), erased.faces_end()));
+    ASSERT_LT(2 * live_vertices, erased.n_vertices());
+    ASSERT_LT(2 * live_faces, erased.n_faces());
+    // Triangles by their corners' points (files renumber the vertices), each from its least point.
+    using Corner = std::array<float, 3>;
+    const auto triangles = [](const Mesh& m) {
+        std::set<std::array<Corner, 3>> set;
+        for (auto f : m.faces()) {
+            std::array<Corner, 3> t;
+            int i = 0;
+            for (auto v : f.vertices())
+                t[i++] = {m.point(v)[0], m.point(v)[1], m.point(v)[2]};
+            std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+            set.insert(t);
+        }
+        return set;
+    };
+    const std::string dir = tinlod::test::temp_dir();
+    for (const char* ext : {".ply", ".obj", ".off"}) {
+        SCOPED_TRACE(ext);
+        write_mesh(erased, dir + "/erased" + ext);
+        const Mesh back = read_mesh(dir + "/erased" + ext);
+        EXPECT_EQ(back.n_vertices(), live_vertices);
+        EXPECT_EQ(back.n_faces(), live_faces);
+        EXPECT_EQ(triangles(back), triangles(erased));
+    }
+}
+
 TEST(MeshIo, NonManifoldBunnyLoadsAndIsReported) {
     // MANIFEST: bun_zipper_res4.ply has 453 vertices, 948 faces and 70 non-manifold edges.
     MeshReport report;

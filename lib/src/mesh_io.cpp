@@ -518,16 +518,18 @@ void write_mesh(const Mesh& input, const std::string& path) {
     const std::string ext = extension(path);
     if (!is_mesh_path(path))
         throw Error(path, "unknown mesh format '" + ext + "' (use .ply, .obj, .off or .stl)");
+    // OpenMesh's writers visit deleted elements too (a face's corners then come from freed
+    // half-edges): a mesh holding some, as a refiner's TIN between frames, is written as its live
+    // part. The plain iterators see every element; the skipping ones (`_sbegin`) would hide them.
     const Mesh* mesh = &input;
     Mesh compact;
     const bool garbage =
-        std::any_of(input.vertices_sbegin(), input.vertices_end(),
+        std::any_of(input.vertices_begin(), input.vertices_end(),
                     [&](auto v) { return input.status(v).deleted(); }) ||
-        std::any_of(input.faces_sbegin(), input.faces_end(),
+        std::any_of(input.faces_begin(), input.faces_end(),
                     [&](auto f) { return input.status(f).deleted(); });
     if (garbage) {
-        compact = input;
-        compact.garbage_collection();
+        compact = live_copy(input);
         mesh = &compact;
     }
     OpenMesh::IO::Options options;
