@@ -40,6 +40,12 @@ echo "== 4. pictures, and the image error of the erased TIN against the full gri
 "$BIN/tinlod" render "$DEM" $CAM --color sp -o "$PIC/sp.png"
 "$BIN/tinlod" render "$OUT/erased.ply" $CAM --color error --reference "$DEM" -o "$PIC/error.png"
 "$BIN/tinlod" compare "$OUT/erased.ply" "$DEM" $CAM --dem-normals --diff "$PIC/diff.png"
+# One TIN seen from above while the observer drives up a valley: its detail follows the observer.
+mkdir -p "$OUT/valley"
+"$BIN/tinlod" fly "$DEM" --path meshes/paths/n42_valley.csv --fps 0.1 --frames "$OUT/valley" \
+    --frames-eye 37000,12000,42000 --frames-at 37000,64000,0
+cp "$OUT/valley/frame_00000.png" "$PIC/follow_start.png"
+cp "$OUT/valley/frame_00002.png" "$PIC/follow_end.png"
 
 echo
 echo "== 5. flying: a descent from 60 km to the ground, one TIN erased and recovered frame by frame"

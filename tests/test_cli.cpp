@@ -246,6 +246,18 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "cannot open camera path"},
         {"bad path", "fly " + asset("dem_squared.tif") + " --path " + write("bad.csv", "t,x\n") + " --stats {out}/f.csv",
          "expected the header"},
+        {"fixed camera without its target",
+         "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
+             " --frames {out} --frames-eye 1,1,900 --stats {out}/f.csv",
+         "--frames-eye: give both --frames-eye and --frames-at"},
+        {"fixed camera without frames",
+         "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
+             " --frames-eye 1,1,900 --frames-at 9,9,0 --stats {out}/f.csv",
+         "give --frames DIR"},
+        {"missing meshes folder",
+         "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
+             " --meshes " + (in / "none").string() + " --stats {out}/f.csv",
+         "meshes folder does not exist"},
         {"bad cell", "info --cell -1 " + asset("crater_u16.png"), "--cell"},
     };
     for (const auto& c : cases) {

@@ -4,6 +4,7 @@
 #include "assets.hpp"
 
 #include "tinlod/camera_path.hpp"
+#include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
@@ -446,6 +447,102 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
     EXPECT_EQ(runs[0], runs[1]);
     EXPECT_EQ(tiles[0], 0) << "a DEM has no tiles";
     EXPECT_EQ(tiles[1], TileStore(dir + "/dem.tlq").tile_count()) << "the store is read whole, once";
+}
+
+// --meshes writes the very TINs the frames measured, and --frames-eye draws them from one fixed
+// camera: there the terrain's outline stands still from frame to frame while its triangles change.
+TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
+    const std::string dir = tinlod::test::temp_dir();
+    const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    CameraPath path;
+    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
+                 {1, {w / 2, 0.2 * h, hf.max_z() + 200}, {w / 2, h, hf.min_z()}}};
+    write_camera_path(path, dir + "/path.csv");
+    std::filesystem::create_directories(dir + "/meshes");
+    std::filesystem::create_directories(dir + "/frames");
+    std::string args = "fly '" + asset("dem_squared.tif") + "' --path " + dir +
+                       "/path.csv --fps 3 --viewport 320x180 --check --stats " + dir +
+                       "/f.csv --meshes " + dir + "/meshes";
+    std::string why;
+    const bool drawn = render_available(&why);
+    char camera[160];
+    std::snprintf(camera, sizeof camera, " --frames-eye %.3f,%.3f,%.3f --frames-at %.3f,%.3f,%.3f",
+                  w / 2, -0.3 * h, hf.max_z() + 0.6 * h, w / 2, 0.5 * h, double(hf.min_z()));
+    if (drawn)
+        args += " --frames " + dir + "/frames" + camera;
+    const auto r = tinlod::test::run_cli(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+
+    View base;
+    base.viewport_w = 320;
+    base.viewport_h = 180;
+    const std::vector<View> views = path.sample(4, base);
+    std::ifstream in(dir + "/f.csv");
+    std::string line;
+    std::getline(in, line);
+    std::int64_t changed = 0;
+    for (int i = 0; i < 4; ++i) {
+        SCOPED_TRACE(i);
+        ASSERT_TRUE(std::getline(in, line));
+        const std::vector<std::string> f = csv_cells(line);
+        if (i > 0)
+            changed += std::stoll(f[3]) + std::stoll(f[4]);
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%05d.ply", i);
+        const Mesh tin = read_mesh(dir + "/meshes" + name);
+        EXPECT_EQ(std::int64_t(tin.n_vertices()), std::stoll(f[1]));
+        EXPECT_EQ(std::int64_t(tin.n_faces()), std::stoll(f[2]));
+        ErrorOptions eo;
+        eo.view = &views[std::size_t(i)];
+        const double px = measure_error(hf, tin, eo).max_screen_px;
+        EXPECT_LE(px, 1.0);
+        EXPECT_NEAR(px, std::stod(f[10]), 1e-5) << "the file holds the TIN the frame measured";
+    }
+    EXPECT_FALSE(std::getline(in, line));
+    EXPECT_GT(changed, 0) << "the flight changed the TIN";
+    if (!drawn)
+        GTEST_SKIP() << "no OpenGL context for --frames: " << why;
+    // Each frame against the frame's TIN drawn by `render` from the same camera: the same pixels
+    // of terrain and of sky (the colours may differ: fly holds one height ramp for the flight).
+    const glm::vec3 colour = RenderOptions{}.sky * 255.0f; // the background
+    const auto sky = [&](const Image& im, std::size_t p) {
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(float(im.rgba[4 * p + std::size_t(k)]) - colour[k]) > 1.0f)
+                return false;
+        return true;
+    };
+    const std::size_t pixels = 320 * 180;
+    std::vector<Image> frames;
+    for (int i = 0; i < 4; ++i) {
+        SCOPED_TRACE(i);
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%05d", i);
+        frames.push_back(read_image(dir + "/frames" + name + ".png"));
+        const Image& frame = frames.back();
+        ASSERT_EQ(frame.width, 320);
+        ASSERT_EQ(frame.height, 180);
+        const std::string eye(camera), at = eye.substr(eye.find(" --frames-at ") + 13);
+        ASSERT_EQ(tinlod::test::run_cli("render " + dir + "/meshes" + name + ".ply --eye " +
+                                        eye.substr(13, eye.find(" --frames-at ") - 13) + " --at " +
+                                        at + " --wire --viewport 320x180 -o " + dir + name + ".png")
+                      .status,
+                  0);
+        const Image drawn = read_image(dir + name + ".png");
+        std::size_t terrain = 0, apart = 0;
+        for (std::size_t p = 0; p < pixels; ++p) {
+            terrain += !sky(frame, p);
+            apart += sky(frame, p) != sky(drawn, p);
+        }
+        EXPECT_GT(terrain, pixels / 10);
+        EXPECT_LT(terrain, pixels * 9 / 10) << "the terrain seen from outside, against the sky";
+        EXPECT_LE(apart, pixels / 1000);
+    }
+    std::size_t differ = 0;
+    for (std::size_t p = 0; p < pixels; ++p)
+        differ += !std::equal(&frames[0].rgba[4 * p], &frames[0].rgba[4 * p + 3],
+                              &frames[3].rgba[4 * p]);
+    EXPECT_GT(differ, pixels / 100) << "the drawn TIN changes as the observer moves";
 }
 
 TEST(Refiner, FlyWritesOneRenderedFramePerStep) {

@@ -83,17 +83,26 @@ TEST(MeshIo, RoundTripThroughEachFormatKeepsVerticesAndFaces) {
     EXPECT_EQ(stl.n_vertices(), mesh.n_vertices());
 }
 
-// A mesh erased in place keeps its erased vertices, edges and faces in its arrays, marked deleted
-// (as a refiner's TIN does between frames): a file gets the live part, and only it.
-TEST(MeshIo, WritesTheLivePartOfAMeshWithDeletedElements) {
+// A real DEM's grid TIN erased in place to 2 m: most vertices, edges and faces marked deleted, the
+// live ones spread over the arrays (as in a refiner's TIN between frames).
+static Mesh erased_in_place(std::int64_t* erased_nodes = nullptr) {
     const Heightfield hf = load_heightfield(asset("crater_u16.png"));
     Mesh erased = grid_tin(hf);
     EraseOptions eo;
     eo.significance.model = SpModel::vertical;
     eo.tolerance = 2.0;
-    NodeEraser(erased, nullptr, eo).erase();
-    const std::size_t live_vertices = std::size_t(std::distance(erased.vertices_sbegin(), erased.vertices_end()));
-    const std::size_t live_faces = std::size_t(std::distance(erased.faces_sbegin(), erased.faces_end()));
+    const EraseStats e = NodeEraser(erased, nullptr, eo).erase();
+    if (erased_nodes)
+        *erased_nodes = e.erased;
+    return erased;
+}
+
+// A file gets the live part of a mesh holding deleted elements, and only it.
+TEST(MeshIo, WritesTheLivePartOfAMeshWithDeletedElements) {
+    const Mesh erased = erased_in_place();
+    const auto live_vertices =
+        std::size_t(std::distance(erased.vertices_sbegin(), erased.vertices_end()));
+    const auto live_faces = std::size_t(std::distance(erased.faces_sbegin(), erased.faces_end()));
     ASSERT_LT(2 * live_vertices, erased.n_vertices());
     ASSERT_LT(2 * live_faces, erased.n_faces());
     // Triangles by their corners' points (files renumber the vertices), each from its least point.
@@ -261,15 +270,10 @@ TEST(AddTriangles, BuildsTheMeshAddFaceBuilds) {
 }
 
 TEST(LiveCopy, GivesTheMeshGarbageCollectionGives) {
-    // A real DEM's grid TIN erased in place: most vertices, edges and faces marked deleted, the
-    // live ones spread over the arrays. OpenMesh's own compaction is the reference.
-    const Heightfield hf = load_heightfield(asset("crater_u16.png"));
-    Mesh erased = grid_tin(hf);
-    EraseOptions eo;
-    eo.significance.model = SpModel::vertical;
-    eo.tolerance = 2.0;
-    const EraseStats e = NodeEraser(erased, nullptr, eo).erase();
-    ASSERT_GT(e.erased, std::int64_t(erased.n_vertices() / 2));
+    // OpenMesh's own compaction is the reference.
+    std::int64_t erased_nodes = 0;
+    const Mesh erased = erased_in_place(&erased_nodes);
+    ASSERT_GT(erased_nodes, std::int64_t(erased.n_vertices() / 2));
     const Mesh copy = live_copy(erased);
     Mesh collected = erased;
     collected.garbage_collection();

@@ -1,5 +1,6 @@
-// `tinlod fly DEM|MESH --path PATH.csv [--tol 1] [--fps 4] [--check] [--frames DIR] [--stats
-// FRAMES.csv]`: one TIN follows the observer along a camera path, frame after frame (lib/refine).
+// `tinlod fly DEM|STORE|MESH --path PATH.csv [--tol 1] [--fps 4] [--check] [--frames DIR
+// [--frames-eye X,Y,Z --frames-at X,Y,Z]] [--meshes DIR] [--stats FRAMES.csv]`: one TIN follows the
+// observer along a camera path, frame after frame (lib/refine).
 #include "commands.hpp"
 
 #include "tinlod/camera_path.hpp"
@@ -44,7 +45,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
     cmd.description("Fly a camera path: one TIN follows the observer, erasing and recovering nodes "
                     "frame by frame");
     struct Args {
-        std::string input, path, frames_dir, stats, model = "screen";
+        std::string input, path, frames_dir, frames_eye, frames_at, meshes_dir, stats;
+        std::string model = "screen";
         double tol = 1.0, fps = 4.0, hysteresis = 0.25, retrieve_share = 0.5;
         bool check = false;
         std::string viewport = "1920x1080";
@@ -72,6 +74,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
     cmd.add_flag("--check", args->check,
                  "measure every frame's screen-space error exhaustively against every DEM sample");
     cmd.add_option("--frames", args->frames_dir, "write one rendered PNG per frame into this folder");
+    cmd.add_option("--frames-eye", args->frames_eye,
+                   "draw the frames from this fixed camera X,Y,Z instead of the observer's, to see "
+                   "the TIN follow the observer from outside");
+    cmd.add_option("--frames-at", args->frames_at,
+                   "the point the camera of --frames-eye looks toward X,Y,Z");
+    cmd.add_option("--meshes", args->meshes_dir,
+                   "write each frame's TIN into this folder (frame_NNNNN.ply)");
     cmd.add_option("--stats", args->stats, "write one line of statistics per frame (CSV)");
     cmd.add_option("--fov", args->fov, "vertical field of view, degrees")->capture_default_str();
     cmd.add_option("--viewport", args->viewport, "viewport WxH, pixels")->capture_default_str();
@@ -87,6 +96,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             throw Error("--retrieve-share", "must be in [0, 1]");
         if (!args->frames_dir.empty() && !fs::is_directory(args->frames_dir))
             throw Error(args->frames_dir, "frames folder does not exist");
+        if (!args->meshes_dir.empty() && !fs::is_directory(args->meshes_dir))
+            throw Error(args->meshes_dir, "meshes folder does not exist");
+        if (args->frames_eye.empty() != args->frames_at.empty())
+            throw Error(args->frames_eye.empty() ? "--frames-at" : "--frames-eye",
+                        "give both --frames-eye and --frames-at");
+        if (!args->frames_eye.empty() && args->frames_dir.empty())
+            throw Error("--frames-eye", "draws the frames of --frames: give --frames DIR");
         const CameraPath path = read_camera_path(args->path);
         View base;
         base.fov_deg = args->fov;
@@ -95,6 +111,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         std::vector<View> views = path.sample(frames, base);
         for (const View& v : views)
             validate(v, args->path);
+        std::optional<View> outside; // the fixed camera of --frames-eye
+        if (!args->frames_eye.empty()) {
+            outside = base;
+            outside->eye = parse_vec3(args->frames_eye, "--frames-eye");
+            outside->at = parse_vec3(args->frames_at, "--frames-at");
+            validate(*outside, "--frames-eye/--frames-at");
+        }
 
         Stopwatch clock;
         std::optional<Heightfield> hf;
@@ -130,8 +153,26 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         const double ms_start = clock.ms();
 
         std::unique_ptr<Renderer> renderer;
+        RenderOptions ro;
+        ro.wire = true;
         if (!args->frames_dir.empty())
             renderer = std::make_unique<Renderer>();
+        if (outside) {
+            // Coloured by height on one ramp for the whole flight (the DEM's, else the first
+            // TIN's), so that a frame's colours do not shift as its nodes change.
+            ro.color = ColorMode::height;
+            if (hf) {
+                ro.z_min = hf->min_z();
+                ro.z_max = hf->max_z();
+            } else {
+                ro.z_min = INFINITY;
+                ro.z_max = -INFINITY;
+                for (auto v : refiner->mesh().vertices()) {
+                    ro.z_min = std::min(ro.z_min, refiner->mesh().point(v)[2]);
+                    ro.z_max = std::max(ro.z_max, refiner->mesh().point(v)[2]);
+                }
+            }
+        }
 
         std::ostringstream csv;
         csv << k_frame_header << '\n';
@@ -160,12 +201,15 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                 max_px = e.max_screen_px;
                 worst = std::max(worst, max_px);
             }
+            char name[32];
             if (renderer) {
-                char name[32];
                 std::snprintf(name, sizeof name, "/frame_%05d.png", i);
-                RenderOptions ro;
-                ro.wire = true;
-                write_image(args->frames_dir + name, renderer->render(refiner->mesh(), views[i], ro));
+                write_image(args->frames_dir + name,
+                            renderer->render(refiner->mesh(), outside ? *outside : views[i], ro));
+            }
+            if (!args->meshes_dir.empty()) {
+                std::snprintf(name, sizeof name, "/frame_%05d.ply", i);
+                write_mesh(refiner->mesh(), args->meshes_dir + name);
             }
             const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
