@@ -521,6 +521,8 @@ void write_mesh(const Mesh& input, const std::string& path) {
     // OpenMesh's writers visit deleted elements too (a face's corners then come from freed
     // half-edges): a mesh holding some, as a refiner's TIN between frames, is written as its live
     // part. The plain iterators see every element; the skipping ones (`_sbegin`) would hide them.
+    // OpenMesh's compaction, not live_copy: a surface mesh may join two boundary fans at a vertex,
+    // which live_copy refuses.
     const Mesh* mesh = &input;
     Mesh compact;
     const bool garbage =
@@ -529,7 +531,8 @@ void write_mesh(const Mesh& input, const std::string& path) {
         std::any_of(input.faces_begin(), input.faces_end(),
                     [&](auto f) { return input.status(f).deleted(); });
     if (garbage) {
-        compact = live_copy(input);
+        compact = input;
+        compact.garbage_collection();
         mesh = &compact;
     }
     OpenMesh::IO::Options options;
@@ -539,7 +542,8 @@ void write_mesh(const Mesh& input, const std::string& path) {
         bool ok = false;
         {
             QuietOpenMesh quiet;
-            // 9 significant digits keep every float exactly in the ASCII formats.
+            // 9 digits: significant ones in OFF, which keeps every float exactly; decimals in
+            // OpenMesh's OBJ writer (fixed notation), exact from 1 up, within 5e-10 below.
             ok = OpenMesh::IO::write_mesh(*mesh, tmp, options, 9);
         }
         if (!ok)
