@@ -46,6 +46,7 @@ mkdir -p "$OUT/valley"
     --frames-eye 37000,12000,42000 --frames-at 37000,64000,0
 cp "$OUT/valley/frame_00000.png" "$PIC/follow_start.png"
 cp "$OUT/valley/frame_00002.png" "$PIC/follow_end.png"
+echo "   the valley drive's TIN seen from above at its start and end: $PIC/follow_start.png, follow_end.png"
 
 echo
 echo "== 5. flying: a descent from 60 km to the ground, one TIN erased and recovered frame by frame"
