@@ -91,6 +91,34 @@ TEST(Refiner, EveryFrameWithinTauWhileFlyingAcrossARealDem) {
     }
 }
 
+// The three shipped camera paths over N42E001, at `tinlod fly`'s 4 frames per second: every frame's
+// TIN measured at every sample in view.
+TEST(Refiner, EveryFrameOfTheShippedPathsIsWithinTau) {
+    const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
+    for (const char* name : {"n42_valley", "n42_flyover", "n42_descent"}) {
+        SCOPED_TRACE(name);
+        const CameraPath path = read_camera_path(asset(std::string("paths/") + name + ".csv"));
+        const std::vector<View> views = path.sample(int(path.duration() * 4) + 1, View{});
+        RefineOptions options;
+        options.tol_px = 1.0;
+        Refiner refiner(hf, views.front(), options);
+        std::int64_t changed = 0;
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            if (i > 0) {
+                const FrameStats f = refiner.update(views[i]);
+                changed += f.erased + f.recovered;
+            }
+            ErrorOptions eo;
+            eo.view = &views[i];
+            const TinError e = measure_error(hf, refiner.mesh(), eo);
+            EXPECT_LE(e.max_screen_px, options.tol_px) << "frame " << i;
+            EXPECT_EQ(e.uncovered, 0) << "frame " << i;
+            EXPECT_EQ(tinlod::test::count_folded_faces(refiner.mesh()), 0) << "frame " << i;
+        }
+        EXPECT_GT(changed, std::int64_t(views.size())) << "the TIN followed the observer";
+    }
+}
+
 TEST(Refiner, ApproachingRecoversThereRecedingErasesThere) {
     const Heightfield hf = load_heightfield(asset("crater_u16.png"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
