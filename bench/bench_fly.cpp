@@ -20,12 +20,16 @@
 // minutes; the rebuilds and error measurements come on top); the results say how many of the
 // path's frames were flown.
 //
-// Then the same refiner flies the three paths again at 30 frames per second, as an interactive
-// viewer samples them (the camera moves 7.5 times less per frame): the update time per frame,
-// p50 and p99, and the screen error measured exhaustively on every 150th frame; no rebuilds. And
-// again at 30 frames per second with the camera 2, 4 and 8 times slower (the same views as 60,
-// 120 and 240 frames per second of path time), so that the results say how fast an observer the
-// refiner follows within the frame budget: the paths move the eye at 1-3 km/s.
+// Then each path at 30 frames per second, as an interactive viewer samples them (the camera moves
+// 7.5 times less per frame), by a new refiner built at the path's first view, so that each flight
+// is the refiner's first over its path: the update time per frame, p50 and p99, and the screen
+// error measured exhaustively on every 150th frame; no rebuilds. Each path is then flown a second
+// time by the refiner that has just flown it (after a jump back to its start, not counted): a
+// refiner that has flown a path before changes far fewer nodes along it, as the erases it made on
+// the way are the ones the way back undoes. And at 30 frames per second with the camera 2, 4 and
+// 8 times slower (the same views as 60, 120 and 240 frames per second of path time), first
+// flights again, so that the results say how fast an observer the refiner follows within the
+// frame budget: the paths move the eye at 1-3 km/s.
 //
 // The paths come from the terrain's bounds and heights, the way scripts/make_paths.py makes
 // meshes/paths/n42_*.csv: every keyframe's eye stands a clearance above the highest ground within
@@ -246,7 +250,8 @@ struct PathResult {
 
 struct Flight {
     std::vector<PathResult> paths;
-    std::vector<PathResult> interactive; // the same paths at k_fps_interactive
+    std::vector<PathResult> interactive; // the same paths at k_fps_interactive, first flights
+    std::vector<PathResult> repeated;    // each flown again right after its first flight
     std::vector<std::vector<PathResult>> slowed; // and with the camera k_slower[i] times slower
     std::vector<double> eye_speed;               // each path's mean eye speed, m/s
     double built_bytes_mb = 0.0; // Refiner::bytes() right after the constructor
@@ -292,8 +297,10 @@ PathResult fly(const Heightfield &hf, const QuadTree &tree, const FlightPath &p,
         const double rss0 = rss_mb();
         refiner = std::make_unique<Refiner>(hf, views.front(), options);
         result.first_ms = clock.ms();
-        flight.built_rss_mb = rss_mb() - rss0;
-        flight.built_bytes_mb = double(refiner->bytes()) / (1024.0 * 1024.0);
+        if (flight.paths.empty()) { // the first refiner's, built on a fresh process's heap
+            flight.built_rss_mb = rss_mb() - rss0;
+            flight.built_bytes_mb = double(refiner->bytes()) / (1024.0 * 1024.0);
+        }
     } else {
         refiner->update(views.front());
         result.first_ms = clock.ms();
@@ -583,7 +590,7 @@ Claim speed_claim(const Flight &flight, const std::vector<std::vector<Summary>> 
     text += " (" + names + ")";
     return {"flight p99 ≤ 8 ms at " + fmt("%.0f", k_fps_interactive) +
                 " frames per second against the camera's speed (the paths flown at their own "
-                "speed and 2, 4 and 8 times slower)",
+                "speed and 2, 4 and 8 times slower, each the first flight of a new refiner)",
             text,
             holds_from == 0 ? "behind at every speed flown"
                             : "holds at " + speed_name(holds_from) +
@@ -601,7 +608,7 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
                             results, sums));
     out.push_back(p99_claim("flight p99 ≤ 8 ms at " + fmt("%.0f", k_fps_interactive) +
                                 " frames per second (the same paths as an interactive viewer "
-                                "samples them)",
+                                "samples them, each the first flight of a new refiner)",
                             flight.interactive, isums));
     out.push_back(speed_claim(flight, ssums));
     std::string text;
@@ -783,12 +790,12 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               fmt("%.0f", 100 * s.tiles_min) + "–" + fmt("%.0f %%", 100 * s.tiles_max) + " | " +
               fmt("%.0f", 100 * s.blocks_min) + "–" + fmt("%.0f %%", 100 * s.blocks_max) + " |\n";
     }
-    md += "\nThe same refiner then flies the three paths again at " +
-          fmt("%.0f", k_fps_interactive) +
-          " frames per second of path time, as an interactive viewer samples them: the camera "
+    md += "\nThen each path at " + fmt("%.0f", k_fps_interactive) +
+          " frames per second of path time, as an interactive viewer samples them (the camera "
           "moves " + fmt("%.1f", k_fps_interactive / k_fps) +
-          " times less per frame. The jump to each path's start is not counted; the screen error "
-          "is measured exhaustively over every DEM sample on every " +
+          " times less per frame), by a new refiner built at the path's first view: each flight "
+          "is the refiner's first over its path. The screen error is measured exhaustively over "
+          "every DEM sample on every " +
           std::to_string(k_check_every) + "th frame (frames 1, " +
           std::to_string(k_check_every + 1) + ", ...).\n\n"
           "| path | updates | update CPU ms p50 / p99 / max | changed per frame median (max) | "
@@ -804,9 +811,33 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               fmt("%.2f", s.us_per_changed) + " | " + std::to_string(s.checks) + " | " +
               fmt("%.3f", s.max_px) + " |\n";
     }
+    md += "\nEach path flown a second time, right after its first flight, by the refiner that "
+          "flew it (the jump back to its start not counted). *Undone*: the share of the "
+          "recoveries that the update which made them erased again (the erases a deeper node's "
+          "recovery had to bring back first).\n\n"
+          "| path | flight | update CPU ms p50 / p99 / max | changed per frame median (max) | "
+          "undone |\n|---|---|---|---|---|\n";
+    const auto undone = [](const PathResult &p) {
+        double recovered = 0, reerased = 0;
+        for (const FrameRow &r : p.rows) {
+            recovered += double(r.stats.recovered);
+            reerased += double(r.stats.reerased);
+        }
+        return fmt("%.0f %%", 100 * reerased / std::max(1.0, recovered));
+    };
+    for (std::size_t i = 0; i < flight.repeated.size(); ++i)
+        for (const PathResult *p : {&flight.interactive[i], &flight.repeated[i]}) {
+            const Summary s = summarise(p->rows);
+            md += "| " + p->name + " | " +
+                  (p == &flight.interactive[i] ? "first" : "second") + " | " +
+                  fmt("%.2f", s.p50) + " / " + fmt("%.2f", s.p99) + " / " + fmt("%.2f", s.max) +
+                  " | " + fmt("%.0f", s.changed_median) + " (" + fmt("%.0f", s.changed_max) +
+                  ") | " + undone(*p) + " |\n";
+        }
     md += "\nAnd at " + fmt("%.0f", k_fps_interactive) +
           " frames per second with the camera slower than the paths (the views of a higher "
-          "frame rate of path time), each path from its start to its end: how fast an observer "
+          "frame rate of path time), each path from its start to its end by a new refiner: how "
+          "fast an observer "
           "the refiner follows within the frame budget. Eye speed = the eye's path length over "
           "the time it takes. The screen error is measured at the same path times as above.\n\n"
           "| path | camera speed | eye speed m/s | updates | update CPU ms p50 / p99 / max | "
@@ -868,17 +899,24 @@ void run(const FlyOptions &options) {
     const std::vector<FlightPath> paths = flight_paths(hf);
     for (const FlightPath &p : paths)
         flight.paths.push_back(fly(hf, tree, p, options.quick, k_fps, true, refiner, flight));
-    std::printf("  again at %.0f frames per second:\n", k_fps_interactive);
-    for (const FlightPath &p : paths)
+    std::printf("  at %.0f frames per second, each path by a new refiner, then again by it:\n",
+                k_fps_interactive);
+    for (const FlightPath &p : paths) {
+        refiner.reset();
         flight.interactive.push_back(
             fly(hf, tree, p, options.quick, k_fps_interactive, false, refiner, flight));
+        flight.repeated.push_back(
+            fly(hf, tree, p, options.quick, k_fps_interactive, false, refiner, flight));
+    }
     for (const int slower : k_slower) {
-        std::printf("  again at %.0f frames per second, the camera %d times slower:\n",
+        std::printf("  at %.0f frames per second, the camera %d times slower:\n",
                     k_fps_interactive, slower);
         flight.slowed.emplace_back();
-        for (const FlightPath &p : paths)
+        for (const FlightPath &p : paths) {
+            refiner.reset();
             flight.slowed.back().push_back(fly(hf, tree, p, options.quick, k_fps_interactive,
                                                false, refiner, flight, slower));
+        }
     }
     for (const FlightPath &p : paths)
         flight.eye_speed.push_back(eye_speed(p.path));
