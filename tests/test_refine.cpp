@@ -533,13 +533,7 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
         GTEST_SKIP() << "no OpenGL context for --frames: " << why;
     // Each frame against the frame's TIN drawn by `render` from the same camera: the same pixels
     // of terrain and of sky (the colours may differ: fly holds one height ramp for the flight).
-    const glm::vec3 colour = RenderOptions{}.sky * 255.0f; // the background
-    const auto sky = [&](const Image& im, std::size_t p) {
-        for (int k = 0; k < 3; ++k)
-            if (std::abs(float(im.rgba[4 * p + std::size_t(k)]) - colour[k]) > 1.0f)
-                return false;
-        return true;
-    };
+    using tinlod::test::is_sky;
     const std::size_t pixels = 320 * 180;
     std::vector<Image> frames;
     for (int i = 0; i < 4; ++i) {
@@ -558,8 +552,8 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
         const Image drawn = read_image(dir + name + ".png");
         std::size_t terrain = 0, apart = 0;
         for (std::size_t p = 0; p < pixels; ++p) {
-            terrain += !sky(frame, p);
-            apart += sky(frame, p) != sky(drawn, p);
+            terrain += !is_sky(frame, p);
+            apart += is_sky(frame, p) != is_sky(drawn, p);
         }
         EXPECT_GT(terrain, pixels / 10);
         EXPECT_LT(terrain, pixels * 9 / 10) << "the terrain seen from outside, against the sky";

@@ -18,6 +18,7 @@
 
 using namespace tinlod;
 using tinlod::test::asset;
+using tinlod::test::is_sky;
 
 namespace {
 
@@ -31,15 +32,6 @@ namespace {
 const Heightfield& squared_dem() {
     static const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     return hf;
-}
-
-// Pixels equal to the background, up to one level of rounding per channel.
-bool is_sky(const Image& image, std::size_t pixel, const RenderOptions& options) {
-    for (int c = 0; c < 3; ++c)
-        if (std::abs(int(image.rgba[4 * pixel + c]) - int(std::lround(options.sky[c] * 255.0f))) >
-            1)
-            return false;
-    return true;
 }
 
 double sky_share(const Image& image, const RenderOptions& options) {

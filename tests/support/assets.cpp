@@ -1,6 +1,7 @@
 #include "assets.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
@@ -97,6 +98,14 @@ double xy_area(const Mesh& mesh) {
     for (auto f : mesh.faces())
         sum += 0.5 * xy_area2(mesh, f);
     return sum;
+}
+
+bool is_sky(const Image& image, std::size_t pixel, const RenderOptions& options) {
+    for (int c = 0; c < 3; ++c)
+        if (std::abs(int(image.rgba[4 * pixel + std::size_t(c)]) -
+                     int(std::lround(options.sky[c] * 255.0f))) > 1)
+            return false;
+    return true;
 }
 
 } // namespace tinlod::test

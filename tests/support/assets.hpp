@@ -2,6 +2,7 @@
 #pragma once
 
 #include "tinlod/raster.hpp"
+#include "tinlod/render.hpp"
 #include "tinlod/tin.hpp"
 
 #include <string>
@@ -31,5 +32,9 @@ RunResult run_cli(const std::string& args);
 std::int64_t count_folded_faces(const Mesh& mesh);
 // Sum of the xy areas of the live faces.
 double xy_area(const Mesh& mesh);
+
+// Whether pixel `pixel` of `image` is the background `options` clear to, up to one level of
+// rounding per channel.
+bool is_sky(const Image& image, std::size_t pixel, const RenderOptions& options = {});
 
 } // namespace tinlod::test
