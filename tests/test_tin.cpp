@@ -124,8 +124,9 @@ static void expect_written_live_part(const Mesh& erased) {
         const Mesh back = read_mesh(dir + "/erased" + ext);
         EXPECT_EQ(back.n_vertices(), live_vertices);
         EXPECT_EQ(back.n_faces(), live_faces);
-        if (std::string(ext) != ".obj") // OpenMesh writes OBJ in fixed notation: see write_mesh
+        if (std::string(ext) != ".obj") { // OpenMesh writes OBJ in fixed notation: see write_mesh
             EXPECT_EQ(triangles(back), triangles(erased));
+        }
     }
 }
 
