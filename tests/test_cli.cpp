@@ -3,6 +3,7 @@
 #include "assets.hpp"
 
 #include "tinlod/mesh_io.hpp"
+#include "tinlod/render.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -272,6 +273,50 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_TRUE(fs::is_empty(out)) << "partial output left behind";
     }
+}
+
+// A write that fails partway (a full disk; here a file-size limit of 16 KiB, which fails each
+// write past it with EFBIG) is an error naming the file, with no file left: OpenMesh's and
+// OpenImageIO's file writers report success with a short file (a 100 KiB PLY, PNG or TIFF passed as
+// whole before tinlod checked its own streams).
+TEST(Cli, AWriteThatRunsOutOfRoomIsAnErrorAndLeavesNoFile) {
+    const fs::path out = tinlod::test::temp_dir();
+    const std::string dem = "'" + asset("dem_squared.tif") + "'";
+    const std::string camera = " --eye 1,1,900 --at 500,500,0 --viewport 320x180";
+    struct Case {
+        std::string args, file;
+    };
+    std::vector<Case> cases;
+    for (const std::string ext : {"ply", "obj", "off", "stl"})
+        cases.push_back({"retrieve --full " + dem + " -o {file}", "grid." + ext});
+    for (const std::string ext : {"png", "tif", "exr"})
+        cases.push_back({"render " + dem + camera + " -o {file}", "frame." + ext});
+    cases.push_back({"build " + dem + " -o {file}", "store.tlq"});
+    std::string why;
+    const bool drawn = tinlod::render_available(&why);
+    for (const Case& c : cases) {
+        if (!drawn && c.args.rfind("render", 0) == 0)
+            continue;
+        SCOPED_TRACE(c.file);
+        const std::string file = (out / c.file).string();
+        std::string args = c.args;
+        args.replace(args.find("{file}"), 6, file);
+        // Within the limit the same command writes the file whole, larger than the limit.
+        ASSERT_EQ(run_cli(args).status, 0);
+        ASSERT_GT(fs::file_size(file), 16u << 10);
+        fs::remove_all(out);
+        fs::create_directory(out);
+        const auto r = run_cli(args, 16u << 10);
+        EXPECT_NE(r.status, 0);
+        EXPECT_NE(r.err.find(file + ": cannot write"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_FALSE(fs::exists(file)) << "a short file left behind";
+        fs::remove_all(out);
+        fs::create_directory(out);
+    }
+    if (!drawn)
+        GTEST_SKIP() << "no OpenGL context for the render cases: " << why;
 }
 
 static std::string read_bytes(const std::string& path) {

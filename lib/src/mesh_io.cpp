@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -539,15 +541,24 @@ void write_mesh(const Mesh& input, const std::string& path) {
     if (ext == ".ply" || ext == ".stl")
         options += OpenMesh::IO::Options::Binary;
     write_atomically(path, [&](const std::string& tmp) {
+        // Through a stream of our own: OpenMesh's file writers do not look at their stream's state,
+        // so a full disk left a short file and a success.
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out)
+            throw Error(path, "cannot write mesh: " + std::string(std::strerror(errno)));
+        // 9 significant digits in the text formats, which keep every float exactly (OpenMesh's
+        // stream writers take the stream's precision; its OBJ file writer wrote 9 decimals, in
+        // fixed notation, which moved values below 1 by up to 5e-10).
+        out.precision(9);
         bool ok = false;
         {
             QuietOpenMesh quiet;
-            // 9 digits: significant ones in OFF, which keeps every float exactly; decimals in
-            // OpenMesh's OBJ writer (fixed notation), exact from 1 up, within 5e-10 below.
-            ok = OpenMesh::IO::write_mesh(*mesh, tmp, options, 9);
+            ok = OpenMesh::IO::write_mesh(*mesh, out, ext, options, 9);
         }
         if (!ok)
             throw Error(path, "cannot write mesh");
+        if (!out.flush())
+            throw Error(path, "cannot write mesh: " + std::string(std::strerror(errno)));
     });
 }
 

@@ -15,6 +15,7 @@
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,8 +23,10 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <mutex>
 
@@ -625,9 +628,20 @@ static void write_pixels(const std::string& path, int width, int height, int cha
         auto out = OIIO::ImageOutput::create(tmp);
         if (!out)
             throw Error(path, "cannot write this image format (" + OIIO::geterror() + ")");
+        // Encoded in memory, then written through a stream whose state is checked: OpenImageIO's
+        // file writers report success on a full disk, with a short file.
+        std::vector<unsigned char> bytes;
+        OIIO::Filesystem::IOVecOutput memory(bytes);
+        const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
         const OIIO::ImageSpec spec(width, height, channels, type);
         if (!out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close())
             throw Error(path, "cannot write the image: " + out->geterror());
+        if (in_memory) {
+            std::ofstream file(tmp, std::ios::binary);
+            file.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+            if (!file.flush())
+                throw Error(path, "cannot write the image: " + std::string(std::strerror(errno)));
+        }
     });
 }
 

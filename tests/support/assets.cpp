@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <vector>
 
@@ -61,7 +63,7 @@ static std::string slurp(const fs::path& p) {
     return s;
 }
 
-RunResult run_cli(const std::string& args) {
+RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes) {
     const fs::path dir = temp_dir();
     // A hang is a failure, not a stuck test run: give up after two minutes (exit status 124),
     // fifteen under the sanitizers, which run the CLI about ten times slower.
@@ -72,7 +74,21 @@ RunResult run_cli(const std::string& args) {
 #endif
     const std::string cmd = std::string("timeout ") + limit + " '" + TINLOD_CLI + "' " + args + " >'" +
                             (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
+    // The limit and the ignored SIGXFSZ (which would kill the writer instead) pass to the child.
+    rlimit unlimited{};
+    getrlimit(RLIMIT_FSIZE, &unlimited);
+    void (*on_xfsz)(int) = SIG_DFL;
+    if (max_file_bytes > 0) {
+        rlimit limited = unlimited;
+        limited.rlim_cur = rlim_t(max_file_bytes);
+        on_xfsz = std::signal(SIGXFSZ, SIG_IGN);
+        setrlimit(RLIMIT_FSIZE, &limited);
+    }
     const int raw = std::system(cmd.c_str());
+    if (max_file_bytes > 0) {
+        setrlimit(RLIMIT_FSIZE, &unlimited);
+        std::signal(SIGXFSZ, on_xfsz);
+    }
     RunResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     r.out = slurp(dir / "out");

@@ -5,6 +5,7 @@
 #include "tinlod/render.hpp"
 #include "tinlod/tin.hpp"
 
+#include <cstdint>
 #include <string>
 
 namespace tinlod::test {
@@ -23,8 +24,9 @@ struct RunResult {
     std::string err; // stderr
 };
 // Runs the tinlod CLI with `args` (a shell-quoted string); status 124 when it hung (> 120 s,
-// 900 s in a sanitizer build).
-RunResult run_cli(const std::string& args);
+// 900 s in a sanitizer build). `max_file_bytes` > 0: files it writes are limited to that size, a
+// write past it failing (EFBIG) as a write on a full disk does.
+RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes = 0);
 
 // Invariants of a TIN: every edge manifold (<= 2 faces, OpenMesh guarantees it for a valid mesh),
 // every face counter-clockwise seen from above with positive xy area. Returns the number of faces
