@@ -566,6 +566,42 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
     EXPECT_GT(differ, pixels / 100) << "the drawn TIN changes as the observer moves";
 }
 
+// A flight that fails midway, here when a frame's TIN outgrows a file-size limit as the observer
+// comes down, leaves no frame behind: the frames and TINs enter their folders together once the
+// flight is through. A flight that succeeds leaves nothing else there.
+TEST(Refiner, FlyThatFailsMidwayLeavesNoFrames) {
+    namespace fs = std::filesystem;
+    const std::string dir = tinlod::test::temp_dir();
+    const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    CameraPath path;
+    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
+                 {1, {w / 2, 0.2 * h, hf.max_z() + 200}, {w / 2, h, hf.min_z()}}};
+    write_camera_path(path, dir + "/path.csv");
+    const std::string meshes = dir + "/meshes";
+    fs::create_directories(meshes);
+    const std::string args = "fly '" + asset("dem_squared.tif") + "' --path " + dir +
+                             "/path.csv --fps 3 --meshes " + meshes + " --stats " + dir + "/f.csv";
+    ASSERT_EQ(tinlod::test::run_cli(args).status, 0);
+    std::vector<std::uintmax_t> sizes;
+    for (const auto& e : fs::directory_iterator(meshes))
+        sizes.push_back(fs::file_size(e.path()));
+    ASSERT_EQ(sizes.size(), 4u) << "the four frames' TINs and nothing else";
+    const std::uintmax_t first = fs::file_size(meshes + "/frame_00000.ply");
+    const std::uintmax_t largest = *std::max_element(sizes.begin(), sizes.end());
+    ASSERT_LT(first, largest) << "the TIN grows as the observer comes down";
+
+    fs::remove_all(meshes);
+    fs::create_directories(meshes);
+    fs::remove(dir + "/f.csv");
+    const auto r = tinlod::test::run_cli(args, (first + largest) / 2);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find(meshes + "/frame_0000"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_empty(meshes)) << "frames of a failed flight left behind";
+    EXPECT_FALSE(fs::exists(dir + "/f.csv"));
+}
+
 TEST(Refiner, FlyWritesOneRenderedFramePerStep) {
     std::string why;
     if (!render_available(&why))

@@ -103,6 +103,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                         "give both --frames-eye and --frames-at");
         if (!args->frames_eye.empty() && args->frames_dir.empty())
             throw Error("--frames-eye", "draws the frames of --frames: give --frames DIR");
+        if (!args->stats.empty())
+            check_writable(args->stats);
         const CameraPath path = read_camera_path(args->path);
         View base;
         base.fov_deg = args->fov;
@@ -174,6 +176,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             }
         }
 
+        // The frames and TINs enter their folders together once the flight is through: a flight
+        // that fails midway leaves none.
+        std::optional<StagedFolder> frame_files, mesh_files;
+        if (renderer)
+            frame_files.emplace(args->frames_dir);
+        if (!args->meshes_dir.empty())
+            mesh_files.emplace(args->meshes_dir);
         std::ostringstream csv;
         csv << k_frame_header << '\n';
         std::vector<double> totals;
@@ -203,13 +212,14 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             }
             char name[32];
             if (renderer) {
-                std::snprintf(name, sizeof name, "/frame_%05d.png", i);
-                write_image(args->frames_dir + name,
-                            renderer->render(refiner->mesh(), outside ? *outside : views[i], ro));
+                std::snprintf(name, sizeof name, "frame_%05d.png", i);
+                const Image frame =
+                    renderer->render(refiner->mesh(), outside ? *outside : views[i], ro);
+                frame_files->write(name, [&](const std::string& to) { write_image(to, frame); });
             }
-            if (!args->meshes_dir.empty()) {
-                std::snprintf(name, sizeof name, "/frame_%05d.ply", i);
-                write_mesh(refiner->mesh(), args->meshes_dir + name);
+            if (mesh_files) {
+                std::snprintf(name, sizeof name, "frame_%05d.ply", i);
+                mesh_files->write(name, [&](const std::string& to) { write_mesh(refiner->mesh(), to); });
             }
             const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
@@ -225,6 +235,10 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             progress.update(i + 1);
         }
         progress.finish();
+        if (frame_files)
+            frame_files->commit();
+        if (mesh_files)
+            mesh_files->commit();
         if (!args->stats.empty())
             write_atomically(args->stats, [&](const std::string& tmp) {
                 std::ofstream out(tmp);

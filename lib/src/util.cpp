@@ -26,9 +26,13 @@ namespace tinlod {
 
 namespace fs = std::filesystem;
 
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+static fs::path folder_of(const fs::path& target) {
+    return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+void check_writable(const std::string& path) {
     const fs::path target(path);
-    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    const fs::path folder = folder_of(target);
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
         throw Error(path, "output folder '" + folder.string() + "' does not exist");
@@ -36,16 +40,26 @@ void write_atomically(const std::string& path, const std::function<void(const st
         throw Error(path, "output folder '" + folder.string() + "' is not writable");
     if (fs::is_directory(target, ec))
         throw Error(path, "output path is a folder");
+}
+
+// ".<name>.<random>.tmp<extension>", appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a
+// false positive) on the inlined `"." + std::string` of the one-line form.
+static std::string hidden_name(const fs::path& target) {
     std::random_device rd;
-    // ".<name>.<random>.tmp<extension>", appended piece by piece: GCC 12 at -O3 warns
-    // (-Wrestrict, a false positive) on the inlined `"." + std::string` of the one-line form.
     std::string name = ".";
     name += target.filename().string();
     name += '.';
     name += std::to_string(rd());
     name += ".tmp";
     name += target.extension().string();
-    const fs::path tmp = folder / name;
+    return name;
+}
+
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+    check_writable(path);
+    const fs::path target(path);
+    const fs::path tmp = folder_of(target) / hidden_name(target);
+    std::error_code ec;
     try {
         write(tmp.string());
         fs::rename(tmp, target);
@@ -53,6 +67,50 @@ void write_atomically(const std::string& path, const std::function<void(const st
         fs::remove(tmp, ec);
         throw;
     }
+}
+
+StagedFolder::StagedFolder(const std::string& folder) : folder_(folder) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw Error(folder, "folder does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw Error(folder, "folder is not writable");
+    const fs::path staging = fs::path(folder) / hidden_name("staged");
+    if (!fs::create_directory(staging, ec))
+        throw Error(folder, "cannot create a staging folder in it: " + ec.message());
+    staging_ = staging.string();
+}
+
+StagedFolder::~StagedFolder() {
+    std::error_code ec;
+    fs::remove_all(staging_, ec);
+}
+
+void StagedFolder::write(const std::string& name,
+                         const std::function<void(const std::string&)>& write) {
+    assert(fs::path(name).filename() == name);
+    const std::string staged = (fs::path(staging_) / name).string();
+    try {
+        write(staged);
+    } catch (const Error& e) {
+        if (e.subject() != staged)
+            throw;
+        throw Error((fs::path(folder_) / name).string(), e.reason());
+    }
+    names_.push_back(name);
+}
+
+void StagedFolder::commit() {
+    std::error_code ec;
+    for (const std::string& name : names_)
+        if (fs::is_directory(fs::path(folder_) / name, ec))
+            throw Error((fs::path(folder_) / name).string(), "output path is a folder");
+    for (const std::string& name : names_) {
+        fs::rename(fs::path(staging_) / name, fs::path(folder_) / name, ec);
+        if (ec)
+            throw Error((fs::path(folder_) / name).string(), "cannot move in: " + ec.message());
+    }
+    names_.clear();
 }
 
 void write_json(const std::string& path, const nlohmann::json& doc) {

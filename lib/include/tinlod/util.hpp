@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace tinlod {
 
@@ -16,6 +17,34 @@ namespace tinlod {
 // `path`. On any exception the temporary is removed and the exception rethrown; `path` is never
 // left half-written. Throws Error when the folder is missing or not writable.
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+// Throws Error naming `path` when the folder a file written at `path` would go to is missing or not
+// writable, or `path` is a folder: the checks write_atomically makes, for a command to make them
+// before long work rather than after it.
+void check_writable(const std::string& path);
+
+// Files written into an existing folder all together or not at all, as a flight's frames: each is
+// written into a hidden staging folder inside it, and commit() moves them in. Destroyed before
+// commit() (an error midway), it removes what it staged and leaves the folder as it was.
+class StagedFolder {
+  public:
+    // Throws Error naming `folder` when it is missing or not writable.
+    explicit StagedFolder(const std::string& folder);
+    ~StagedFolder();
+    StagedFolder(const StagedFolder&) = delete;
+    StagedFolder& operator=(const StagedFolder&) = delete;
+    // Writes the file `name` (a bare file name) by calling write(path) with the path to write it
+    // to; it enters the folder at commit(). An Error that names that path names the file's place
+    // in the folder instead.
+    void write(const std::string& name, const std::function<void(const std::string&)>& write);
+    // Moves the staged files in, over files of the same names. Throws Error, having moved none,
+    // when a name is taken by a folder.
+    void commit();
+
+  private:
+    std::string folder_, staging_;
+    std::vector<std::string> names_;
+};
 
 // Writes a JSON document atomically (pretty-printed).
 void write_json(const std::string& path, const nlohmann::json& doc);
