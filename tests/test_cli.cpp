@@ -196,6 +196,14 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "not an SRTM tile"},
         {"missing folder", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/no/such/a.ply",
          "does not exist"},
+        // Every output is checked before the work: a second output's missing folder left the
+        // first output written.
+        {"missing stats folder",
+         "simplify " + asset("dem_squared.tif") + " --eye 1,1,900 --at 500,500,0 -o {out}/a.ply --stats {out}/no/s.json",
+         "{out}/no/s.json: output folder"},
+        {"missing depth folder",
+         "render " + asset("dem_squared.tif") + " --eye 1,1,900 --at 500,500,0 -o {out}/a.png --depth {out}/no/d.exr",
+         "{out}/no/d.exr: output folder"},
         {"bad extension", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/a.xyz",
          "unknown mesh format"},
         {"mesh garbage", "info " + write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 99\n"),
@@ -266,9 +274,12 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         std::string args = c.args;
         for (auto pos = args.find("{out}"); pos != std::string::npos; pos = args.find("{out}"))
             args.replace(pos, 5, out.string());
+        std::string message = c.message;
+        if (const auto at = message.find("{out}"); at != std::string::npos)
+            message.replace(at, 5, out.string());
         const auto r = run_cli(args);
         EXPECT_NE(r.status, 0);
-        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
         // One line: the message ends with the only newline.
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_TRUE(fs::is_empty(out)) << "partial output left behind";

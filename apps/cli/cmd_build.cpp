@@ -28,6 +28,7 @@ static Register build("build", 20, [](CLI::App& cmd) {
     return [args] {
         if (is_mesh_path(args->output))
             throw Error(args->output, "a store is not a mesh file; name it .tlq");
+        check_writable({args->output, args->stats});
         Stopwatch clock;
         const LoadOptions lo = args->raster.load_options();
         Heightfield hf = load_heightfield(args->input, lo);

@@ -56,6 +56,7 @@ static Register compare("compare", 70, [](CLI::App& cmd) {
     return [args] {
         Stopwatch clock;
         const View view = args->camera.view();
+        check_writable({args->diff});
         if (args->dem_normals && is_mesh_path(args->reference))
             throw Error("--dem-normals", "needs a DEM as REFERENCE");
         Renderer renderer; // before the long work, so a machine without OpenGL says so at once

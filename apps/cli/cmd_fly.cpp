@@ -103,8 +103,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                         "give both --frames-eye and --frames-at");
         if (!args->frames_eye.empty() && args->frames_dir.empty())
             throw Error("--frames-eye", "draws the frames of --frames: give --frames DIR");
-        if (!args->stats.empty())
-            check_writable(args->stats);
+        check_writable({args->stats});
         const CameraPath path = read_camera_path(args->path);
         View base;
         base.fov_deg = args->fov;

@@ -150,6 +150,7 @@ static Register render("render", 60, [](CLI::App& cmd) {
     return [args] {
         Stopwatch clock;
         const View view = args->camera.view();
+        check_writable({args->output, args->depth});
         const bool has_dem = !is_mesh_path(args->input) || !args->reference.empty();
         if ((args->color == "level" || args->color == "error") && !has_dem)
             throw Error("--color " + args->color, "needs the DEM: give a DEM or --reference DEM");

@@ -75,6 +75,7 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
     return [args] {
         if (!is_mesh_path(args->output))
             throw Error(args->output, "unknown mesh format (use .ply, .obj, .off or .stl)");
+        check_writable({args->output, args->stats});
         if (args->full && args->camera.given())
             throw Error("--full", "takes no camera: give either --full or --eye/--at");
         if (!args->full && (args->camera.eye.empty() || args->camera.at.empty()))

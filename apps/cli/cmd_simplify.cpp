@@ -71,6 +71,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             throw Error("--max-nodes", "must be >= 0");
         if (!is_mesh_path(args->output))
             throw Error(args->output, "unknown mesh format (use .ply, .obj, .off or .stl)");
+        check_writable({args->output, args->stats});
         std::optional<View> view;
         if (!vertical)
             view = args->camera.view();

@@ -30,16 +30,20 @@ static fs::path folder_of(const fs::path& target) {
     return target.has_parent_path() ? target.parent_path() : fs::path(".");
 }
 
-void check_writable(const std::string& path) {
-    const fs::path target(path);
-    const fs::path folder = folder_of(target);
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec))
-        throw Error(path, "output folder '" + folder.string() + "' does not exist");
-    if (::access(folder.c_str(), W_OK) != 0)
-        throw Error(path, "output folder '" + folder.string() + "' is not writable");
-    if (fs::is_directory(target, ec))
-        throw Error(path, "output path is a folder");
+void check_writable(const std::vector<std::string>& paths) {
+    for (const std::string& path : paths) {
+        if (path.empty())
+            continue;
+        const fs::path target(path);
+        const fs::path folder = folder_of(target);
+        std::error_code ec;
+        if (!fs::is_directory(folder, ec))
+            throw Error(path, "output folder '" + folder.string() + "' does not exist");
+        if (::access(folder.c_str(), W_OK) != 0)
+            throw Error(path, "output folder '" + folder.string() + "' is not writable");
+        if (fs::is_directory(target, ec))
+            throw Error(path, "output path is a folder");
+    }
 }
 
 // ".<name>.<random>.tmp<extension>", appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a
@@ -56,7 +60,7 @@ static std::string hidden_name(const fs::path& target) {
 }
 
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    check_writable(path);
+    check_writable({path});
     const fs::path target(path);
     const fs::path tmp = folder_of(target) / hidden_name(target);
     std::error_code ec;

@@ -18,10 +18,10 @@ namespace tinlod {
 // left half-written. Throws Error when the folder is missing or not writable.
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
-// Throws Error naming `path` when the folder a file written at `path` would go to is missing or not
-// writable, or `path` is a folder: the checks write_atomically makes, for a command to make them
-// before long work rather than after it.
-void check_writable(const std::string& path);
+// Throws Error naming the first of `paths` whose folder is missing or not writable, or that is a
+// folder itself (empty paths are skipped): the checks write_atomically makes, for a command to make
+// them on all its outputs before its work rather than on each after it.
+void check_writable(const std::vector<std::string>& paths);
 
 // Files written into an existing folder all together or not at all, as a flight's frames: each is
 // written into a hidden staging folder inside it, and commit() moves them in. Destroyed before
