@@ -122,6 +122,14 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         std::string bytes((std::istreambuf_iterator<char>(src)), {});
         return write("truncated.tif", bytes.substr(0, bytes.size() / 3));
     }();
+    // The last bytes cut off: OpenImageIO 2.4 read the float TIFF's last strips as zeros and
+    // reported success, and libpng printed a line of its own beside tinlod's for the PNG.
+    const auto cut = [&](const std::string& name, std::size_t bytes) {
+        std::ifstream src(asset(name), std::ios::binary);
+        std::string data((std::istreambuf_iterator<char>(src)), {});
+        return write("cut_" + name, data.substr(0, data.size() - bytes));
+    };
+    const std::string cut_tif = cut("dem_squared.tif", 5000), cut_png = cut("crater_u16.png", 1000);
     // A TIFF header declaring a 46000 x 46000 float raster, with no samples behind it.
     const std::string huge_tif = [&] {
         std::string b = "II*";
@@ -192,6 +200,10 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         {"garbage", "retrieve --full " + write("garbage.png", "not a png") + " -o {out}/a.ply",
          "cannot read raster"},
         {"truncated", "retrieve --full " + truncated_tif + " -o {out}/a.ply", truncated_tif},
+        {"float TIFF without its last strips", "retrieve --full " + cut_tif + " -o {out}/a.ply",
+         cut_tif + ": cannot read samples (truncated or corrupt)"},
+        {"PNG without its last bytes", "retrieve --full " + cut_png + " -o {out}/a.ply",
+         cut_png + ": cannot read samples (truncated or corrupt)"},
         {"hgt size", "retrieve --full " + write("N00E000.hgt", hgt.substr(0, 5000)) + " -o {out}/a.ply",
          "not an SRTM tile"},
         {"missing folder", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/no/such/a.ply",

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <proj.h>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -196,7 +197,33 @@ void copy_channel(const std::vector<T>& src, int channels, std::vector<float>& d
         dst[i] = static_cast<float>(src[i * channels]);
 }
 
+// Sends the process's stderr to /dev/null while it lives: libpng prints its errors there itself
+// ("libpng error: IDAT: Read error: hit end of file"), beside the one line tinlod prints for the
+// same error from what OpenImageIO reports.
+class QuietStderr {
+  public:
+    QuietStderr() : saved_(::dup(STDERR_FILENO)) {
+        const int null = ::open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null >= 0)
+            ::dup2(null, STDERR_FILENO);
+        if (null >= 0)
+            ::close(null);
+    }
+    ~QuietStderr() {
+        if (saved_ < 0)
+            return;
+        ::dup2(saved_, STDERR_FILENO);
+        ::close(saved_);
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+  private:
+    int saved_;
+};
+
 RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
+    const QuietStderr quiet;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string why = OIIO::geterror();
@@ -224,7 +251,10 @@ RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
         // whatever the size of the image.
         const OIIO::TypeDesc want = OIIO::TypeDescFromC<T>::value();
         const bool native = want == spec.format && spec.channelformats.empty();
-        if (!in->read_image(0, 0, 0, nc, native ? OIIO::TypeDesc::UNKNOWN : want, buf.data())) {
+        // OpenImageIO 2.4 reports a TIFF strip it could not read (a truncated file) as an error
+        // pending on the reader, yet returns success with zeros in its place.
+        if (!in->read_image(0, 0, 0, nc, native ? OIIO::TypeDesc::UNKNOWN : want, buf.data()) ||
+            in->has_error()) {
             std::string why = in->geterror();
             const auto nl = why.find('\n');
             throw Error(path, "cannot read samples (truncated or corrupt): " + why.substr(0, nl));

@@ -665,7 +665,7 @@ Image read_image(const std::string& path) {
     if (spec.width <= 0 || spec.height <= 0 || channels <= 0)
         throw Error(path, "empty image");
     std::vector<std::uint8_t> pixels(std::size_t(spec.width) * spec.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()) || in->has_error())
         throw Error(path, "cannot read the image: " + in->geterror());
     Image image;
     image.width = spec.width;
