@@ -218,7 +218,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             }
             if (mesh_files) {
                 std::snprintf(name, sizeof name, "frame_%05d.ply", i);
-                mesh_files->write(name, [&](const std::string& to) { write_mesh(refiner->mesh(), to); });
+                mesh_files->write(name,
+                                  [&](const std::string& to) { write_mesh(refiner->mesh(), to); });
             }
             const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
