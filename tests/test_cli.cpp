@@ -151,38 +151,10 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
     // A 2x2 int16 GeoTIFF in EPSG:4326: pixel scale (dx, dy) degrees, NW corner at (lon, lat).
     auto geographic_tif = [&](const std::string& name, double dx, double dy, double lon,
                               double lat) {
-        std::string b = "II*";
-        b += '\0';
-        auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
-        auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
-        auto f64 = [&](double v) {
-            char raw[8];
-            std::memcpy(raw, &v, 8);
-            b.append(raw, 8);
-        };
-        const unsigned data = 8 + 2 + 13 * 12 + 4; // after the header and the directory
-        const unsigned entries[][4] = {
-            {256, 3, 1, 2},           {257, 3, 1, 2},       {258, 3, 1, 16},
-            {259, 3, 1, 1},           {262, 3, 1, 1},       {273, 4, 1, data + 104},
-            {277, 3, 1, 1},           {278, 3, 1, 2},       {279, 4, 1, 8},
-            {339, 3, 1, 2},           {33550, 12, 3, data}, {33922, 12, 6, data + 24},
-            {34735, 3, 16, data + 72}};
-        u32(8);
-        u16(13);
-        for (const auto& e : entries) {
-            u16(e[0]), u16(e[1]), u32(e[2]);
-            e[1] == 3 && e[2] == 1 ? (u16(e[3]), u16(0)) : u32(e[3]);
-        }
-        u32(0);
-        for (double v : {dx, dy, 0.0, 0.0, 0.0, 0.0, lon, lat, 0.0})
-            f64(v);
         // GeoKeys: model geographic, raster pixel-is-area, EPSG:4326.
-        for (unsigned v :
-             {1u, 1u, 0u, 3u, 1024u, 0u, 1u, 2u, 1025u, 0u, 1u, 1u, 2048u, 0u, 1u, 4326u})
-            u16(v);
-        for (unsigned v : {100u, 200u, 300u, 400u})
-            u16(v);
-        return write(name, b);
+        return write(name, tinlod::test::geotiff_bytes(
+                               {{33550, {dx, dy, 0.0}}, {33922, {0.0, 0.0, 0.0, lon, lat, 0.0}}},
+                               {1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326}));
     };
     // Found by fuzz_mesh: OpenMesh takes a face's vertex count as given (32 GB for this one).
     const std::string ply_face_header =

@@ -121,6 +121,53 @@ TEST(Raster, UngeoreferencedRasterUsesCellAndZscale) {
     EXPECT_NEAR(hf.max_z(), 2478.f * 0.5f, 1e-3);
 }
 
+// A GeoTIFF placed by a model transformation (tag 34264) instead of a tie point and a pixel
+// scale is the same raster when the matrix is north up; rotated, or placed by ground control
+// points alone, it is refused. Before, both were read as rasters without georeferencing: 1 m
+// cells for 30 m ones.
+TEST(Raster, ModelTransformationPlacesTheRasterAsATiePointDoes) {
+    const std::string dir = tinlod::test::temp_dir();
+    const auto load = [&](const std::string& name,
+                          const std::vector<std::pair<unsigned, std::vector<double>>>& georef) {
+        // GeoKeys: model projected, raster pixel-is-area, EPSG:32631 (UTM zone 31N).
+        const std::string path = dir + "/" + name;
+        std::ofstream(path, std::ios::binary) << tinlod::test::geotiff_bytes(
+            georef, {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32631});
+        return load_heightfield(path);
+    };
+    const Heightfield tied = load("tied.tif", {{33550, {30.0, 30.0, 0.0}},
+                                               {33922, {0.0, 0.0, 0.0, 500000.0, 4e6, 0.0}}});
+    EXPECT_DOUBLE_EQ(tied.dx, 30.0);
+    EXPECT_DOUBLE_EQ(tied.origin_x, 500015.0); // the SW sample's centre
+    EXPECT_DOUBLE_EQ(tied.origin_y, 4e6 - 45.0);
+    const Heightfield matrix = load(
+        "matrix.tif", {{34264, {30.0, 0, 0, 500000.0, 0, -30.0, 0, 4e6, 0, 0, 0, 0, 0, 0, 0, 1}}});
+    EXPECT_DOUBLE_EQ(matrix.dx, tied.dx);
+    EXPECT_DOUBLE_EQ(matrix.dy, tied.dy);
+    EXPECT_DOUBLE_EQ(matrix.origin_x, tied.origin_x);
+    EXPECT_DOUBLE_EQ(matrix.origin_y, tied.origin_y);
+    EXPECT_EQ(matrix.crs, tied.crs);
+    EXPECT_EQ(matrix.z, tied.z);
+    const double c = std::cos(0.5), s = std::sin(0.5);
+    try {
+        load("rotated.tif", {{34264, {30 * c, -30 * s, 0, 500000.0, -30 * s, -30 * c, 0, 4e6, 0,
+                                      0, 0, 0, 0, 0, 0, 1}}});
+        ADD_FAILURE() << "a rotated raster loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("rotated.tif: georeferenced by a rotated"),
+                  std::string::npos)
+            << e.what();
+    }
+    try {
+        load("gcps.tif", {{33922, {0, 0, 0, 500000.0, 4e6, 0, 1, 1, 0, 500030.0, 4e6 - 30, 0}}});
+        ADD_FAILURE() << "a raster placed by ground control points loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("gcps.tif: georeferenced by 2 ground control points"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Raster, BadFilesThrowNamingTheFile) {
     const std::string dir = tinlod::test::temp_dir();
     auto write = [&](const std::string& name, const std::string& bytes) {

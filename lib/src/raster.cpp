@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <optional>
 
 namespace tinlod {
@@ -141,12 +142,14 @@ Georef read_geotiff_tags(const std::string& path) {
     Georef geo;
     TIFFSetWarningHandler(nullptr);
     TIFFSetErrorHandler(nullptr);
-    TIFF* tif = XTIFFOpen(path.c_str(), "r");
+    const std::unique_ptr<TIFF, void (*)(TIFF*)> file(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
+    TIFF* tif = file.get();
     if (!tif)
         return geo;
     std::uint16_t count = 0;
     double* scale = nullptr;
     double* ties = nullptr;
+    double* matrix = nullptr;
     if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
         geo.sx = std::abs(scale[0]);
         geo.sy = std::abs(scale[1]);
@@ -156,6 +159,22 @@ Georef read_geotiff_tags(const std::string& path) {
             geo.north = ties[4] + ties[1] * geo.sy;
             geo.present = geo.sx > 0 && geo.sy > 0;
         }
+    } else if (TIFFGetField(tif, TIFFTAG_GEOTRANSMATRIX, &count, &matrix) && count >= 16) {
+        // The model transformation, x = m0 col + m1 row + m3 and y = m4 col + m5 row + m7: north
+        // up without rotation is what a tie point and a pixel scale say; anything else would need
+        // a resampling (before, such a file was read as a raster without georeferencing).
+        if (matrix[1] != 0.0 || matrix[4] != 0.0 || !(matrix[0] > 0.0) || !(matrix[5] < 0.0))
+            throw Error(path, "georeferenced by a rotated, sheared or flipped model "
+                              "transformation; resample it north up first (gdalwarp)");
+        geo.sx = matrix[0];
+        geo.sy = -matrix[5];
+        geo.west = matrix[3];
+        geo.north = matrix[7];
+        geo.present = true;
+    } else if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &count, &ties) && count > 6) {
+        throw Error(path, "georeferenced by " + std::to_string(count / 6) +
+                              " ground control points without a pixel scale; resample it to a "
+                              "grid first (gdalwarp)");
     }
     // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
     std::uint16_t ncount = 0;
@@ -185,7 +204,6 @@ Georef read_geotiff_tags(const std::string& path) {
         }
         GTIFFree(gtif);
     }
-    XTIFFClose(tif);
     return geo;
 }
 

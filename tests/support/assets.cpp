@@ -4,6 +4,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <sys/resource.h>
@@ -61,6 +62,46 @@ static std::string slurp(const fs::path& p) {
         std::fclose(f);
     }
     return s;
+}
+
+std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>>& georef,
+                          const std::vector<unsigned>& keys) {
+    std::string b = "II*";
+    b += '\0';
+    const auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
+    const auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
+    // The directory's entries (tag, type, count, value or offset), the data after it: the
+    // georeferencing doubles, the GeoKeys, then the samples.
+    std::vector<std::array<unsigned, 4>> entries = {
+        {256, 3, 1, 2}, {257, 3, 1, 2}, {258, 3, 1, 16}, {259, 3, 1, 1}, {262, 3, 1, 1},
+        {273, 4, 1, 0}, {277, 3, 1, 1}, {278, 3, 1, 2},  {279, 4, 1, 8}, {339, 3, 1, 2}};
+    const unsigned count = unsigned(entries.size() + georef.size() + 1);
+    unsigned at = 8 + 2 + 12 * count + 4;
+    for (const auto& [tag, values] : georef) {
+        entries.push_back({tag, 12, unsigned(values.size()), at});
+        at += unsigned(8 * values.size());
+    }
+    entries.push_back({34735, 3, unsigned(keys.size()), at});
+    at += unsigned(2 * keys.size());
+    entries[5][3] = at; // the strip
+    u32(8);
+    u16(count);
+    for (const auto& e : entries) {
+        u16(e[0]), u16(e[1]), u32(e[2]);
+        e[1] == 3 && e[2] == 1 ? (u16(e[3]), u16(0)) : u32(e[3]);
+    }
+    u32(0);
+    for (const auto& tag : georef)
+        for (const double v : tag.second) {
+            char raw[8];
+            std::memcpy(raw, &v, 8);
+            b.append(raw, 8);
+        }
+    for (const unsigned k : keys)
+        u16(k);
+    for (const unsigned z : {100u, 200u, 300u, 400u})
+        u16(z);
+    return b;
 }
 
 RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes) {

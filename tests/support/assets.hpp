@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tinlod::test {
 
@@ -17,6 +19,12 @@ std::string asset(const std::string& name);
 Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h);
 // A fresh empty temporary folder for this test (removed at exit).
 std::string temp_dir();
+
+// The bytes of a 2 x 2 int16 GeoTIFF (heights 100, 200 in the north row, 300, 400 in the south):
+// `georef` holds TIFF tags with their doubles, in ascending tag order (33550 pixel scale, 33922
+// tie points, 34264 model transformation), `keys` the GeoKey directory (tag 34735).
+std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>>& georef,
+                          const std::vector<unsigned>& keys);
 
 struct RunResult {
     int status = 0;
