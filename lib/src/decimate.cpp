@@ -1829,15 +1829,34 @@ static std::int64_t erase_loop(NodeEraser::Impl &s) {
 //    of the terrain that rung had not swept got 5 % more error (Rainier high 1.26 -> 1.32 px).
 //    The queue stays for the paper model, whose key is not a cost, and for an erase with no bound.
 constexpr double k_tau_rung_ratio = 8.0;
-// The passes at tau / 8^k, k = tau_rungs(s) .. 1, before those at tau. A grid TIN's one-off erase
-// has none: on N42E001 and Rainier, at tau = 1 px from the benchmark's views and at 1, 5, 10 and 20
-// m in the vertical model, they cost 16-24 % more time for -1 % to +0.7 % nodes. A mesh with
-// swallowed lists has one (the bunny at 0.5-4 px: none took 2 % more nodes, two 11-16 % more time
-// for the same nodes). A refiner's history (shallow) has two: its updates recovered 8 % fewer
-// nodes on the N42E001 descent than after none, p99 10 % lower.
+// The passes at tau / ratio^k, k = tau_rungs(s) .. 1, before those at tau. A grid TIN's one-off
+// erase has none: on N42E001 and Rainier, at tau = 1 px from the benchmark's views and at 1, 5, 10
+// and 20 m in the vertical model, they cost 16-24 % more time for -1 % to +0.7 % nodes. A mesh
+// with swallowed lists has one (the bunny at 0.5-4 px: none took 2 % more nodes, two 11-16 % more
+// time for the same nodes).
+// A refiner's history (shallow) climbs from tau / 64 in rungs 10 % apart, so that its erases come
+// in about the order of their costs. An observer who comes closer needs the erased nodes back
+// from the most costly down; within a rung a pass erases in storage order, and where a cheap
+// node's erase came after a costly neighbour's and consumed its triangles, the costly node's
+// recovery first brings the cheap one back, which the same update erases again. With two rungs
+// 8 times apart, the 4097² flights at 30 frames per second changed 464-1,307 nodes per frame
+// (medians), 35-38 % of the recoveries erased again by the same update; with rungs 10 % apart,
+// 231-658 and 14-21 %, with 13-14 % fewer nodes. The first frame takes 1.8-1.9 times as long
+// (4.5-5.9 s -> 8.5-11.0 s): the dirty ring nodes of a rung's erases are evaluated again in the
+// next rung, where two rungs evaluated them once for many erases (3.4 M evaluations instead of
+// 1.4 M on the descent's first frame). Rungs 20 % apart: 9-17 % more changes than 10 %, a first
+// frame 1.5 times the two rungs'; 50 % apart, half the gain; 5 % apart, 6 % fewer changes still
+// on the descent for a first frame 1.3 times as long again.
+constexpr double k_history_rung_ratio = 1.1;
+constexpr double k_history_rung_floor = 64.0; // tau / 1024 instead: the same changes per frame
+
+static double tau_rung_ratio(const NodeEraser::Impl &s) {
+    return s.options.shallow_history ? k_history_rung_ratio : k_tau_rung_ratio;
+}
+
 static int tau_rungs(const NodeEraser::Impl &s) {
     if (s.options.shallow_history)
-        return 2;
+        return int(std::ceil(std::log(k_history_rung_floor) / std::log(k_history_rung_ratio)));
     return s.grid_w > 0 ? 0 : 1;
 }
 constexpr double k_budget_rung_ratio = 2.0;
@@ -2105,7 +2124,7 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     std::int64_t erased = 0;
     if (s.options.max_nodes <= 0) {
         for (int rung = tau_rungs(s); rung > 0; --rung)
-            erased += sweep(tau * std::pow(k_tau_rung_ratio, -rung), 0);
+            erased += sweep(tau * std::pow(tau_rung_ratio(s), -rung), 0);
         for (std::int64_t made = 1; made > 0;) {
             made = sweep(tau, 0);
             erased += made;
