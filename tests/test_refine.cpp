@@ -481,16 +481,24 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
     EXPECT_EQ(tiles[1], TileStore(dir + "/dem.tlq").tile_count()) << "the store is read whole, once";
 }
 
+// One second from high south of `hf` down over its southern part, looking north: the TIN grows
+// as the observer comes down. Written to dir/path.csv.
+static CameraPath write_coming_down(const Heightfield& hf, const std::string& dir) {
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    CameraPath path;
+    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
+                 {1, {w / 2, 0.2 * h, hf.max_z() + 200}, {w / 2, h, hf.min_z()}}};
+    write_camera_path(path, dir + "/path.csv");
+    return path;
+}
+
 // --meshes writes the very TINs the frames measured, and --frames-eye draws those TINs from one
 // fixed camera, whatever the observer's.
 TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
     const std::string dir = tinlod::test::temp_dir();
     const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
-    CameraPath path;
-    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
-                 {1, {w / 2, 0.2 * h, hf.max_z() + 200}, {w / 2, h, hf.min_z()}}};
-    write_camera_path(path, dir + "/path.csv");
+    const CameraPath path = write_coming_down(hf, dir);
     std::filesystem::create_directories(dir + "/meshes");
     std::filesystem::create_directories(dir + "/frames");
     std::string args = "fly '" + asset("dem_squared.tif") + "' --path " + dir +
@@ -576,12 +584,7 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
 TEST(Refiner, FlyThatFailsMidwayLeavesNoFrames) {
     namespace fs = std::filesystem;
     const std::string dir = tinlod::test::temp_dir();
-    const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
-    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
-    CameraPath path;
-    path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
-                 {1, {w / 2, 0.2 * h, hf.max_z() + 200}, {w / 2, h, hf.min_z()}}};
-    write_camera_path(path, dir + "/path.csv");
+    write_coming_down(load_heightfield(asset("dem_squared.tif")), dir);
     const std::string meshes = dir + "/meshes";
     fs::create_directories(meshes);
     const std::string args = "fly '" + asset("dem_squared.tif") + "' --path " + dir +
