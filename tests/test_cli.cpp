@@ -232,6 +232,8 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "retrieve " + asset("dem_squared.tif") + " --eye 1,1,900 --at 1,1,900 -o {out}/a.ply", "coincide"},
         {"negative tau", "retrieve " + asset("dem_squared.tif") + " --eye 1,1,900 --at 9,9,0 --tol -1 -o {out}/a.ply",
          "--tol"},
+        {"infinite tau", "simplify " + asset("dem_squared.tif") + " --eye 1,1,900 --at 9,9,0 --tol inf -o {out}/a.ply",
+         "--tol: must be a finite number of pixels >= 0"},
         {"zero tau in flight",
          "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") + " --tol 0 --stats {out}/f.csv",
          "--tol"},

@@ -65,8 +65,8 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                         "give --eye and --at (or --max-error for a view-independent TIN)");
         if (vertical && !(args->max_error >= 0.0 && std::isfinite(args->max_error)))
             throw Error("--max-error", "must be a finite bound >= 0");
-        if (!(args->tol >= 0.0))
-            throw Error("--tol", "must be >= 0 pixels");
+        if (!(args->tol >= 0.0) || !std::isfinite(args->tol))
+            throw Error("--tol", "must be a finite number of pixels >= 0");
         if (args->max_nodes < 0)
             throw Error("--max-nodes", "must be >= 0");
         if (!is_mesh_path(args->output))
