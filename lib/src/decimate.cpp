@@ -1846,7 +1846,8 @@ constexpr double k_tau_rung_ratio = 8.0;
 // next rung, where two rungs evaluated them once for many erases (3.4 M evaluations instead of
 // 1.4 M on the descent's first frame). Rungs 20 % apart: 9-17 % more changes than 10 %, a first
 // frame 1.5 times the two rungs'; 50 % apart, half the gain; 5 % apart, 6 % fewer changes still
-// on the descent for a first frame 1.3 times as long again.
+// on the descent for a first frame 1.3 times as long again. Rungs within each update's erase as
+// well (the first flights' scratch driver): as many changes, twice the evaluations.
 constexpr double k_history_rung_ratio = 1.1;
 constexpr double k_history_rung_floor = 64.0; // tau / 1024 instead: the same changes per frame
 

@@ -30,17 +30,25 @@ static fs::path folder_of(const fs::path& target) {
     return target.has_parent_path() ? target.parent_path() : fs::path(".");
 }
 
+// Throws Error naming `subject` when `folder` (called `what` in the message) is missing or not
+// writable.
+static void check_folder(const std::string& subject, const fs::path& folder,
+                         const std::string& what) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw Error(subject, what + " does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw Error(subject, what + " is not writable");
+}
+
 void check_writable(const std::vector<std::string>& paths) {
     for (const std::string& path : paths) {
         if (path.empty())
             continue;
         const fs::path target(path);
         const fs::path folder = folder_of(target);
+        check_folder(path, folder, "output folder '" + folder.string() + "'");
         std::error_code ec;
-        if (!fs::is_directory(folder, ec))
-            throw Error(path, "output folder '" + folder.string() + "' does not exist");
-        if (::access(folder.c_str(), W_OK) != 0)
-            throw Error(path, "output folder '" + folder.string() + "' is not writable");
         if (fs::is_directory(target, ec))
             throw Error(path, "output path is a folder");
     }
@@ -74,11 +82,8 @@ void write_atomically(const std::string& path, const std::function<void(const st
 }
 
 StagedFolder::StagedFolder(const std::string& folder) : folder_(folder) {
+    check_folder(folder, folder, "folder");
     std::error_code ec;
-    if (!fs::is_directory(folder, ec))
-        throw Error(folder, "folder does not exist");
-    if (::access(folder.c_str(), W_OK) != 0)
-        throw Error(folder, "folder is not writable");
     const fs::path staging = fs::path(folder) / hidden_name("staged");
     if (!fs::create_directory(staging, ec))
         throw Error(folder, "cannot create a staging folder in it: " + ec.message());
