@@ -14,11 +14,14 @@
 
 #include <gtest/gtest.h>
 #include <malloc.h>
+#include <sys/wait.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 using namespace tinlod;
@@ -606,6 +609,45 @@ TEST(Refiner, FlyThatFailsMidwayLeavesNoFrames) {
     EXPECT_NE(r.err.find(meshes + "/frame_0000"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
     EXPECT_TRUE(fs::is_empty(meshes)) << "frames of a failed flight left behind";
+    EXPECT_FALSE(fs::exists(dir + "/f.csv"));
+}
+
+// Ctrl-C in the middle of a flight: exit status 130, one line, and the folders as they were.
+TEST(Refiner, FlyStoppedByCtrlCLeavesNoFrames) {
+    namespace fs = std::filesystem;
+    const std::string dir = tinlod::test::temp_dir();
+    write_coming_down(load_heightfield(asset("dem_squared.tif")), dir);
+    const std::string meshes = dir + "/meshes";
+    fs::create_directories(meshes);
+    // 1001 frames, each writing its TIN: the flight is well under way once two are staged.
+    const pid_t pid = tinlod::test::start_cli({"fly", asset("dem_squared.tif"), "--path",
+                                               dir + "/path.csv", "--fps", "1000", "--meshes",
+                                               meshes, "--stats", dir + "/f.csv"},
+                                              dir + "/err");
+    ASSERT_GT(pid, 0);
+    const auto staged = [&] {
+        std::size_t files = 0;
+        for (const auto& e : fs::directory_iterator(meshes))
+            if (e.is_directory())
+                files += std::size_t(std::distance(fs::directory_iterator(e.path()),
+                                                   fs::directory_iterator()));
+        return files;
+    };
+    int status = 0;
+    bool midway = false, ended = false;
+    while (!midway && !ended) {
+        midway = staged() >= 2;
+        ended = waitpid(pid, &status, WNOHANG) == pid;
+        usleep(1000);
+    }
+    ASSERT_FALSE(ended) << "the flight ended before it staged two frames, status " << status;
+    kill(pid, SIGINT);
+    waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGINT) << status;
+    std::ifstream err(dir + "/err");
+    const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "tinlod: interrupted\n");
+    EXPECT_TRUE(fs::is_empty(meshes)) << "frames of a stopped flight left behind";
     EXPECT_FALSE(fs::exists(dir + "/f.csv"));
 }
 

@@ -112,10 +112,14 @@ int main(int argc, char** argv) {
         }
         apply_threads(n);
     }
+    tinlod::install_interrupt_handlers();
     try {
         for (auto& [sub, run] : runs)
             if (sub->parsed())
                 run();
+    } catch (const tinlod::Interrupted& e) {
+        std::fprintf(stderr, "tinlod: interrupted\n");
+        return 128 + e.signal();
     } catch (const tinlod::Error& e) {
         std::fprintf(stderr, "tinlod: error: %s\n", e.what());
         return 1;

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cassert>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +26,35 @@
 namespace tinlod {
 
 namespace fs = std::filesystem;
+
+static volatile std::sig_atomic_t g_interrupt = 0; // the signal that came, 0 for none
+static std::atomic<int> g_deferrals{0};               // the Deferral objects alive
+
+static_assert(std::atomic<int>::is_always_lock_free, "read in a signal handler");
+
+// An interrupt signal ends the process at once (its default action) unless a Deferral lives: then
+// it only sets the flag check_interrupt() reads, and a second one ends the process.
+static void on_interrupt(int signal) {
+    std::signal(signal, SIG_DFL);
+    if (g_deferrals.load() > 0)
+        g_interrupt = signal;
+    else
+        std::raise(signal);
+}
+
+void install_interrupt_handlers() {
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP})
+        if (std::signal(signal, on_interrupt) == SIG_IGN)
+            std::signal(signal, SIG_IGN); // ignored by who started us (nohup, a background job)
+}
+
+void check_interrupt() {
+    if (const int signal = g_interrupt)
+        throw Interrupted(signal);
+}
+
+Deferral::Deferral() { ++g_deferrals; }
+Deferral::~Deferral() { --g_deferrals; }
 
 static fs::path folder_of(const fs::path& target) {
     return target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -72,8 +102,10 @@ void write_atomically(const std::string& path, const std::function<void(const st
     const fs::path target(path);
     const fs::path tmp = folder_of(target) / hidden_name(target);
     std::error_code ec;
+    const Deferral deferral;
     try {
         write(tmp.string());
+        check_interrupt();
         fs::rename(tmp, target);
     } catch (...) {
         fs::remove(tmp, ec);
@@ -110,6 +142,7 @@ void StagedFolder::write(const std::string& name,
 }
 
 void StagedFolder::commit() {
+    check_interrupt();
     std::error_code ec;
     for (const std::string& name : names_)
         if (fs::is_directory(fs::path(folder_) / name, ec))
@@ -169,7 +202,8 @@ int max_threads() {
 }
 
 Progress::Progress(std::string label, std::int64_t total)
-    : label_(std::move(label)), total_(total), active_(::isatty(STDERR_FILENO) != 0) {}
+    : label_(std::move(label)), total_(total), active_(::isatty(STDERR_FILENO) != 0),
+      deferral_(std::make_unique<Deferral>()) {}
 
 Progress::~Progress() {
     if (active_ && !finished_ && last_percent_ >= 0)
@@ -177,6 +211,7 @@ Progress::~Progress() {
 }
 
 void Progress::update(std::int64_t done) {
+    check_interrupt();
     if (!active_ || total_ <= 0)
         return;
     const int percent = static_cast<int>(100 * std::min(done, total_) / total_);
@@ -192,6 +227,8 @@ void Progress::update(std::int64_t done) {
 
 void Progress::finish() {
     update(total_);
+    deferral_.reset();
+    check_interrupt(); // one that came after the last update
     if (active_ && last_percent_ >= 0 && !finished_)
         std::fputc('\n', stderr);
     finished_ = true;

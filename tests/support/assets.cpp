@@ -9,6 +9,7 @@
 #include <random>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace tinlod::test {
@@ -135,6 +136,23 @@ RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes) {
     r.out = slurp(dir / "out");
     r.err = slurp(dir / "err");
     return r;
+}
+
+pid_t start_cli(const std::vector<std::string>& args, const std::string& err_file) {
+    std::vector<char*> argv{const_cast<char*>(TINLOD_CLI)};
+    for (const std::string& a : args)
+        argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        std::freopen("/dev/null", "w", stdout);
+        std::freopen(err_file.empty() ? "/dev/null" : err_file.c_str(), "w", stderr);
+        for (const int signal : {SIGINT, SIGTERM, SIGHUP})
+            std::signal(signal, SIG_DFL);
+        execv(TINLOD_CLI, argv.data());
+        _exit(127);
+    }
+    return pid;
 }
 
 // Twice the signed xy area of face f (positive: counter-clockwise seen from above).

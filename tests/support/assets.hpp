@@ -5,6 +5,8 @@
 #include "tinlod/render.hpp"
 #include "tinlod/tin.hpp"
 
+#include <sys/types.h>
+
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -35,6 +37,11 @@ struct RunResult {
 // 900 s in a sanitizer build). `max_file_bytes` > 0: files it writes are limited to that size, a
 // write past it failing (EFBIG) as a write on a full disk does.
 RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes = 0);
+
+// Starts the tinlod CLI with `args` (not through a shell), its stdout to /dev/null and its
+// stderr to `err_file` (/dev/null when empty), with the default action for every interrupt signal.
+// Returns its process id.
+pid_t start_cli(const std::vector<std::string>& args, const std::string& err_file = "");
 
 // Invariants of a TIN: every edge manifold (<= 2 faces, OpenMesh guarantees it for a valid mesh),
 // every face counter-clockwise seen from above with positive xy area. Returns the number of faces

@@ -8,10 +8,43 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace tinlod {
+
+// Thrown by check_interrupt() once SIGINT, SIGTERM or SIGHUP came (with interrupt handlers
+// installed): unwinding removes temporaries and staged files as any error does.
+class Interrupted : public std::runtime_error {
+  public:
+    explicit Interrupted(int signal) : std::runtime_error("interrupted"), signal_(signal) {}
+    int signal() const { return signal_; }
+
+  private:
+    int signal_;
+};
+
+// From here on SIGINT, SIGTERM and SIGHUP (those not ignored when the process started, as nohup
+// and a shell's background jobs do) end the process at once, as by default, except while
+// a Deferral lives: then they only set a flag, which check_interrupt() turns into Interrupted where
+// unwinding is safe, so that a command stopped by Ctrl-C leaves no partial output. A Progress (until
+// finish()), a StagedFolder and write_atomically defer them and check. A second signal ends the
+// process at once.
+void install_interrupt_handlers();
+
+// Throws Interrupted when a signal came while a Deferral lived.
+void check_interrupt();
+
+// See install_interrupt_handlers.
+class Deferral {
+  public:
+    Deferral();
+    ~Deferral();
+    Deferral(const Deferral&) = delete;
+    Deferral& operator=(const Deferral&) = delete;
+};
 
 // Writes `path` by calling write(tmp) on a temporary in the same folder, then renaming it over
 // `path`. On any exception the temporary is removed and the exception rethrown; `path` is never
@@ -25,7 +58,8 @@ void check_writable(const std::vector<std::string>& paths);
 
 // Files written into an existing folder all together or not at all, as a flight's frames: each is
 // written into a hidden staging folder inside it, and commit() moves them in. Destroyed before
-// commit() (an error midway), it removes what it staged and leaves the folder as it was.
+// commit() (an error midway), it removes what it staged and leaves the folder as it was. It defers
+// interrupt signals (see install_interrupt_handlers), and commit() first checks for one.
 class StagedFolder {
   public:
     // Throws Error naming `folder` when it is missing or not writable.
@@ -42,6 +76,7 @@ class StagedFolder {
     void commit();
 
   private:
+    Deferral deferral_;
     std::string folder_, staging_;
     std::vector<std::string> names_;
 };
@@ -76,7 +111,8 @@ class Stopwatch {
     std::chrono::steady_clock::time_point start_;
 };
 
-// A progress bar on stderr, drawn only when stderr is a terminal; cheap to call often.
+// A progress bar on stderr, drawn only when stderr is a terminal; cheap to call often. It defers
+// interrupt signals until finish(), and each update (and finish()) calls check_interrupt().
 class Progress {
   public:
     Progress(std::string label, std::int64_t total);
@@ -90,6 +126,7 @@ class Progress {
     int last_percent_ = -1;
     bool active_;
     bool finished_ = false;
+    std::unique_ptr<Deferral> deferral_; // until finish()
 };
 
 } // namespace tinlod
