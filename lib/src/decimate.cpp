@@ -2418,9 +2418,9 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
 // Live nodes per cell of the update's grid. The grid follows the live nodes, not the input: each
 // update passes twice over the cells, and with cells of 1024 input nodes (16 k cells for the 43 k
 // live nodes of a 4097² flight) those passes cost as much as the walks over the nodes. At 30 frames
-// per second with the camera 8 times slower than the flight benchmark's paths, a frame took
-// 20-27 % less with 64 live nodes per cell than with 1024 input nodes (scratch runs; 8 to 300
-// nodes per cell were within 5 % of each other).
+// per second with the camera 8 times slower than the flight benchmark's paths, a frame's median
+// took 19-24 % less with 64 live nodes per cell than with 1024 input nodes (scratch runs on the
+// fly-over: 20 to 1,400 live nodes per cell were within 13 % of each other, 80 to 1,400 within 5 %).
 constexpr double k_live_per_cell = 64.0;
 // The grid is sized again once the live nodes are this many times more, or fewer, than it was for.
 constexpr std::int64_t k_regrid_ratio = 4;
