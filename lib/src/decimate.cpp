@@ -1395,6 +1395,12 @@ static void scan_hole(const NodeEraser::Impl &s, Hole &h, const glm::dvec3 &pv, 
     }
 }
 
+// How far past the limit evaluate's scan of a grid TIN's hole measures the cost (see there). On
+// the 4097² first flights at 30 frames per second (scratch runs, the same TINs): 12-22 % fewer
+// candidates, the erase 6-22 % faster (paths' speed) and 11-19 % (a quarter of it); from 1.5 to
+// the whole hole it made no difference.
+constexpr double k_scan_reach = 2.0;
+
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
 // it only as some value > limit); false when v cannot be erased without a fold-over, a
 // non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the fan it
@@ -1524,8 +1530,12 @@ static bool evaluate(NodeEraser::Impl &s, VH v, double limit,
     }
     if (h.cost > limit)
         return remember();
+    // A scan that finds the cost over the limit goes on to k_scan_reach times the limit. Stopped
+    // at the first sample over it, the scan left a cost (the node's key and lower bound) barely
+    // over the limit, which the next frame's motion took back below it: the node turned candidate
+    // frame after frame as the eye drew away, each time scanning its hole again.
     if (s.grid_w > 0) {
-        scan_hole(s, h, pv, limit, max_swallowed);
+        scan_hole(s, h, pv, k_scan_reach * limit, max_swallowed);
         return remember();
     }
     for (int i = 0; i < fans && h.cost <= limit; ++i) {
