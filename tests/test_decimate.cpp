@@ -846,6 +846,67 @@ TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
     EXPECT_EQ(triangle_set(back), crop.triangles);
 }
 
+// An update evaluates only the nodes whose cost may have fallen to its erase bound: the rest are
+// left by bounds (their last cost carried to the new view, their worst node's deviation times its
+// weight now, the grid's cells). If any of those bounds overstated a cost, a node the update should
+// have erased would stay. After the updates of an approach, a retreat and a turn over a real DEM,
+// every live node costs more than the erase bound, measured over all the nodes its hole would
+// swallow, unless its fan covers more than an update takes on (k_update_cap). Overstating by 20-30 %
+// the motion shortcut's bound (moved_within), the worst node's or a cell's fails it.
+TEST(Erase, UpdateLeavesNoNodeItCouldErase) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 401});
+    const View start = corner_view(hf);
+    Mesh input = grid_tin(hf);
+    EraseOptions options;
+    options.tolerance = 1.0;
+    NodeEraser eraser(input, &start, options);
+    eraser.erase();
+    eraser.compact(); // as the refiner runs its updates
+    Mesh work = input;
+    eraser.rebind(work);
+    // Small steps, as a flight makes them: the bounds carried from frame to frame by the eye's move
+    // have a shortcut for moves small against the distance.
+    std::vector<View> views;
+    for (int i = 1; i <= 40; ++i) {
+        View v = start;
+        v.eye += 0.025 * (i <= 20 ? i : 40 - i) * (start.at - start.eye);
+        views.push_back(v);
+    }
+    for (int i = 1; i <= 8; ++i) {
+        View v = start;
+        v.at.x -= 0.05 * i * (hf.width - 1) * hf.dx;
+        views.push_back(v);
+    }
+    constexpr double k_erase_below = 0.75;
+    std::int64_t changed = 0, checked = 0, over_cap = 0;
+    double least = INFINITY;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const View &view = views[i];
+        const UpdateStats u = eraser.update(view, 1.0, k_erase_below);
+        changed += u.erased + u.recovered;
+        if (i % 4 != 3)
+            continue; // every 4th update is checked (each check evaluates every live node)
+        int erasable = 0;
+        for (const auto v : eraser.mesh().vertices()) {
+            if (eraser.is_erased(v))
+                continue;
+            const NodeEraser::Cost c = eraser.erase_cost(v);
+            if (c.covered > double(k_update_cap)) {
+                ++over_cap;
+                continue;
+            }
+            ++checked;
+            least = std::min(least, c.cost);
+            erasable += !(c.cost > k_erase_below);
+        }
+        EXPECT_EQ(erasable, 0) << "eye " << view.eye.x << ", " << view.eye.y << ", " << view.eye.z;
+    }
+    // Not vacuous: the updates changed the TIN, and the nodes checked come close to the bound.
+    EXPECT_GT(changed, 1000);
+    EXPECT_GT(checked, 20 * over_cap);
+    EXPECT_LT(least, 1.05 * k_erase_below);
+}
+
 TEST(Erase, FlatRegionIsErasedFirst) {
     Heightfield hf;
     hf.width = hf.height = 33;

@@ -1882,12 +1882,10 @@ constexpr double k_fine_rung_ratio = 1.05;
 // px from the benchmark's low and high views (N42E001, N48W125), 8-22 % less with a node budget
 // at the same or lower error, and the full grids, whose shares start at 1, are unchanged.
 constexpr double k_chain_swallowed = 32.0;
-// An update does not erase a node whose fan swallowed more nodes than this: such an erase visits
-// thousands of nodes to save one (on 4097² a face over a flat holds millions). Three flight paths
-// on 4097², 20 updates each, with swallowed lists: 65,536 -> 4,096 took 19 % off the update time
-// for 1.0-2.6 % more TIN nodes; 1,024 took 35 % off for 4-16 % more nodes. With the lattice scan
-// of a grid TIN: 16,384 costs 6 % more time than 4,096 for 0.9-2.2 % fewer nodes.
-constexpr std::size_t k_update_swallowed = 4096;
+// k_update_cap (decimate.hpp): three flight paths on 4097², 20 updates each, with swallowed lists:
+// 65,536 -> 4,096 took 19 % off the update time for 1.0-2.6 % more TIN nodes; 1,024 took 35 % off
+// for 4-16 % more nodes. With the lattice scan of a grid TIN: 16,384 costs 6 % more time than 4,096
+// for 0.9-2.2 % fewer nodes.
 // Node budget: the sample of first costs. Every 29th node places the first rung as well as every
 // 7th did (the same output on Rainier, within 1 % on N42E001), with 3-5 % fewer evaluations.
 constexpr std::uint32_t k_sample_stride = 29;
@@ -3543,7 +3541,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     }
     s.reerased = 0;
     const std::int64_t evaluations = s.evaluations;
-    stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_swallowed);
+    stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_cap);
     stats.evaluations = s.evaluations - evaluations;
     stats.reerased = s.reerased;
     for (const std::uint32_t x : recovered)
@@ -3556,6 +3554,26 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         advise_huge(s); // an array grew out of its room
     stats.ms_erase = clock.ms();
     return stats;
+}
+
+NodeEraser::Cost NodeEraser::erase_cost(Mesh::VertexHandle v) {
+    Impl &s = *impl_;
+    const std::uint32_t x = node_of(s, v);
+    if (s.record_of[x] >= 0)
+        throw std::invalid_argument("NodeEraser::erase_cost: the node is erased");
+    Cost out;
+    if (s.xy && s.area_per_node > 0.0)
+        out.covered = covered_estimate(s, x);
+    if (s.flags[x] & k_locked)
+        return out;
+    const std::int64_t evaluations = s.evaluations;
+    if (evaluate(s, v, INFINITY)) {
+        out.cost = s.hole.cost;
+        if (s.grid_w > 0)
+            out.covered = std::max(out.covered, double(lattice_inside(s, s.hole)));
+    }
+    s.evaluations = evaluations;
+    return out;
 }
 
 EraseStats NodeEraser::measure() const {

@@ -162,6 +162,11 @@ struct UpdateStats {
     double ms_erase = 0.0;        // the erase pass
 };
 
+// An update (NodeEraser::update) does not erase a node whose fan covers more input nodes than
+// this: such an erase visits thousands of nodes to save one (on 4097² a face over a flat holds
+// millions).
+inline constexpr std::size_t k_update_cap = 4096;
+
 // The history of the erases made on a TIN (or surface mesh): erase by significance, recover any
 // erased node exactly. The eraser edits the caller's mesh in place (OpenMesh meshes cannot be
 // moved, only copied); the mesh must outlive it. Vertex handles stay valid for the eraser's whole
@@ -232,6 +237,17 @@ class NodeEraser {
     std::int64_t live_triangles() const;
     // Error of the current TIN over every swallowed node (see EraseStats).
     EraseStats measure() const;
+    // What erasing live node v would cost now: the largest weighted deviation, under the current
+    // view, of the nodes its re-triangulated hole swallows (measured over all of them; +inf when v
+    // is locked or its hole cannot be re-triangulated without a fold-over, a non-manifold edge or
+    // a moved outline), and the input nodes its fan covers (by area, or on a grid TIN the samples
+    // in its hole, the larger): an update leaves a node that covers more than k_update_cap as it
+    // is until its ring changes. The TIN does not change. Tells why a node stays live.
+    struct Cost {
+        double cost = INFINITY;
+        double covered = 0.0;
+    };
+    Cost erase_cost(Mesh::VertexHandle v);
     // Bytes held by the eraser beside the mesh: per-node state, records, rings, free lists.
     std::size_t history_bytes() const;
 
