@@ -14,7 +14,7 @@ BUILD_TYPE ?= Release
 FUZZ_SECONDS ?= 60
 FUZZ_RUNS ?= -1
 
-.PHONY: setup configure build demo test bench fuzz clean
+.PHONY: setup configure build demo test bench fuzz format clean
 
 setup:
 	@./scripts/setup.sh
@@ -44,6 +44,10 @@ fuzz: setup
 		> build-fuzz/configure.log 2>&1 || (cat build-fuzz/configure.log; exit 1)
 	@cmake --build build-fuzz -j $(JOBS)
 	@./scripts/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_RUNS)
+
+# Rewrites the C++ sources in the repository's clang-format style (`make test` checks it).
+format:
+	@./scripts/format.sh
 
 clean:
 	rm -rf build build-sanitize build-fuzz

@@ -179,8 +179,8 @@ int main(int argc, char **argv) {
         const Mesh tin = erase_dem(hf, nullptr, options, {}, &st);
         const double ms = clock.ms();
         std::printf("%10.1f %10s %10zu %10.0f %12.2f %10.3f\n", bound,
-                    first_stage_name(st.first_stage), tin.n_vertices(), ms,
-                    grid_tris / ms / 1000.0, measure_error(hf, tin).max_vertical);
+                    first_stage_name(st.first_stage), tin.n_vertices(), ms, grid_tris / ms / 1000.0,
+                    measure_error(hf, tin).max_vertical);
     }
     return 0;
 }

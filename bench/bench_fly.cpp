@@ -77,11 +77,11 @@ struct FlyOptions {
     bool quick = false;
 };
 
-constexpr double k_tau = 1.0;           // pixels, the refiner's and the rebuild's
+constexpr double k_tau = 1.0;   // pixels, the refiner's and the rebuild's
 constexpr double k_share = 0.5; // the rebuild retrieves at share * tau, erases to tau (erase_dem)
-constexpr double k_fps = 4.0;           // frames per second of path time
+constexpr double k_fps = 4.0;   // frames per second of path time
 constexpr double k_fps_interactive = 30.0; // the second flight's
-constexpr int k_check_every = 150;      // its frames whose error is measured (1, 151, ...)
+constexpr int k_check_every = 150;         // its frames whose error is measured (1, 151, ...)
 // The slowed flights' factors; each measures its error at the same path times as the 30 fps flight.
 constexpr int k_slower[] = {2, 4, 8};
 // The rebuild runs on every 20th frame: on 4097² it takes about 10 s (erase_dem's per-sample
@@ -254,9 +254,9 @@ struct Flight {
     std::vector<PathResult> repeated;    // each flown again right after its first flight
     std::vector<std::vector<PathResult>> slowed; // and with the camera k_slower[i] times slower
     std::vector<double> eye_speed;               // each path's mean eye speed, m/s
-    double built_bytes_mb = 0.0; // Refiner::bytes() right after the constructor
-    double built_rss_mb = 0.0;   // resident memory the constructor added
-    std::int64_t samples = 0;    // the terrain's
+    double built_bytes_mb = 0.0;                 // Refiner::bytes() right after the constructor
+    double built_rss_mb = 0.0;                   // resident memory the constructor added
+    std::int64_t samples = 0;                    // the terrain's
 };
 
 double measured_px(const Heightfield &hf, const Mesh &tin, const View &view) {
@@ -495,25 +495,25 @@ void write_csv(const std::string &file, const Flight &flight) {
     for (const auto &[fps, results] :
          {std::pair{k_fps, &flight.paths}, std::pair{k_fps_interactive, &flight.interactive}})
         for (const PathResult &p : *results)
-        for (const FrameRow &r : p.rows) {
-            out << p.name << "," << fmt("%.0f", fps) << "," << r.frame << "," << fmt("%.3f", r.t)
-                << "," << fmt("%.4f", r.ms)
-                << "," << fmt("%.4f", r.cpu_ms) << "," << r.changed() << "," << r.stats.erased
-                << "," << r.stats.recovered << "," << r.stats.reerased << "," << r.stats.entered
-                << "," << r.stats.candidates << "," << r.stats.nodes
-                << "," << r.stats.triangles << "," << fmt("%.2f", r.bytes_per_node) << ",";
-            if (r.rebuilt)
-                out << fmt("%.2f", r.rebuild_ms) << "," << fmt("%.2f", r.rebuild_cpu_ms) << ","
-                    << r.rebuild_nodes << "," << r.rebuild_triangles << ","
-                    << fmt("%.1f", r.rebuild_cpu_ms / std::max(1e-3, r.cpu_ms)) << ","
-                    << fmt("%.4f", r.max_px) << "," << fmt("%.4f", r.rebuild_max_px) << ","
-                    << fmt("%.4f", r.heights_tiles) << "," << fmt("%.4f", r.heights_blocks);
-            else if (r.checked)
-                out << ",,,,," << fmt("%.4f", r.max_px) << ",,,";
-            else
-                out << ",,,,,,,,";
-            out << "\n";
-        }
+            for (const FrameRow &r : p.rows) {
+                out << p.name << "," << fmt("%.0f", fps) << "," << r.frame << ","
+                    << fmt("%.3f", r.t) << "," << fmt("%.4f", r.ms) << "," << fmt("%.4f", r.cpu_ms)
+                    << "," << r.changed() << "," << r.stats.erased << "," << r.stats.recovered
+                    << "," << r.stats.reerased << "," << r.stats.entered << ","
+                    << r.stats.candidates << "," << r.stats.nodes << "," << r.stats.triangles << ","
+                    << fmt("%.2f", r.bytes_per_node) << ",";
+                if (r.rebuilt)
+                    out << fmt("%.2f", r.rebuild_ms) << "," << fmt("%.2f", r.rebuild_cpu_ms) << ","
+                        << r.rebuild_nodes << "," << r.rebuild_triangles << ","
+                        << fmt("%.1f", r.rebuild_cpu_ms / std::max(1e-3, r.cpu_ms)) << ","
+                        << fmt("%.4f", r.max_px) << "," << fmt("%.4f", r.rebuild_max_px) << ","
+                        << fmt("%.4f", r.heights_tiles) << "," << fmt("%.4f", r.heights_blocks);
+                else if (r.checked)
+                    out << ",,,,," << fmt("%.4f", r.max_px) << ",,,";
+                else
+                    out << ",,,,,,,,";
+                out << "\n";
+            }
 }
 
 // gnuplot series: one block per path (title line first): changed, TIN nodes, CPU ms.
@@ -551,8 +551,8 @@ Claim p99_claim(const std::string &claim, const std::vector<PathResult> &results
     }
     return {claim, text,
             worst <= 8 ? "ahead by " + fmt("%.1f×", 8 / worst)
-                       : "behind: p99 " + fmt("%.1f", worst) + " ms = " +
-                             fmt("%.1f×", worst / 8) + " the goal"};
+                       : "behind: p99 " + fmt("%.1f", worst) + " ms = " + fmt("%.1f×", worst / 8) +
+                             " the goal"};
 }
 
 // "1/k" for a camera k times slower than the paths, "1" for the paths' own speed.
@@ -592,10 +592,10 @@ Claim speed_claim(const Flight &flight, const std::vector<std::vector<Summary>> 
                 " frames per second against the camera's speed (the paths flown at their own "
                 "speed and 2, 4 and 8 times slower, each the first flight of a new refiner)",
             text,
-            holds_from == 0 ? "behind at every speed flown"
-                            : "holds at " + speed_name(holds_from) +
-                                  " of the paths' speed and slower (mean eye speed " + speeds +
-                                  " m/s there)"};
+            holds_from == 0
+                ? "behind at every speed flown"
+                : "holds at " + speed_name(holds_from) +
+                      " of the paths' speed and slower (mean eye speed " + speeds + " m/s there)"};
 }
 
 std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums,
@@ -604,7 +604,8 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
     const std::vector<PathResult> &results = flight.paths;
     std::vector<Claim> out;
     out.push_back(p99_claim("flight p99 ≤ 8 ms (Refiner::update per frame, CPU time of one core, "
-                            "worst path; " + fmt("%.0f", k_fps) + " frames per second of path time)",
+                            "worst path; " +
+                                fmt("%.0f", k_fps) + " frames per second of path time)",
                             results, sums));
     out.push_back(p99_claim("flight p99 ≤ 8 ms at " + fmt("%.0f", k_fps_interactive) +
                                 " frames per second (the same paths as an interactive viewer "
@@ -632,9 +633,10 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
     }
     if (frames > 0)
         out.push_back(
- {"flight ≥ 10× faster than rebuild per frame (retrieval at " + fmt("%.1f", k_share) +
-                 " τ + erase to τ over every sample, τ = " + fmt("%.0f", k_tau) + " px, same view, every " +
-                 std::to_string(k_rebuild_every) + "th frame; median ratio of CPU times)",
+            {"flight ≥ 10× faster than rebuild per frame (retrieval at " + fmt("%.1f", k_share) +
+                 " τ + erase to τ over every sample, τ = " + fmt("%.0f", k_tau) +
+                 " px, same view, every " + std::to_string(k_rebuild_every) +
+                 "th frame; median ratio of CPU times)",
              text + "; measured max error: flight " + fmt("%.3f", flight_px) + " px, rebuild " +
                  fmt("%.3f", rebuild_px) + " px" +
                  (rebuild_px > k_tau ? " (the rebuild shows more error than τ: the ratio "
@@ -705,26 +707,28 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
         ". Frame 0 of the first path builds it (the quad-tree retrieval at half the erase's bound, "
         "then the erase, from that view; the samples the retrieval left out enter by local edits "
         "where the paths come close: *entered*); frame 0 of the others is the jump from the last "
-        "path's end, one update; both are listed apart, not among the frames. Update time = CPU time of the one thread inside `Refiner::update` "
+        "path's end, one update; both are listed apart, not among the frames. Update time = CPU "
+        "time of the one thread inside `Refiner::update` "
         "(wall p50/p99 beside it: the machine is shared); changed = erased + recovered nodes; r = "
         "Pearson correlation of the update time with the nodes changed and with the TIN's live "
         "nodes over the frames; fixed ms + µs per changed node = the least-squares line of the "
         "update time against the nodes changed. Bytes per node = `Refiner::bytes()` / input "
         "nodes, the largest over the path's frames; right after the constructor bytes() counted " +
         fmt("%.0f", flight.built_bytes_mb) + " MB and the resident memory grew by " +
-        fmt("%.0f", flight.built_rss_mb) +
-        " MB. Each path's updates stop once they took " +
+        fmt("%.0f", flight.built_rss_mb) + " MB. Each path's updates stop once they took " +
         fmt("%.0f", quick ? k_quick_budget_s : k_budget_s) +
-        " s of wall time (the rebuilds and error measurements not counted), so that `make bench` stays within 30 minutes: *updates* says how many "
+        " s of wall time (the rebuilds and error measurements not counted), so that `make bench` "
+        "stays within 30 minutes: *updates* says how many "
         "of the path's updates were flown.\n\nPaths (from the terrain's bounds and heights; every "
         "eye checked above the ground):\n\n";
     for (const PathResult &p : results)
         md += "- **" + p.name + "**: " + p.description + "\n";
-    md += "\n| path | updates | frame 0 s | update CPU ms p50 / p99 / max | wall ms p50 / p99 | "
-          "changed per frame median (max) | entered in all | TIN nodes min–max | r(time, changed) | "
-          "r(time, nodes) | fixed ms + µs per changed node | bytes per node | bytes() MB at the "
-          "end |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md +=
+        "\n| path | updates | frame 0 s | update CPU ms p50 / p99 / max | wall ms p50 / p99 | "
+        "changed per frame median (max) | entered in all | TIN nodes min–max | r(time, changed) | "
+        "r(time, nodes) | fixed ms + µs per changed node | bytes per node | bytes() MB at the "
+        "end |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const Summary &s = sums[i];
         const PathResult &p = results[i];
@@ -734,11 +738,10 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               fmt("%.2f", s.p99) + " / " + fmt("%.2f", s.max) + " | " + fmt("%.2f", s.wall_p50) +
               " / " + fmt("%.2f", s.wall_p99) + " | " + fmt("%.0f", s.changed_median) + " (" +
               fmt("%.0f", s.changed_max) + ") | " + std::to_string(entered(p)) + " | " +
-              fmt("%.0f", s.nodes_min) + "–" +
-              fmt("%.0f", s.nodes_max) + " | " + fmt("%.2f", s.r_changed) + " | " +
-              fmt("%.2f", s.r_nodes) + " | " + fmt("%.0f", s.fixed_ms) + " + " +
-              fmt("%.2f", s.us_per_changed) + " | " + fmt("%.0f", s.bytes_per_node) + " | " +
-              fmt("%.0f", p.bytes_mb) + " |\n";
+              fmt("%.0f", s.nodes_min) + "–" + fmt("%.0f", s.nodes_max) + " | " +
+              fmt("%.2f", s.r_changed) + " | " + fmt("%.2f", s.r_nodes) + " | " +
+              fmt("%.0f", s.fixed_ms) + " + " + fmt("%.2f", s.us_per_changed) + " | " +
+              fmt("%.0f", s.bytes_per_node) + " | " + fmt("%.0f", p.bytes_mb) + " |\n";
     }
     md += "| all | | | " + fmt("%.2f", pooled.p50) + " / " + fmt("%.2f", pooled.p99) + " / " +
           fmt("%.2f", pooled.max) + " | " + fmt("%.2f", pooled.wall_p50) + " / " +
@@ -746,18 +749,19 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
           fmt("%.0f", pooled.changed_max) + ") | | | " + fmt("%.2f", pooled.r_changed) + " | " +
           fmt("%.2f", pooled.r_nodes) + " | " + fmt("%.0f", pooled.fixed_ms) + " + " +
           fmt("%.2f", pooled.us_per_changed) + " | | |\n";
-    md += "\nAgainst the paper's way on every " + std::to_string(k_rebuild_every) +
-          "th frame (frames 1, " + std::to_string(k_rebuild_every + 1) +
-          ", ...): the TIN rebuilt from scratch from the same view by quad-tree retrieval at " +
-          fmt("%.1f", k_share) +
-          " τ and node erase to τ over every sample of the grid (`tinlod simplify --retrieve-share " +
-          fmt("%.1f", k_share) +
-          "`; the quad-tree built once beforehand, untimed). Ratio = rebuild CPU "
-          "time / that frame's update CPU time. Both TINs' screen error measured exhaustively over "
-          "every DEM sample inside the frustum; frame 0's flight error is in the last column.\n\n"
-          "| path | rebuild frames | rebuild CPU ms median | rebuild nodes (last) | ratio median "
-          "(lowest) | flight max px | rebuild max px | frame 0 px |\n"
-          "|---|---|---|---|---|---|---|---|\n";
+    md +=
+        "\nAgainst the paper's way on every " + std::to_string(k_rebuild_every) +
+        "th frame (frames 1, " + std::to_string(k_rebuild_every + 1) +
+        ", ...): the TIN rebuilt from scratch from the same view by quad-tree retrieval at " +
+        fmt("%.1f", k_share) +
+        " τ and node erase to τ over every sample of the grid (`tinlod simplify --retrieve-share " +
+        fmt("%.1f", k_share) +
+        "`; the quad-tree built once beforehand, untimed). Ratio = rebuild CPU "
+        "time / that frame's update CPU time. Both TINs' screen error measured exhaustively over "
+        "every DEM sample inside the frustum; frame 0's flight error is in the last column.\n\n"
+        "| path | rebuild frames | rebuild CPU ms median | rebuild nodes (last) | ratio median "
+        "(lowest) | flight max px | rebuild max px | frame 0 px |\n"
+        "|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const Summary &s = sums[i];
         std::int64_t nodes = 0;
@@ -792,12 +796,14 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
     }
     md += "\nThen each path at " + fmt("%.0f", k_fps_interactive) +
           " frames per second of path time, as an interactive viewer samples them (the camera "
-          "moves " + fmt("%.1f", k_fps_interactive / k_fps) +
+          "moves " +
+          fmt("%.1f", k_fps_interactive / k_fps) +
           " times less per frame), by a new refiner built at the path's first view: each flight "
           "is the refiner's first over its path. The screen error is measured exhaustively over "
           "every DEM sample on every " +
           std::to_string(k_check_every) + "th frame (frames 1, " +
-          std::to_string(k_check_every + 1) + ", ...).\n\n"
+          std::to_string(k_check_every + 1) +
+          ", ...).\n\n"
           "| path | updates | update CPU ms p50 / p99 / max | changed per frame median (max) | "
           "fixed ms + µs per changed node | frames measured | max px |\n"
           "|---|---|---|---|---|---|---|\n";
@@ -828,11 +834,10 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
     for (std::size_t i = 0; i < flight.repeated.size(); ++i)
         for (const PathResult *p : {&flight.interactive[i], &flight.repeated[i]}) {
             const Summary s = summarise(p->rows);
-            md += "| " + p->name + " | " +
-                  (p == &flight.interactive[i] ? "first" : "second") + " | " +
-                  fmt("%.2f", s.p50) + " / " + fmt("%.2f", s.p99) + " / " + fmt("%.2f", s.max) +
-                  " | " + fmt("%.0f", s.changed_median) + " (" + fmt("%.0f", s.changed_max) +
-                  ") | " + undone(*p) + " |\n";
+            md += "| " + p->name + " | " + (p == &flight.interactive[i] ? "first" : "second") +
+                  " | " + fmt("%.2f", s.p50) + " / " + fmt("%.2f", s.p99) + " / " +
+                  fmt("%.2f", s.max) + " | " + fmt("%.0f", s.changed_median) + " (" +
+                  fmt("%.0f", s.changed_max) + ") | " + undone(*p) + " |\n";
         }
     md += "\nAnd at " + fmt("%.0f", k_fps_interactive) +
           " frames per second with the camera slower than the paths (the views of a higher "
@@ -909,13 +914,13 @@ void run(const FlyOptions &options) {
             fly(hf, tree, p, options.quick, k_fps_interactive, false, refiner, flight));
     }
     for (const int slower : k_slower) {
-        std::printf("  at %.0f frames per second, the camera %d times slower:\n",
-                    k_fps_interactive, slower);
+        std::printf("  at %.0f frames per second, the camera %d times slower:\n", k_fps_interactive,
+                    slower);
         flight.slowed.emplace_back();
         for (const FlightPath &p : paths) {
             refiner.reset();
-            flight.slowed.back().push_back(fly(hf, tree, p, options.quick, k_fps_interactive,
-                                               false, refiner, flight, slower));
+            flight.slowed.back().push_back(
+                fly(hf, tree, p, options.quick, k_fps_interactive, false, refiner, flight, slower));
         }
     }
     for (const FlightPath &p : paths)

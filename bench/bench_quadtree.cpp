@@ -30,14 +30,14 @@ struct Terrain {
     std::unique_ptr<QuadTree> tree;
 };
 
-Terrain& terrain(const std::string& name) {
+Terrain &terrain(const std::string &name) {
     static std::map<std::string, std::unique_ptr<Terrain>> cache;
-    auto& slot = cache[name];
+    auto &slot = cache[name];
     if (!slot) {
         slot = std::make_unique<Terrain>();
         const auto meshes = std::filesystem::path(__FILE__).parent_path().parent_path() / "meshes";
         const Heightfield n42 = load_heightfield((meshes / "N42E001.hgt").string());
-        const char* env = std::getenv("TINLOD_BENCH_SCALE");
+        const char *env = std::getenv("TINLOD_BENCH_SCALE");
         slot->hf = name == "n42" ? n42 : bench::enlarge(n42, env ? std::atof(env) : 3.41);
         slot->tree = std::make_unique<QuadTree>(slot->hf);
     }
@@ -45,7 +45,7 @@ Terrain& terrain(const std::string& name) {
 }
 
 // Low oblique view from the south-west quarter across the terrain, 300 m above the ground.
-View bench_view(const Heightfield& hf) {
+View bench_view(const Heightfield &hf) {
     const double ex = (hf.width - 1) * hf.dx, ey = (hf.height - 1) * hf.dy;
     View v;
     const int c = hf.width / 5, r = hf.height / 5;
@@ -54,7 +54,7 @@ View bench_view(const Heightfield& hf) {
     return v;
 }
 
-void report(benchmark::State& state, const Terrain& t, const Retrieval& r) {
+void report(benchmark::State &state, const Terrain &t, const Retrieval &r) {
     state.counters["grid_samples"] = double(t.hf.size());
     state.counters["out_triangles"] = double(r.triangles.size() / 3);
     state.counters["node_ratio"] = double(r.nodes.size()) / double(t.hf.size());
@@ -64,11 +64,11 @@ void report(benchmark::State& state, const Terrain& t, const Retrieval& r) {
     state.counters["peak_rss_mb"] = peak_rss_mb();
 }
 
-void BM_Retrieve(benchmark::State& state, const std::string& name, bool cull) {
-    Terrain& t = terrain(name);
+void BM_Retrieve(benchmark::State &state, const std::string &name, bool cull) {
+    Terrain &t = terrain(name);
     QuadTreeLod lod(*t.tree);
     const View view = bench_view(t.hf);
-    const Retrieval* r = nullptr;
+    const Retrieval *r = nullptr;
     for (auto _ : state) {
         r = &lod.retrieve(view, {1.0, cull});
         benchmark::DoNotOptimize(r->triangles.data());
@@ -76,8 +76,8 @@ void BM_Retrieve(benchmark::State& state, const std::string& name, bool cull) {
     report(state, t, *r);
 }
 
-void BM_RetrieveFromStore(benchmark::State& state, const std::string& name) {
-    Terrain& t = terrain(name);
+void BM_RetrieveFromStore(benchmark::State &state, const std::string &name) {
+    Terrain &t = terrain(name);
     const std::string path =
         (std::filesystem::temp_directory_path() / ("tinlod-bench-" + name + ".tlq")).string();
     write_store(*t.tree, path);
@@ -85,7 +85,7 @@ void BM_RetrieveFromStore(benchmark::State& state, const std::string& name) {
         auto owned = std::make_unique<TileStore>(path);
         QuadTreeLod lod(std::move(owned));
         const View view = bench_view(t.hf);
-        const Retrieval* r = nullptr;
+        const Retrieval *r = nullptr;
         for (auto _ : state) {
             r = &lod.retrieve(view, {1.0, true});
             benchmark::DoNotOptimize(r->triangles.data());
@@ -95,8 +95,8 @@ void BM_RetrieveFromStore(benchmark::State& state, const std::string& name) {
     std::filesystem::remove(path);
 }
 
-void BM_ToMesh(benchmark::State& state, const std::string& name) {
-    Terrain& t = terrain(name);
+void BM_ToMesh(benchmark::State &state, const std::string &name) {
+    Terrain &t = terrain(name);
     const Retrieval r = retrieve(*t.tree, bench_view(t.hf), {1.0, false});
     for (auto _ : state) {
         Mesh mesh = to_mesh(r, t.tree->frame());
@@ -107,8 +107,8 @@ void BM_ToMesh(benchmark::State& state, const std::string& name) {
         double(r.triangles.size() / 3) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void BM_Build(benchmark::State& state, const std::string& name) {
-    Terrain& t = terrain(name);
+void BM_Build(benchmark::State &state, const std::string &name) {
+    Terrain &t = terrain(name);
     const std::string path =
         (std::filesystem::temp_directory_path() / ("tinlod-bench-build-" + name + ".tlq")).string();
     double tree_ms = 0, write_ms = 0;
@@ -131,13 +131,17 @@ void BM_Build(benchmark::State& state, const std::string& name) {
 } // namespace
 
 BENCHMARK_CAPTURE(BM_Retrieve, n42_1201, std::string("n42"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Retrieve, n42_1201_cull, std::string("n42"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Retrieve, n42_1201_cull, std::string("n42"), true)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Retrieve, large, std::string("large"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Retrieve, large_cull, std::string("large"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Retrieve, large_cull, std::string("large"), true)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RetrieveFromStore, n42_1201_cull, std::string("n42"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ToMesh, n42_1201, std::string("n42"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Build, n42_1201, std::string("n42"))->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Build, n42_1201, std::string("n42"))
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Build, large, std::string("large"))
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)

@@ -175,8 +175,8 @@ struct Input {
     std::string source; // where it came from, how it was made
     Heightfield hf;     // terrains
     std::unique_ptr<QuadTree> tree;
-    std::unique_ptr<Mesh> mesh; // general meshes
-    std::string grid_path;      // float32 grid for the node peers
+    std::unique_ptr<Mesh> mesh;  // general meshes
+    std::string grid_path;       // float32 grid for the node peers
     bool stock_openmesh = false; // run every stock OpenMesh decimater on it
     double budget_ms = 1e30;     // repetitions of one contender stop once they took this long
     bool is_terrain() const { return !mesh; }
@@ -240,7 +240,7 @@ View mesh_view(const Mesh &mesh) {
     return view;
 }
 
-// ---- Running one contender ------------------------------------------------------------------------
+// ---- Running one contender ----------------------------------------------------------------------
 
 struct Case {
     const Input *input = nullptr;
@@ -248,12 +248,12 @@ struct Case {
     View view;
     std::int64_t target_nodes = 0; // 0: no budget (the contender's own bound decides)
     std::int64_t target_tris = 0;
-    double tol = 1.0; // tau (pixels) or the vertical bound (metres), by contender
+    double tol = 1.0;        // tau (pixels) or the vertical bound (metres), by contender
     int reps = 3;            // repetitions at most ...
     double budget_ms = 1e30; // ... while those made so far took less than this in all
-    std::string reference; // reference render (PNG); empty: no PSNR
-    glm::dvec2 clip{0.0};  // near, far planes of every render of the case
-    bool measure = true;   // measure error (off for pure timing runs)
+    std::string reference;   // reference render (PNG); empty: no PSNR
+    glm::dvec2 clip{0.0};    // near, far planes of every render of the case
+    bool measure = true;     // measure error (off for pure timing runs)
 };
 
 // What a contender hands to the measurement: its times and its output, as a mesh or as compact
@@ -393,10 +393,10 @@ json run_case(const std::string &name, const Contender &contender, const Case &c
         const double peak = status_mb("VmHWM:");
         json r = spread(o.ms, o.cpu_ms);
         r["rss_base_mb"] = base;
-        r["peak_rss_mb"] = o.extra.contains("peak_rss_mb") ? o.extra["peak_rss_mb"].get<double>()
-                                                           : peak;
-        r["extra_rss_mb"] = o.extra.contains("peak_rss_mb") ? r["peak_rss_mb"].get<double>()
-                                                            : peak - base;
+        r["peak_rss_mb"] =
+            o.extra.contains("peak_rss_mb") ? o.extra["peak_rss_mb"].get<double>() : peak;
+        r["extra_rss_mb"] =
+            o.extra.contains("peak_rss_mb") ? r["peak_rss_mb"].get<double>() : peak - base;
         r["input_tris"] = o.input_tris;
         r["extra"] = o.extra;
         const Heightfield &hf = c.input->hf;
@@ -457,7 +457,7 @@ json run_case(const std::string &name, const Contender &contender, const Case &c
     return row;
 }
 
-// ---- The contenders ---------------------------------------------------------------------------------
+// ---- The contenders -----------------------------------------------------------------------------
 
 std::unique_ptr<Mesh> input_mesh(const Input &in) {
     return std::make_unique<Mesh>(in.is_terrain() ? grid_tin(in.hf) : *in.mesh);
@@ -471,8 +471,7 @@ Outcome retrieve_only(const Case &c, bool matched) {
         double lo = 1e-3, hi = 1e4;
         for (int i = 0; i < 40; ++i) {
             const double mid = std::sqrt(lo * hi);
-            (std::int64_t(lod.retrieve(c.view, {mid, false}).triangles.size() / 3) >
-                     c.target_tris
+            (std::int64_t(lod.retrieve(c.view, {mid, false}).triangles.size() / 3) > c.target_tris
                  ? lo
                  : hi) = mid;
         }
@@ -646,10 +645,10 @@ Outcome node_peer(const Case &c, const std::string &tool, const SuiteOptions &op
     std::ostringstream value;
     value.precision(17);
     value << (by_nodes ? double(c.target_nodes) : c.tol);
-    const ProcessResult p = run_process(
-        {"node", options.peers + "/run_peers.mjs", c.input->grid_path,
-         std::to_string(c.input->hf.width), std::to_string(c.input->hf.height), prefix, tool,
-         by_nodes ? "nodes" : "max_error", value.str(), std::to_string(c.reps)});
+    const ProcessResult p =
+        run_process({"node", options.peers + "/run_peers.mjs", c.input->grid_path,
+                     std::to_string(c.input->hf.width), std::to_string(c.input->hf.height), prefix,
+                     tool, by_nodes ? "nodes" : "max_error", value.str(), std::to_string(c.reps)});
     if (p.status != 0 || p.out.empty())
         throw std::runtime_error(tool + " failed (status " + std::to_string(p.status) + ")");
     const json r = json::parse(p.out);
@@ -672,7 +671,7 @@ bool martini_fits(const Heightfield &hf) {
     return hf.width == hf.height && ((hf.width - 1) & (hf.width - 2)) == 0;
 }
 
-// ---- Experiments --------------------------------------------------------------------------------------
+// ---- Experiments --------------------------------------------------------------------------------
 
 struct Suite {
     SuiteOptions options;
@@ -693,45 +692,45 @@ struct Suite {
         Case c = make_case(in, view_name, view);
         c.reps = reps();
         render_reference(c, options.tmp + "/ref-" + in.name + "-" + view_name + ".png");
-        compare.push_back(run_case("tinlod retrieve", [](const Case &k) {
-            return retrieve_only(k, false);
-        }, c));
-        const json &pipeline = compare.emplace_back(run_case("tinlod retrieve+erase", retrieve_erase, c));
+        compare.push_back(run_case(
+            "tinlod retrieve", [](const Case &k) { return retrieve_only(k, false); }, c));
+        const json &pipeline =
+            compare.emplace_back(run_case("tinlod retrieve+erase", retrieve_erase, c));
         if (pipeline.contains("error"))
             return;
         c.target_nodes = pipeline["nodes"];
         c.target_tris = pipeline["tris"];
-        compare.push_back(run_case("tinlod retrieve (same count)", [](const Case &k) {
-            return retrieve_only(k, true);
-        }, c));
-        compare.push_back(run_case("tinlod erase (view)", [](const Case &k) {
-            return erase_grid(k, SpModel::screen);
-        }, c));
-        compare.push_back(run_case("tinlod erase (vertical)", [](const Case &k) {
-            return erase_grid(k, SpModel::vertical);
-        }, c));
+        compare.push_back(run_case(
+            "tinlod retrieve (same count)", [](const Case &k) { return retrieve_only(k, true); },
+            c));
+        compare.push_back(run_case(
+            "tinlod erase (view)", [](const Case &k) { return erase_grid(k, SpModel::screen); },
+            c));
+        compare.push_back(run_case(
+            "tinlod erase (vertical)",
+            [](const Case &k) { return erase_grid(k, SpModel::vertical); }, c));
         compare.push_back(run_case("meshopt_simplify", meshopt, c));
         Case stock = c;
         stock.reps = stock_reps();
         if (in.stock_openmesh || stock_quadric_once) {
             if (stock_quadric_once)
                 stock.reps = 1;
-            compare.push_back(run_case("OM Decimater+Quadric", [](const Case &k) {
-                return openmesh(k, Stock::quadric);
-            }, stock));
+            compare.push_back(run_case(
+                "OM Decimater+Quadric", [](const Case &k) { return openmesh(k, Stock::quadric); },
+                stock));
         }
         if (in.stock_openmesh) {
-            compare.push_back(run_case("OM Decimater+Quadric+NormalFlip", [](const Case &k) {
-                return openmesh(k, Stock::quadric_normal_flip);
-            }, stock));
-            compare.push_back(run_case("OM McDecimater+Quadric", [](const Case &k) {
-                return openmesh(k, Stock::mc_quadric);
-            }, stock));
+            compare.push_back(run_case(
+                "OM Decimater+Quadric+NormalFlip",
+                [](const Case &k) { return openmesh(k, Stock::quadric_normal_flip); }, stock));
+            compare.push_back(run_case(
+                "OM McDecimater+Quadric",
+                [](const Case &k) { return openmesh(k, Stock::mc_quadric); }, stock));
             // The slowest stock run (25-35 s): the low view only, so the suite stays within 30 min.
             if (view_name == "low")
-                compare.push_back(run_case("OM Decimater+tinlod DistanceDecay", [](const Case &k) {
-                    return openmesh(k, Stock::distance_decay);
-                }, stock));
+                compare.push_back(run_case(
+                    "OM Decimater+tinlod DistanceDecay",
+                    [](const Case &k) { return openmesh(k, Stock::distance_decay); }, stock));
         }
         Case node = c;
         node.reps = options.quick ? 1 : 3;
@@ -744,9 +743,9 @@ struct Suite {
         Case c = make_case(in, "front", mesh_view(*in.mesh));
         c.reps = reps();
         render_reference(c, options.tmp + "/ref-" + in.name + ".png");
-        const json &erase = compare.emplace_back(run_case("tinlod erase (view)", [](const Case &k) {
-            return erase_grid(k, SpModel::screen);
-        }, c));
+        const json &erase = compare.emplace_back(run_case(
+            "tinlod erase (view)", [](const Case &k) { return erase_grid(k, SpModel::screen); },
+            c));
         if (erase.contains("error"))
             return;
         c.target_nodes = erase["nodes"];
@@ -757,11 +756,12 @@ struct Suite {
               std::pair{"OM Decimater+Quadric+NormalFlip", Stock::quadric_normal_flip},
               std::pair{"OM McDecimater+Quadric", Stock::mc_quadric},
               std::pair{"OM Decimater+tinlod DistanceDecay", Stock::distance_decay}})
-            compare.push_back(run_case(name, [kind](const Case &k) { return openmesh(k, kind); }, c));
+            compare.push_back(run_case(
+                name, [kind](const Case &k) { return openmesh(k, kind); }, c));
         // The same against the strongest peer at several tau: one node count is one sample of a
         // maximum over the surface.
-        const std::vector<double> taus = options.quick ? std::vector<double>{0.5, 2.0}
-                                                       : std::vector<double>{0.5, 1, 2, 4};
+        const std::vector<double> taus =
+            options.quick ? std::vector<double>{0.5, 2.0} : std::vector<double>{0.5, 1, 2, 4};
         for (const double tau : taus) {
             Case t = make_case(in, "front", c.view);
             t.tol = tau;
@@ -782,28 +782,27 @@ struct Suite {
     void frontier_on(const Input &in) {
         frontier_input = in.name;
         const auto [view_name, view] = terrain_views(in.hf, false).front();
-        const std::vector<double> taus = options.quick ? std::vector<double>{0.5, 2.0, 8.0}
-                                                       : std::vector<double>{0.5, 1, 2, 4};
+        const std::vector<double> taus =
+            options.quick ? std::vector<double>{0.5, 2.0, 8.0} : std::vector<double>{0.5, 1, 2, 4};
         for (double tau : taus) {
             const bool stock = options.quick || tau == taus.front() || tau == taus.back();
             Case c = make_case(in, view_name, view);
             c.tol = tau;
             c.reps = 1;
-            frontier.push_back(run_case("tinlod retrieve", [](const Case &k) {
-                return retrieve_only(k, false);
-            }, c));
+            frontier.push_back(run_case(
+                "tinlod retrieve", [](const Case &k) { return retrieve_only(k, false); }, c));
             const json &pipeline =
                 frontier.emplace_back(run_case("tinlod retrieve+erase", retrieve_erase, c));
             if (pipeline.contains("error"))
                 continue;
             c.target_nodes = pipeline["nodes"];
             c.target_tris = pipeline["tris"];
-            frontier.push_back(run_case("tinlod erase (view)", [](const Case &k) {
-                return erase_grid(k, SpModel::screen);
-            }, c));
-            frontier.push_back(run_case("tinlod erase (vertical)", [](const Case &k) {
-                return erase_grid(k, SpModel::vertical);
-            }, c));
+            frontier.push_back(run_case(
+                "tinlod erase (view)", [](const Case &k) { return erase_grid(k, SpModel::screen); },
+                c));
+            frontier.push_back(run_case(
+                "tinlod erase (vertical)",
+                [](const Case &k) { return erase_grid(k, SpModel::vertical); }, c));
             frontier.push_back(run_case("meshopt_simplify", meshopt, c));
             if (stock)
                 for (auto [name, kind] :
@@ -811,8 +810,8 @@ struct Suite {
                       std::pair{"OM Decimater+Quadric+NormalFlip", Stock::quadric_normal_flip},
                       std::pair{"OM McDecimater+Quadric", Stock::mc_quadric},
                       std::pair{"OM Decimater+tinlod DistanceDecay", Stock::distance_decay}})
-                    frontier.push_back(
-                        run_case(name, [kind](const Case &k) { return openmesh(k, kind); }, c));
+                    frontier.push_back(run_case(
+                        name, [kind](const Case &k) { return openmesh(k, kind); }, c));
             frontier.push_back(run_case("delatin", peer("delatin"), c));
             if (martini_fits(in.hf))
                 frontier.push_back(run_case("martini", peer("martini"), c));
@@ -828,18 +827,17 @@ struct Suite {
             c.tol = tau;
             c.reps = reps();
             c.measure = false;
-            scaling.push_back(run_case("tinlod retrieve", [](const Case &k) {
-                return retrieve_only(k, false);
-            }, c));
+            scaling.push_back(run_case(
+                "tinlod retrieve", [](const Case &k) { return retrieve_only(k, false); }, c));
         }
         if (!erase)
             return;
         Case c = make_case(in, view_name, view);
         c.reps = options.quick ? 1 : 3;
         c.measure = false;
-        scaling.push_back(run_case("tinlod erase (view)", [](const Case &k) {
-            return erase_grid(k, SpModel::screen);
-        }, c));
+        scaling.push_back(run_case(
+            "tinlod erase (view)", [](const Case &k) { return erase_grid(k, SpModel::screen); },
+            c));
     }
 
     void max_error_on(const Input &in, const std::vector<double> &bounds) {
@@ -847,27 +845,30 @@ struct Suite {
             Case c = make_case(in, "none", terrain_views(in.hf, false).front().second);
             c.tol = bound;
             c.reps = 3;
-            max_error.push_back(run_case("tinlod erase (vertical)", [](const Case &k) {
-                EraseOptions eo;
-                eo.significance.model = SpModel::vertical;
-                eo.tolerance = k.tol;
-                return dem_erase(k, eo);
-            }, c));
+            max_error.push_back(run_case(
+                "tinlod erase (vertical)",
+                [](const Case &k) {
+                    EraseOptions eo;
+                    eo.significance.model = SpModel::vertical;
+                    eo.tolerance = k.tol;
+                    return dem_erase(k, eo);
+                },
+                c));
             c.reps = 1; // delatin at small bounds takes tens of seconds
             max_error.push_back(run_case("delatin", peer("delatin"), c));
         }
     }
 };
 
-// ---- Output: CSV, plot series, RESULTS.md ------------------------------------------------------------
+// ---- Output: CSV, plot series, RESULTS.md -------------------------------------------------------
 
 const std::vector<std::string> k_columns = {
-    "input",        "view",          "contender",   "tol",          "target_nodes",
-    "reps",         "ms",            "ms_min",      "ms_max",       "cpu_ms",       "input_tris",
-    "mtris_per_s",  "x_om_quadric",  "nodes",       "tris",         "max_vertical",
-    "rms_vertical", "max_screen_px", "folded",      "hausdorff_max", "hausdorff_rms",
-    "psnr_db",      "peak_rss_mb",   "extra_rss_mb", "tau",          "retrieve_ms",
-    "to_mesh_ms",   "erase_ms",      "first_stage", "error"};
+    "input",         "view",         "contender",     "tol",          "target_nodes",
+    "reps",          "ms",           "ms_min",        "ms_max",       "cpu_ms",
+    "input_tris",    "mtris_per_s",  "x_om_quadric",  "nodes",        "tris",
+    "max_vertical",  "rms_vertical", "max_screen_px", "folded",       "hausdorff_max",
+    "hausdorff_rms", "psnr_db",      "peak_rss_mb",   "extra_rss_mb", "tau",
+    "retrieve_ms",   "to_mesh_ms",   "erase_ms",      "first_stage",  "error"};
 
 // (input, view) of a result row.
 std::pair<std::string, std::string> case_of(const json &r) {
@@ -990,8 +991,10 @@ void compare_table(std::ostream &md, const std::vector<json> &rows, const std::s
                    const std::string &view, bool by_tau = false) {
     if (!by_tau)
         md << "\n**" << input << ", view " << view << "**\n";
-    md << "\n" << (by_tau ? "| τ px " : "")
-       << "| contender | wall ms median (min–max) | CPU ms | M input tris/s (CPU) | × OM Quadric | peak MB (+ over "
+    md << "\n"
+       << (by_tau ? "| τ px " : "")
+       << "| contender | wall ms median (min–max) | CPU ms | M input tris/s (CPU) | × OM Quadric | "
+          "peak MB (+ over "
           "input) | nodes | tris | L∞ m | RMS m | max px | folded | PSNR dB |\n"
        << (by_tau ? "|---" : "") << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const json &r : rows) {
@@ -1073,17 +1076,17 @@ std::vector<Claim> claims(const Suite &s) {
                 largest = &r;
         if (largest) {
             const double rate = (*largest)["mtris_per_s"];
-            out.push_back({"quad-tree build ≥ 25 M samples/s (bounds in memory, from the loaded "
-                           "raster as `tinlod build` makes them; the store write is not timed here)",
-                           fmt("%.1f", rate) + " M samples/s on " + cell(*largest, "input"),
-                           rate >= 25 ? "ahead by " + fmt("%.1f×", rate / 25)
-                                      : "behind: " + fmt("%.2f×", rate / 25) + " of the goal"});
+            out.push_back(
+                {"quad-tree build ≥ 25 M samples/s (bounds in memory, from the loaded "
+                 "raster as `tinlod build` makes them; the store write is not timed here)",
+                 fmt("%.1f", rate) + " M samples/s on " + cell(*largest, "input"),
+                 rate >= 25 ? "ahead by " + fmt("%.1f×", rate / 25)
+                            : "behind: " + fmt("%.2f×", rate / 25) + " of the goal"});
         }
     }
     // Erase throughput, against OpenMesh and meshoptimizer, per input and view.
     for (const json &r : s.compare) {
-        if (r["contender"] != "tinlod erase (view)" || r.contains("error") ||
-            r["input"] == "bunny")
+        if (r["contender"] != "tinlod erase (view)" || r.contains("error") || r["input"] == "bunny")
             continue;
         const std::string in = r["input"], view = r["view"];
         const double rate = r["mtris_per_s"];
@@ -1132,17 +1135,15 @@ std::vector<Claim> claims(const Suite &s) {
         }
         if (text.empty())
             continue;
-        out.push_back({"node erase: lower screen error than the peers at equal node count (" +
-                           in + ", " + view + "; tinlod erase (view) " +
-                           fmt("%.2f", (*ours)["max_screen_px"]) + " px" +
-                           (pipeline ? ", retrieve+erase " +
-                                           fmt("%.2f", (*pipeline)["max_screen_px"]) + " px"
-                                     : std::string()) +
-                           "; each peer's error as × tinlod erase's)",
-                       text,
-                       worst > 1 ? "ahead: the best peer has " + fmt("%.2f×", worst) + " the error"
-                                 : "behind: " + worse + " has " + fmt("%.2f×", worst) +
-                                       " tinlod's error"});
+        out.push_back(
+            {"node erase: lower screen error than the peers at equal node count (" + in + ", " +
+                 view + "; tinlod erase (view) " + fmt("%.2f", (*ours)["max_screen_px"]) + " px" +
+                 (pipeline ? ", retrieve+erase " + fmt("%.2f", (*pipeline)["max_screen_px"]) + " px"
+                           : std::string()) +
+                 "; each peer's error as × tinlod erase's)",
+             text,
+             worst > 1 ? "ahead: the best peer has " + fmt("%.2f×", worst) + " the error"
+                       : "behind: " + worse + " has " + fmt("%.2f×", worst) + " tinlod's error"});
     }
     // The bunny at several tau against meshoptimizer at the same node count.
     {
@@ -1174,7 +1175,7 @@ std::vector<Claim> claims(const Suite &s) {
                            ahead == measured ? "ahead at every τ"
                            : ahead == 0      ? "behind at every τ"
                                              : "ahead at " + std::to_string(ahead) + " of " +
-                                                   std::to_string(measured) + " τ"});
+                                              std::to_string(measured) + " τ"});
     }
     // tau = 1: retrieve + erase against retrieval alone.
     for (const auto &[in, view] : cases) {
@@ -1195,8 +1196,8 @@ std::vector<Claim> claims(const Suite &s) {
             continue;
         const double nodes = t["nodes"].get<double>() / d["nodes"].get<double>();
         const double speed = d["cpu_ms"].get<double>() / t["cpu_ms"].get<double>();
-        out.push_back({"--max-error " + cell(t, "tol") + " m: nodes ≤ 1.2× delatin's, and faster (" +
-                           cell(t, "input") + ")",
+        out.push_back({"--max-error " + cell(t, "tol") +
+                           " m: nodes ≤ 1.2× delatin's, and faster (" + cell(t, "input") + ")",
                        "nodes " + cell(t, "nodes") + " vs " + cell(d, "nodes") + " = " +
                            fmt("%.2f×", nodes) + "; delatin takes " + fmt("%.2f×", speed) +
                            " tinlod's time",
@@ -1215,8 +1216,8 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
     char date[64];
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
     md << "# tinlod benchmark results" << (s.options.quick ? " (QUICK run)" : " (full run)")
-       << "\n\n- date: " << date << "\n- machine: " << machine()
-       << "\n- command: `" << s.options.command << "`\n"
+       << "\n\n- date: " << date << "\n- machine: " << machine() << "\n- command: `"
+       << s.options.command << "`\n"
        << "- every contender runs in its own child process; time = median of the repetitions, "
           "spread min–max; peak = the child's VmHWM (Node's own peak for delatin/martini), with "
           "the part above the input it inherited in parentheses\n"
@@ -1243,11 +1244,13 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
           "meshopt locks the border; stock OpenMesh decimaters run only on the 513² crop and the "
           "bunny (Debian's libOpenMeshCore is built with assertions: tens of seconds per run on "
           "a full tile), DecimaterT+tinlod DistanceDecay on the crop from the low view only"
-       << (s.options.quick ? "" : ", plus DecimaterT+ModQuadricT once on the whole N42E001 tile "
-                                  "from the low view")
-       << (s.options.quick ? "; the quick run uses the low view only and leaves N48W125 and mt_rainier_90m out"
-                           : "; N48W125 (13 M triangles) from the low view only, to stay within "
-                             "30 minutes")
+       << (s.options.quick ? ""
+                           : ", plus DecimaterT+ModQuadricT once on the whole N42E001 tile "
+                             "from the low view")
+       << (s.options.quick
+               ? "; the quick run uses the low view only and leaves N48W125 and mt_rainier_90m out"
+               : "; N48W125 (13 M triangles) from the low view only, to stay within "
+                 "30 minutes")
        << "; martini only on 2^k+1 squares. For the bunny, L∞/RMS are the symmetric Hausdorff "
           "max/RMS (H, model units, 200,000 samples on each surface plus every vertex) and max "
           "px the largest of those samples' distances seen from where each lies (distance × k / "
@@ -1261,13 +1264,15 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
     md << "\n**bunny, view front, at several τ (mesh_taus.csv)**: tinlod's erase at each τ, "
           "meshoptimizer to its node count; one repetition each.\n";
     compare_table(md, s.mesh_taus, "bunny", "front", true);
-    md << "\n## Quality frontier (frontier.csv)\n\n![error against triangle count](frontier.png)\n\n"
+    md << "\n## Quality frontier (frontier.csv)\n\n![error against triangle "
+          "count](frontier.png)\n\n"
           "Max screen error (px, log) against output triangles (log) on "
        << s.frontier_input << " from the low view: tinlod's retrieve+erase at τ ∈ {"
        << (s.options.quick ? "0.5, 2, 8" : "0.5, 1, 2, 4")
        << "}, every other contender to the node count each τ gave (one repetition each)"
-       << (s.options.quick ? "" : "; the stock OpenMesh decimaters only at τ = 0.5 and 4, to stay "
-                                  "within 30 minutes")
+       << (s.options.quick ? ""
+                           : "; the stock OpenMesh decimaters only at τ = 0.5 and 4, to stay "
+                             "within 30 minutes")
        << ".\n"
        << "\n## Scaling (scaling.csv)\n\n![time against size](scaling.png)\n\nLeft: retrieval "
           "time against output triangles, one line per terrain size (same ground, growing "
@@ -1277,9 +1282,11 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
                            : " The 16385² terrain cannot become a full OpenMesh grid TIN "
                              "(268 M vertices), so it runs retrieval only; erase stops at 2049² "
                              "(a 4097² grid erase alone would take minutes at the measured rate).")
-       << " Ground: crops of N42E001 (257², quick run only; 513²), then N42E001 and its enlargements (the same ground "
+       << " Ground: crops of N42E001 (257², quick run only; 513²), then N42E001 and its "
+          "enlargements (the same ground "
           "at finer cells)."
-       << "\n\n| input | contender | τ | wall ms median (min–max) | CPU ms | output tris | M output "
+       << "\n\n| input | contender | τ | wall ms median (min–max) | CPU ms | output tris | M "
+          "output "
           "tris/s (CPU) | M input tris (samples)/s (CPU) | to_mesh ms | peak MB |\n"
           "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const json &r : s.scaling) {
@@ -1302,9 +1309,8 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
             continue;
         md << "| " << cell(r, "input") << " | " << cell(r, "tol") << " | " << cell(r, "contender")
            << " | " << cell(r, "first_stage") << " | " << fmt("%.1f", r["ms"]) << " ("
-           << fmt("%.1f", r["ms_min"]) << "–"
-           << fmt("%.1f", r["ms_max"]) << ") | " << fmt("%.1f", r["cpu_ms"]) << " | "
-           << cell(r, "nodes") << " | " << cell(r, "tris")
+           << fmt("%.1f", r["ms_min"]) << "–" << fmt("%.1f", r["ms_max"]) << ") | "
+           << fmt("%.1f", r["cpu_ms"]) << " | " << cell(r, "nodes") << " | " << cell(r, "tris")
            << " | " << fmt("%.3f", r["max_vertical"]) << " | " << fmt("%.3f", r["rms_vertical"])
            << " | " << fmt("%.0f", r["peak_rss_mb"]) << " |\n";
     }
@@ -1327,7 +1333,8 @@ void write_results(const Suite &s, const std::vector<const Input *> &inputs) {
         if (!s.flight.is_null())
             md << "- flight: each path's updates stop after "
                << fmt("%.0f", s.flight["budget_s"].get<double>())
-               << " s of updates (rebuilds and error measurements on top): the Flight table says how many of "
+               << " s of updates (rebuilds and error measurements on top): the Flight table says "
+                  "how many of "
                   "each path's updates were flown\n";
     }
     md << "\n## Section times (wall)\n\n| section | s |\n|---|---|\n";
@@ -1380,9 +1387,11 @@ void run(const SuiteOptions &options) {
         return *inputs.back();
     };
     const Heightfield n42 = load_heightfield(dem + "N42E001.hgt");
-    Input &n42e001 = add(terrain_input("N42E001", "SRTM3 tile N42E001 (Pyrenees), 3″", n42, options));
+    Input &n42e001 =
+        add(terrain_input("N42E001", "SRTM3 tile N42E001 (Pyrenees), 3″", n42, options));
     Input &n42_513 = add(terrain_input(
-        "N42E001_513", "513² crop (SW corner) of N42E001: for the stock OpenMesh decimaters and martini",
+        "N42E001_513",
+        "513² crop (SW corner) of N42E001: for the stock OpenMesh decimaters and martini",
         bench::crop(n42, 513, 513), options));
     n42_513.stock_openmesh = true;
     Input *n48 = nullptr;
@@ -1414,7 +1423,8 @@ void run(const SuiteOptions &options) {
 
     std::printf("\n== max_error\n");
     // N42E001 only: the erase of N48W125's whole grid TIN takes minutes (see compare).
-    s.max_error_on(n42e001, options.quick ? std::vector<double>{20} : std::vector<double>{1, 5, 20});
+    s.max_error_on(n42e001,
+                   options.quick ? std::vector<double>{20} : std::vector<double>{1, 5, 20});
     finish("max_error");
 
     std::printf("\n== frontier\n");
@@ -1464,7 +1474,8 @@ void run(const SuiteOptions &options) {
                              {"peak_rss_mb", peak_rss_mb()},
                              {"extra_rss_mb", 0.0}});
         in->source = "N42E001 enlarged (bench::enlarge: Catmull-Rom + value-noise detail); "
-                     "scaling only" + std::string(erase ? "" : ", retrieval only");
+                     "scaling only" +
+                     std::string(erase ? "" : ", retrieval only");
         std::printf("input %s: made in %.1f s, its quad-tree in %.1f s\n", in->name.c_str(),
                     made_ms / 1e3, build_ms / 1e3);
         Input &added = add(std::move(in));
@@ -1485,21 +1496,24 @@ void run(const SuiteOptions &options) {
     write_csv(options.out + "/max_error.csv", s.max_error);
     write_csv(options.out + "/mesh_taus.csv", s.mesh_taus);
     std::ofstream(options.tmp + "/frontier_input.txt") << s.frontier_input;
-    write_series(options.tmp + "/frontier.dat", s.frontier,
-                 [](const json &r) { return r["contender"].get<std::string>(); }, "tris",
-                 "max_screen_px");
-    write_series(options.tmp + "/scaling_retrieve.dat", s.scaling,
-                 [](const json &r) {
-                     return r["contender"] == "tinlod retrieve" ? r["input"].get<std::string>()
-                                                                : std::string();
-                 },
-                 "tris", "cpu_ms");
-    write_series(options.tmp + "/scaling_erase.dat", s.scaling,
-                 [](const json &r) {
-                     return r["contender"] == "tinlod erase (view)" ? std::string("tinlod erase (view, τ = 1)")
-                                                                    : std::string();
-                 },
-                 "input_tris", "cpu_ms");
+    write_series(
+        options.tmp + "/frontier.dat", s.frontier,
+        [](const json &r) { return r["contender"].get<std::string>(); }, "tris", "max_screen_px");
+    write_series(
+        options.tmp + "/scaling_retrieve.dat", s.scaling,
+        [](const json &r) {
+            return r["contender"] == "tinlod retrieve" ? r["input"].get<std::string>()
+                                                       : std::string();
+        },
+        "tris", "cpu_ms");
+    write_series(
+        options.tmp + "/scaling_erase.dat", s.scaling,
+        [](const json &r) {
+            return r["contender"] == "tinlod erase (view)"
+                       ? std::string("tinlod erase (view, τ = 1)")
+                       : std::string();
+        },
+        "input_tris", "cpu_ms");
     std::vector<const Input *> listed;
     for (const auto &in : inputs)
         listed.push_back(in.get());

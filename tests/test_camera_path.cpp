@@ -36,22 +36,23 @@ TEST(CameraPath, InterpolatesLinearlyAndClamps) {
 }
 
 TEST(CameraPath, BadFilesNameTheLineAndProblem) {
-    const std::pair<const char*, const char*> cases[] = {
+    const std::pair<const char *, const char *> cases[] = {
         {"", "empty camera path"},
         {"x,y,z\n", "line 1: expected the header"},
         {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n", "no keyframe"},
         {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n0,1,2,3,4,5\n", "line 2: expected 7"},
         {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n0,1,2,nan,4,5,6\n", "'nan' is not a finite number"},
-        {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n0,1,2,3,4,5,6\n0,1,2,3,4,5,6\n", "line 3: t must increase"},
+        {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n0,1,2,3,4,5,6\n0,1,2,3,4,5,6\n",
+         "line 3: t must increase"},
         {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n0,1,2,3,1,2,3\n", "coincide"},
         {"t,eye_x,eye_y,eye_z,at_x,at_y,at_z\n0,1,2,3,4,5,6x\n", "'6x' is not a finite number"},
     };
-    for (const auto& [text, message] : cases) {
+    for (const auto &[text, message] : cases) {
         SCOPED_TRACE(text);
         try {
             parse_camera_path(text, "path.csv");
             ADD_FAILURE() << "no error";
-        } catch (const Error& e) {
+        } catch (const Error &e) {
             EXPECT_EQ(e.subject(), "path.csv");
             EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
         }

@@ -48,7 +48,7 @@ TEST(Cli, RetrieveFullWritesGridTinAndStats) {
     EXPECT_EQ(stats["input"]["nodes"], 336 * 459);
     EXPECT_EQ(stats["output"]["nodes"], 336 * 459);
     EXPECT_EQ(stats["output"]["triangles"], 2 * 335 * 458);
-    for (const char* key : {"load", "retrieve", "write"})
+    for (const char *key : {"load", "retrieve", "write"})
         EXPECT_TRUE(stats["time_ms"].contains(key)) << key;
     EXPECT_GT(stats["peak_rss_mb"].get<double>(), 0.0);
     const tinlod::Mesh mesh = tinlod::read_mesh(dir + "/full.ply");
@@ -112,7 +112,7 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
     const fs::path out = fs::path(dir) / "out";
     fs::create_directories(in);
     fs::create_directories(out);
-    auto write = [&](const std::string& name, const std::string& bytes) {
+    auto write = [&](const std::string &name, const std::string &bytes) {
         std::ofstream(in / name, std::ios::binary) << bytes;
         return (in / name).string();
     };
@@ -124,7 +124,7 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
     }();
     // The last bytes cut off: OpenImageIO 2.4 read the float TIFF's last strips as zeros and
     // reported success, and libpng printed a line of its own beside tinlod's for the PNG.
-    const auto cut = [&](const std::string& name, std::size_t bytes) {
+    const auto cut = [&](const std::string &name, std::size_t bytes) {
         std::ifstream src(asset(name), std::ios::binary);
         std::string data((std::istreambuf_iterator<char>(src)), {});
         return write("cut_" + name, data.substr(0, data.size() - bytes));
@@ -137,11 +137,11 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
         auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
         u32(8);
-        const unsigned entries[][3] = {{256, 4, 46000}, {257, 4, 46000}, {258, 3, 32}, {259, 3, 1},
-                                       {262, 3, 1},     {273, 4, 8},     {277, 3, 1},  {278, 4, 46000},
-                                       {279, 4, 4000000000u}, {339, 3, 3}};
+        const unsigned entries[][3] = {
+            {256, 4, 46000}, {257, 4, 46000}, {258, 3, 32},    {259, 3, 1},           {262, 3, 1},
+            {273, 4, 8},     {277, 3, 1},     {278, 4, 46000}, {279, 4, 4000000000u}, {339, 3, 3}};
         u16(10);
-        for (const auto& e : entries) {
+        for (const auto &e : entries) {
             u16(e[0]), u16(e[1]), u32(1);
             e[1] == 3 ? (u16(e[2]), u16(0)) : u32(e[2]);
         }
@@ -149,7 +149,7 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         return write("huge.tif", b);
     }();
     // A 2x2 int16 GeoTIFF in EPSG:4326: pixel scale (dx, dy) degrees, NW corner at (lon, lat).
-    auto geographic_tif = [&](const std::string& name, double dx, double dy, double lon,
+    auto geographic_tif = [&](const std::string &name, double dx, double dy, double lon,
                               double lat) {
         // GeoKeys: model geographic, raster pixel-is-area, EPSG:4326.
         return write(name, tinlod::test::geotiff_bytes(
@@ -167,7 +167,8 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         binary_off += char(c);
     const std::vector<BadCase> cases = {
         {"absurd raster size", "info " + huge_tif, huge_tif},
-        {"missing", "retrieve --full " + (in / "nope.tif").string() + " -o {out}/a.ply", "no such file"},
+        {"missing", "retrieve --full " + (in / "nope.tif").string() + " -o {out}/a.ply",
+         "no such file"},
         {"empty", "retrieve --full " + write("empty.tif", "") + " -o {out}/a.ply", "file is empty"},
         {"garbage", "retrieve --full " + write("garbage.png", "not a png") + " -o {out}/a.ply",
          "cannot read raster"},
@@ -176,32 +177,39 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          cut_tif + ": cannot read samples (truncated or corrupt)"},
         {"PNG without its last bytes", "retrieve --full " + cut_png + " -o {out}/a.ply",
          cut_png + ": cannot read samples (truncated or corrupt)"},
-        {"hgt size", "retrieve --full " + write("N00E000.hgt", hgt.substr(0, 5000)) + " -o {out}/a.ply",
+        {"hgt size",
+         "retrieve --full " + write("N00E000.hgt", hgt.substr(0, 5000)) + " -o {out}/a.ply",
          "not an SRTM tile"},
-        {"missing folder", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/no/such/a.ply",
+        {"missing folder",
+         "retrieve --full " + asset("dem_squared.tif") + " -o {out}/no/such/a.ply",
          "does not exist"},
         // Every output is checked before the work: a second output's missing folder left the
         // first output written.
         {"missing stats folder",
-         "simplify " + asset("dem_squared.tif") + " --eye 1,1,900 --at 500,500,0 -o {out}/a.ply --stats {out}/no/s.json",
+         "simplify " + asset("dem_squared.tif") +
+             " --eye 1,1,900 --at 500,500,0 -o {out}/a.ply --stats {out}/no/s.json",
          "{out}/no/s.json: output folder"},
         {"missing depth folder",
-         "render " + asset("dem_squared.tif") + " --eye 1,1,900 --at 500,500,0 -o {out}/a.png --depth {out}/no/d.exr",
+         "render " + asset("dem_squared.tif") +
+             " --eye 1,1,900 --at 500,500,0 -o {out}/a.png --depth {out}/no/d.exr",
          "{out}/no/d.exr: output folder"},
         {"bad extension", "retrieve --full " + asset("dem_squared.tif") + " -o {out}/a.xyz",
          "unknown mesh format"},
         {"mesh garbage", "info " + write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 99\n"),
          "bad.ply"},
         {"absurd mesh count",
-         "info " + write("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\n"
-                                     "property float x\nproperty float y\nproperty float z\n"
-                                     "end_header\n"),
+         "info " + write("huge.ply",
+                         "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\n"
+                         "property float x\nproperty float y\nproperty float z\n"
+                         "end_header\n"),
          "declares 3000000000"},
         // Found by fuzz_mesh: OpenMesh's PLY reader spins forever on this format line.
-        {"malformed PLY format", "info " + write("spin.ply", "ply\nformat ascii \3311.0\nelement vertex 3\n"
-                                                             "property float x\nend_header\n0\n0\n0\n"),
+        {"malformed PLY format",
+         "info " + write("spin.ply", "ply\nformat ascii \3311.0\nelement vertex 3\n"
+                                     "property float x\nend_header\n0\n0\n0\n"),
          "unknown format"},
-        {"absurd OFF count", "info " + write("huge.off", "OFF\n300000000 1 0\n0 0 0\n"), "declares 300000000"},
+        {"absurd OFF count", "info " + write("huge.off", "OFF\n300000000 1 0\n0 0 0\n"),
+         "declares 300000000"},
         {"PLY face of 4e9 vertices",
          "info " + write("face.ply", ply_face_header + "4000000000 0 1 2\n"), "malformed PLY body"},
         // Found by fuzz_mesh: once a value fails to parse, OpenMesh loops on with stale counts.
@@ -223,23 +231,34 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "info " +
              geographic_tif("scale.tif", std::numeric_limits<double>::infinity(), 0.01, 1.0, 40.0),
          "georeferencing is not finite"},
-        {"NaN camera", "retrieve " + asset("dem_squared.tif") + " --eye nan,0,0 --at 1,1,1 -o {out}/a.ply",
+        {"NaN camera",
+         "retrieve " + asset("dem_squared.tif") + " --eye nan,0,0 --at 1,1,1 -o {out}/a.ply",
          "--eye: coordinates must be finite"},
         {"eye inside the terrain",
          "simplify " + asset("dem_squared.tif") + " --eye 1500,1500,100 --at 1,1,1 -o {out}/a.ply",
          "inside the terrain"},
         {"eye on the look-at point",
-         "retrieve " + asset("dem_squared.tif") + " --eye 1,1,900 --at 1,1,900 -o {out}/a.ply", "coincide"},
-        {"negative tau", "retrieve " + asset("dem_squared.tif") + " --eye 1,1,900 --at 9,9,0 --tol -1 -o {out}/a.ply",
+         "retrieve " + asset("dem_squared.tif") + " --eye 1,1,900 --at 1,1,900 -o {out}/a.ply",
+         "coincide"},
+        {"negative tau",
+         "retrieve " + asset("dem_squared.tif") +
+             " --eye 1,1,900 --at 9,9,0 --tol -1 -o {out}/a.ply",
          "--tol"},
-        {"infinite tau", "simplify " + asset("dem_squared.tif") + " --eye 1,1,900 --at 9,9,0 --tol inf -o {out}/a.ply",
+        {"infinite tau",
+         "simplify " + asset("dem_squared.tif") +
+             " --eye 1,1,900 --at 9,9,0 --tol inf -o {out}/a.ply",
          "--tol: must be a finite number of pixels >= 0"},
         {"zero tau in flight",
-         "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") + " --tol 0 --stats {out}/f.csv",
+         "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
+             " --tol 0 --stats {out}/f.csv",
          "--tol"},
-        {"missing path", "fly " + asset("dem_squared.tif") + " --path " + (in / "none.csv").string() + " --stats {out}/f.csv",
+        {"missing path",
+         "fly " + asset("dem_squared.tif") + " --path " + (in / "none.csv").string() +
+             " --stats {out}/f.csv",
          "cannot open camera path"},
-        {"bad path", "fly " + asset("dem_squared.tif") + " --path " + write("bad.csv", "t,x\n") + " --stats {out}/f.csv",
+        {"bad path",
+         "fly " + asset("dem_squared.tif") + " --path " + write("bad.csv", "t,x\n") +
+             " --stats {out}/f.csv",
          "expected the header"},
         {"fixed camera without its target",
          "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
@@ -255,7 +274,7 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "meshes folder does not exist"},
         {"bad cell", "info --cell -1 " + asset("crater_u16.png"), "--cell"},
     };
-    for (const auto& c : cases) {
+    for (const auto &c : cases) {
         SCOPED_TRACE(c.name);
         std::string args = c.args;
         for (auto pos = args.find("{out}"); pos != std::string::npos; pos = args.find("{out}"))
@@ -291,7 +310,7 @@ TEST(Cli, AWriteThatRunsOutOfRoomIsAnErrorAndLeavesNoFile) {
     cases.push_back({"build " + dem + " -o {file}", "store.tlq"});
     std::string why;
     const bool drawn = tinlod::render_available(&why);
-    for (const Case& c : cases) {
+    for (const Case &c : cases) {
         if (!drawn && c.args.rfind("render", 0) == 0)
             continue;
         SCOPED_TRACE(c.file);
@@ -316,7 +335,7 @@ TEST(Cli, AWriteThatRunsOutOfRoomIsAnErrorAndLeavesNoFile) {
         GTEST_SKIP() << "no OpenGL context for the render cases: " << why;
 }
 
-static std::string read_bytes(const std::string& path) {
+static std::string read_bytes(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
 }
@@ -325,7 +344,7 @@ TEST(Cli, ThreadsIsValidatedAndLeavesTheOutputUnchanged) {
     const std::string dir = tinlod::test::temp_dir();
     const std::string dem = "'" + asset("dem_squared.tif") + "'";
     // Before or after the subcommand; refused before any work, as a usage error.
-    for (const std::string& args : {"--threads 0 build " + dem + " -o " + dir + "/zero.tlq",
+    for (const std::string &args : {"--threads 0 build " + dem + " -o " + dir + "/zero.tlq",
                                     "build " + dem + " -o " + dir + "/zero.tlq --threads two",
                                     "build " + dem + " -o " + dir + "/zero.tlq --threads 5000"}) {
         SCOPED_TRACE(args);
@@ -353,7 +372,7 @@ TEST(Cli, RetrieveFromAStoreKeepsAtMostCacheMbOfTiles) {
     const std::string dir = tinlod::test::temp_dir();
     ASSERT_EQ(run_cli("build '" + asset("dem_squared.tif") + "' -o " + dir + "/s.tlq").status, 0);
     // tau = 0 reads every tile of the store.
-    auto retrieve = [&](const std::string& cache) {
+    auto retrieve = [&](const std::string &cache) {
         const auto r = run_cli("retrieve " + dir + "/s.tlq --eye 100,100,400 --at 1500,2000,100 " +
                                "--tol 0 --cache-mb " + cache + " -o " + dir + "/t.ply --stats " +
                                dir + "/t.json");

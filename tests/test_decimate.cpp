@@ -517,7 +517,8 @@ TEST(Erase, RetrievedLatticeTinRecoversExactly) {
 // over the whole lattice), but only the irregular ones as records: on a 2^k + 1 grid every ring is
 // RegularRings' and the history holds none of them; on other sizes each ring is still the replay's.
 TEST(Erase, AbsentSamplesKeepOnlyTheRingsTheLatticeCannotTell) {
-    for (const DemAsset &a : {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201}}) {
+    for (const DemAsset &a :
+         {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201}}) {
         const Heightfield hf = load_cropped(a);
         SCOPED_TRACE(std::to_string(hf.width) + "x" + std::to_string(hf.height));
         const View view = corner_view(hf);
@@ -851,8 +852,8 @@ TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
 // weight now, the grid's cells). If any of those bounds overstated a cost, a node the update should
 // have erased would stay. After the updates of an approach, a retreat and a turn over a real DEM,
 // every live node costs more than the erase bound, measured over all the nodes its hole would
-// swallow, unless its fan covers more than an update takes on (k_update_cap). Overstating by 20-30 %
-// the motion shortcut's bound (moved_within), the worst node's or a cell's fails it.
+// swallow, unless its fan covers more than an update takes on (k_update_cap). Overstating by 20-30
+// % the motion shortcut's bound (moved_within), the worst node's or a cell's fails it.
 TEST(Erase, UpdateLeavesNoNodeItCouldErase) {
     const Heightfield hf = load_cropped({"N42E001.hgt", false, 401});
     const View start = corner_view(hf);

@@ -21,8 +21,8 @@ struct Measured {
     std::int64_t nodes = 0;
 };
 
-Measured erase_and_compare(Renderer& renderer, const Heightfield& hf, const View& view,
-                           const Image& reference, double tau) {
+Measured erase_and_compare(Renderer &renderer, const Heightfield &hf, const View &view,
+                           const Image &reference, double tau) {
     Mesh tin = grid_tin(hf);
     EraseOptions eo;
     eo.tolerance = tau;
@@ -42,7 +42,7 @@ TEST(ImageError, TauOneLooksLikeTheFullGridAndTauEightDoesNot) {
     if (!render_available(&why))
         GTEST_SKIP() << "no OpenGL context: " << why;
     Renderer renderer;
-    for (const char* file : {"dem_srtm30.tif", "crater_u16.png"}) {
+    for (const char *file : {"dem_srtm30.tif", "crater_u16.png"}) {
         SCOPED_TRACE(file);
         const Heightfield hf = load_heightfield(tinlod::test::asset(file));
         const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;

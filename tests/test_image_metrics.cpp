@@ -41,8 +41,8 @@ Mesh rectangle(double w, double h, double z) {
 
 // Distance from p to triangle (a, b, c) the plain way: the plane when the foot falls inside,
 // else the nearest of the three edge segments.
-double brute_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                      const glm::dvec3& c) {
+double brute_distance(const glm::dvec3 &p, const glm::dvec3 &a, const glm::dvec3 &b,
+                      const glm::dvec3 &c) {
     const glm::dvec3 n = glm::cross(b - a, c - a);
     if (glm::length(n) > 0.0) {
         const glm::dvec3 u = glm::normalize(n);
@@ -53,7 +53,7 @@ double brute_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3
         if (s0 >= 0 && s1 >= 0 && s2 >= 0)
             return std::abs(glm::dot(p - a, u));
     }
-    auto segment = [&](const glm::dvec3& s, const glm::dvec3& t) {
+    auto segment = [&](const glm::dvec3 &s, const glm::dvec3 &t) {
         const double len2 = glm::dot(t - s, t - s);
         const double x = len2 > 0 ? std::clamp(glm::dot(p - s, t - s) / len2, 0.0, 1.0) : 0.0;
         return glm::length(p - (s + x * (t - s)));
@@ -199,7 +199,7 @@ TEST(Hausdorff, VertexDistancesMatchBruteForce) {
         std::array<glm::dvec3, 3> t;
         int i = 0;
         for (auto v : f.vertices()) {
-            const auto& q = fine.point(v);
+            const auto &q = fine.point(v);
             t[i++] = glm::dvec3(q[0], q[1], q[2]);
         }
         triangles.push_back(t);
@@ -209,10 +209,10 @@ TEST(Hausdorff, VertexDistancesMatchBruteForce) {
     for (auto v : coarse.vertices()) {
         if (v.faces().begin() == v.faces().end())
             continue;
-        const auto& q = coarse.point(v);
+        const auto &q = coarse.point(v);
         const glm::dvec3 p(q[0], q[1], q[2]);
         double best = INFINITY;
-        for (const auto& t : triangles)
+        for (const auto &t : triangles)
             best = std::min(best, brute_distance(p, t[0], t[1], t[2]));
         worst = std::max(worst, best);
         sum += best;

@@ -35,7 +35,7 @@ std::vector<Asset> dem_assets() {
             {"fuji.png", rgb}};
 }
 
-const Heightfield& dem(const Asset& a) {
+const Heightfield &dem(const Asset &a) {
     static std::map<std::string, Heightfield> cache;
     auto it = cache.find(a.name);
     if (it == cache.end())
@@ -56,7 +56,7 @@ struct NamedView {
 };
 
 // Near the ground looking across, high above looking down, and outside the terrain.
-std::vector<NamedView> views_of(const Heightfield& hf) {
+std::vector<NamedView> views_of(const Heightfield &hf) {
     const double ex = (hf.width - 1) * hf.dx, ey = (hf.height - 1) * hf.dy;
     const double zlo = hf.min_z(), zhi = hf.max_z(), relief = std::max(zhi - zlo, 1.0);
     const double span = std::max(ex, ey);
@@ -70,7 +70,7 @@ std::vector<NamedView> views_of(const Heightfield& hf) {
 }
 
 // Manifold, CCW, covering exactly the terrain rectangle, with its boundary on the outline.
-void expect_crack_free(const Heightfield& hf, const Retrieval& r, const std::string& what) {
+void expect_crack_free(const Heightfield &hf, const Retrieval &r, const std::string &what) {
     const Mesh mesh = tin_from_indices(hf, r.triangles);
     EXPECT_EQ(mesh.n_faces() * 3, r.triangles.size()) << what << ": non-manifold triangles";
     EXPECT_EQ(mesh.n_vertices(), r.nodes.size()) << what;
@@ -85,7 +85,8 @@ void expect_crack_free(const Heightfield& hf, const Retrieval& r, const std::str
     for (auto h : mesh.halfedges()) {
         if (!mesh.is_boundary(h))
             continue;
-        const auto a = mesh.point(mesh.from_vertex_handle(h)), b = mesh.point(mesh.to_vertex_handle(h));
+        const auto a = mesh.point(mesh.from_vertex_handle(h)),
+                   b = mesh.point(mesh.to_vertex_handle(h));
         perimeter += std::hypot(double(b[0] - a[0]), double(b[1] - a[1]));
         const bool west = a[0] == 0 && b[0] == 0, south = a[1] == 0 && b[1] == 0;
         const bool east = a[0] == float((hf.width - 1) * hf.dx) && b[0] == a[0];
@@ -159,19 +160,19 @@ TEST(QuadTree, SpikeBoundIsItsHeight) {
 }
 
 TEST(QuadTree, BoundsAreMonotoneAndBoxesNested) {
-    for (const Asset& a : dem_assets()) {
+    for (const Asset &a : dem_assets()) {
         const QuadTree tree(dem(a));
-        const QuadLayout& lay = tree.layout();
+        const QuadLayout &lay = tree.layout();
         for (int d = 0; d + 2 < lay.levels(); ++d)
             for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
                 for (std::uint32_t i = 0; i < lay.x.count(d); ++i) {
-                    const NodeBound& p = tree.bound(d, i, j);
+                    const NodeBound &p = tree.bound(d, i, j);
                     if (lay.is_cell(d, i, j))
                         continue;
                     const std::uint32_t cx = lay.x.first_child(d, i), cy = lay.y.first_child(d, j);
                     for (std::uint32_t b = 0; b < (lay.y.length(d, j) >= 2 ? 2u : 1u); ++b)
                         for (std::uint32_t c = 0; c < (lay.x.length(d, i) >= 2 ? 2u : 1u); ++c) {
-                            const NodeBound& ch = tree.bound(d + 1, cx + c, cy + b);
+                            const NodeBound &ch = tree.bound(d + 1, cx + c, cy + b);
                             ASSERT_GE(p.error, ch.error) << a.name;
                             ASSERT_LE(p.zmin, ch.zmin) << a.name;
                             ASSERT_GE(p.zmax, ch.zmax) << a.name;
@@ -183,10 +184,10 @@ TEST(QuadTree, BoundsAreMonotoneAndBoxesNested) {
 // A node's z box is the least and largest of its samples, exactly: the build folds the children's
 // boxes into their parent's instead of reading the samples again.
 TEST(QuadTree, BoxesAreTheExtremesOfTheNodesSamples) {
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
-        const QuadLayout& lay = tree.layout();
+        const QuadLayout &lay = tree.layout();
         for (int d = 0; d + 1 < lay.levels(); ++d)
             for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
                 for (std::uint32_t i = 0; i < lay.x.count(d); ++i) {
@@ -204,13 +205,13 @@ TEST(QuadTree, BoxesAreTheExtremesOfTheNodesSamples) {
 
 // Built from a raster it takes over (`tinlod build`), the tree is the one built from a copy.
 TEST(QuadTree, TakingTheRasterOverBuildsTheSameTree) {
-    for (const Asset& a : dem_assets()) {
+    for (const Asset &a : dem_assets()) {
         const QuadTree copied(dem(a));
         Heightfield raster = dem(a);
         const QuadTree taken(std::move(raster));
         ASSERT_EQ(taken.elevations(), dem(a).z) << a.name;
         ASSERT_EQ(taken.layout().levels(), copied.layout().levels()) << a.name;
-        const QuadLayout& lay = copied.layout();
+        const QuadLayout &lay = copied.layout();
         for (int d = 0; d + 1 < lay.levels(); ++d)
             for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
                 for (std::uint32_t i = 0; i < lay.x.count(d); ++i) {
@@ -223,13 +224,13 @@ TEST(QuadTree, TakingTheRasterOverBuildsTheSameTree) {
 }
 
 TEST(Retrieve, ScreenErrorWithinToleranceOnEveryAssetAndView) {
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
         QuadTreeLod lod(tree);
-        for (const NamedView& nv : views_of(hf))
+        for (const NamedView &nv : views_of(hf))
             for (double tol : {0.5, 1.0, 4.0}) {
-                const Retrieval& r = lod.retrieve(nv.view, {tol, false});
+                const Retrieval &r = lod.retrieve(nv.view, {tol, false});
                 const std::string what = a.name + " " + nv.name + " tol " + std::to_string(tol);
                 ErrorOptions eo;
                 eo.view = &nv.view;
@@ -244,21 +245,28 @@ TEST(Retrieve, ScreenErrorWithinToleranceOnEveryAssetAndView) {
 }
 
 TEST(Retrieve, CrackFreeOnEveryAssetAndView) {
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
-        for (const NamedView& nv : views_of(hf))
+        for (const NamedView &nv : views_of(hf))
             expect_crack_free(hf, retrieve(tree, nv.view, {1.0, false}), a.name + " " + nv.name);
     }
 }
 
 TEST(Retrieve, AnySizeIsCrackFreeAndWithinTolerance) {
-    const Heightfield& src = dem({"dem_squared.tif", {}});
-    for (auto [w, h] : {std::pair{2, 2}, {2, 9}, {9, 2}, {3, 17}, {37, 5}, {65, 65}, {100, 33},
-                        {128, 129}, {129, 77}}) {
+    const Heightfield &src = dem({"dem_squared.tif", {}});
+    for (auto [w, h] : {std::pair{2, 2},
+                        {2, 9},
+                        {9, 2},
+                        {3, 17},
+                        {37, 5},
+                        {65, 65},
+                        {100, 33},
+                        {128, 129},
+                        {129, 77}}) {
         const Heightfield hf = crop(src, 0, 0, w, h);
         const QuadTree tree(hf);
-        for (const NamedView& nv : views_of(hf))
+        for (const NamedView &nv : views_of(hf))
             for (double tol : {0.0, 0.5, 4.0}) {
                 const Retrieval r = retrieve(tree, nv.view, {tol, false});
                 const std::string what = std::to_string(w) + "x" + std::to_string(h) + " " +
@@ -274,8 +282,8 @@ TEST(Retrieve, AnySizeIsCrackFreeAndWithinTolerance) {
 }
 
 TEST(Retrieve, ZeroToleranceGivesTheFullGridAndHugeGivesTheRoot) {
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
         const View view = views_of(hf)[0].view;
         const Retrieval full = retrieve(tree, view, {0.0, false});
@@ -290,8 +298,8 @@ TEST(Retrieve, ZeroToleranceGivesTheFullGridAndHugeGivesTheRoot) {
 }
 
 TEST(Retrieve, NodesShrinkAsToleranceGrowsAndEyeRises) {
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
         QuadTreeLod lod(tree);
         const View low = views_of(hf)[0].view;
@@ -318,10 +326,10 @@ TEST(Retrieve, PeripheralWeightsBoundTheErasesWeightedErrorAtEverySample) {
     // bounds: the screen error inside the frustum, relaxed by the factor outside it. Checked at
     // every sample: the erase's own exact measure of the retrieved TIN over all of them.
     const SignificanceOptions screen;
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
-        for (const NamedView& nv : views_of(hf)) {
+        for (const NamedView &nv : views_of(hf)) {
             const std::string what = a.name + " " + nv.name;
             RetrieveOptions ro;
             const Retrieval plain = retrieve(tree, nv.view, ro);
@@ -349,10 +357,10 @@ TEST(Retrieve, PeripheralWeightsBoundTheErasesWeightedErrorAtEverySample) {
 }
 
 TEST(Retrieve, CullingKeepsTheBoundInsideTheFrustum) {
-    for (const Asset& a : dem_assets()) {
-        const Heightfield& hf = dem(a);
+    for (const Asset &a : dem_assets()) {
+        const Heightfield &hf = dem(a);
         const QuadTree tree(hf);
-        for (const NamedView& nv : views_of(hf)) {
+        for (const NamedView &nv : views_of(hf)) {
             const Retrieval all = retrieve(tree, nv.view, {1.0, false});
             const Retrieval culled = retrieve(tree, nv.view, {1.0, true});
             const std::string what = a.name + " " + nv.name;
@@ -369,14 +377,14 @@ TEST(Retrieve, CullingKeepsTheBoundInsideTheFrustum) {
 }
 
 TEST(QuadTreeLod, StatusMatchesTheOutputAndResetsBetweenViews) {
-    const Heightfield& hf = dem({"N42E001.hgt", {}});
+    const Heightfield &hf = dem({"N42E001.hgt", {}});
     const QuadTree tree(hf);
     QuadTreeLod lod(tree);
     const auto views = views_of(hf);
     for (int pass = 0; pass < 2; ++pass)
-        for (const NamedView& nv : views) {
-            const Retrieval& r = lod.retrieve(nv.view, {1.0, false});
-            const QuadLayout& lay = lod.layout();
+        for (const NamedView &nv : views) {
+            const Retrieval &r = lod.retrieve(nv.view, {1.0, false});
+            const QuadLayout &lay = lod.layout();
             std::int64_t leaves = 0, reached = 0;
             for (int d = 0; d < lay.levels(); ++d)
                 for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
@@ -396,7 +404,7 @@ TEST(QuadTreeLod, StatusMatchesTheOutputAndResetsBetweenViews) {
 }
 
 TEST(Retrieve, MeshConversionKeepsProvenanceAndGeometry) {
-    const Heightfield& hf = dem({"dem_srtm30.tif", {}});
+    const Heightfield &hf = dem({"dem_srtm30.tif", {}});
     const QuadTree tree(hf);
     const View view = views_of(hf)[0].view;
     const Retrieval r = retrieve(tree, view, {1.0, false});
@@ -418,9 +426,9 @@ TEST(Retrieve, MeshConversionKeepsProvenanceAndGeometry) {
 namespace {
 
 // The nodes of `level` whose (inclusive) rectangle holds sample (c, r): up to two per axis.
-std::vector<std::size_t> nodes_holding(const QuadLayout& lay, int level, std::uint32_t c,
+std::vector<std::size_t> nodes_holding(const QuadLayout &lay, int level, std::uint32_t c,
                                        std::uint32_t r) {
-    auto along = [&](const AxisSplit& axis, std::uint32_t s, std::uint32_t last) {
+    auto along = [&](const AxisSplit &axis, std::uint32_t s, std::uint32_t last) {
         const std::uint32_t k = axis.interval_of(level, std::min(s, last - 1));
         std::vector<std::uint32_t> out{k};
         if (s == axis.lo(level, k) && k > 0)
@@ -441,14 +449,14 @@ TEST(HeightWorkingSet, EverySampleOutsideTheNeededBlocksIsWithinTheBound) {
     // under a face of the TIN must be within tau, weighted as the erase weighs it. The TIN is
     // erase_dem's to 4 tau, so that many samples are not, and those must lie in needed blocks.
     // Checked at every sample of N42E001, from the low and the high view.
-    const Heightfield& hf = dem({"N42E001.hgt", {}});
+    const Heightfield &hf = dem({"N42E001.hgt", {}});
     const QuadTree tree(hf);
-    const QuadLayout& lay = tree.layout();
+    const QuadLayout &lay = tree.layout();
     const int level = level_for_cells(lay, 16);
     ASSERT_LE(lay.x.length(level, 0), 16u);
     const SignificanceOptions screen;
     constexpr double tau = 1.0;
-    for (const NamedView& nv : views_of(hf)) {
+    for (const NamedView &nv : views_of(hf)) {
         if (nv.name == "outside")
             continue;
         EraseOptions eo;
@@ -462,7 +470,7 @@ TEST(HeightWorkingSet, EverySampleOutsideTheNeededBlocksIsWithinTheBound) {
             std::array<glm::dvec3, 3> p;
             int k = 0;
             for (const auto v : tin.fv_range(f)) {
-                const Mesh::Point& q = tin.point(v);
+                const Mesh::Point &q = tin.point(v);
                 p[k++] = glm::dvec3(q[0], q[1], q[2]);
             }
             const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);

@@ -16,7 +16,7 @@ using tinlod::test::asset;
 namespace {
 
 struct ManifestRow {
-    const char* file;
+    const char *file;
     int width, height;
     float min, max;
     std::int64_t voids;
@@ -35,7 +35,7 @@ const ManifestRow k_manifest[] = {
 } // namespace
 
 TEST(Raster, EveryBundledDemMatchesItsManifest) {
-    for (const auto& row : k_manifest) {
+    for (const auto &row : k_manifest) {
         SCOPED_TRACE(row.file);
         LoadOptions options;
         options.terrain_rgb = row.terrain_rgb;
@@ -127,16 +127,16 @@ TEST(Raster, UngeoreferencedRasterUsesCellAndZscale) {
 // cells for 30 m ones.
 TEST(Raster, ModelTransformationPlacesTheRasterAsATiePointDoes) {
     const std::string dir = tinlod::test::temp_dir();
-    const auto load = [&](const std::string& name,
-                          const std::vector<std::pair<unsigned, std::vector<double>>>& georef) {
+    const auto load = [&](const std::string &name,
+                          const std::vector<std::pair<unsigned, std::vector<double>>> &georef) {
         // GeoKeys: model projected, raster pixel-is-area, EPSG:32631 (UTM zone 31N).
         const std::string path = dir + "/" + name;
         std::ofstream(path, std::ios::binary) << tinlod::test::geotiff_bytes(
             georef, {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32631});
         return load_heightfield(path);
     };
-    const Heightfield tied = load("tied.tif", {{33550, {30.0, 30.0, 0.0}},
-                                               {33922, {0.0, 0.0, 0.0, 500000.0, 4e6, 0.0}}});
+    const Heightfield tied = load(
+        "tied.tif", {{33550, {30.0, 30.0, 0.0}}, {33922, {0.0, 0.0, 0.0, 500000.0, 4e6, 0.0}}});
     EXPECT_DOUBLE_EQ(tied.dx, 30.0);
     EXPECT_DOUBLE_EQ(tied.origin_x, 500015.0); // the SW sample's centre
     EXPECT_DOUBLE_EQ(tied.origin_y, 4e6 - 45.0);
@@ -150,10 +150,11 @@ TEST(Raster, ModelTransformationPlacesTheRasterAsATiePointDoes) {
     EXPECT_EQ(matrix.z, tied.z);
     const double c = std::cos(0.5), s = std::sin(0.5);
     try {
-        load("rotated.tif", {{34264, {30 * c, -30 * s, 0, 500000.0, -30 * s, -30 * c, 0, 4e6, 0,
-                                      0, 0, 0, 0, 0, 0, 1}}});
+        load("rotated.tif",
+             {{34264,
+               {30 * c, -30 * s, 0, 500000.0, -30 * s, -30 * c, 0, 4e6, 0, 0, 0, 0, 0, 0, 0, 1}}});
         ADD_FAILURE() << "a rotated raster loaded";
-    } catch (const Error& e) {
+    } catch (const Error &e) {
         EXPECT_NE(std::string(e.what()).find("rotated.tif: georeferenced by a rotated"),
                   std::string::npos)
             << e.what();
@@ -161,7 +162,7 @@ TEST(Raster, ModelTransformationPlacesTheRasterAsATiePointDoes) {
     try {
         load("gcps.tif", {{33922, {0, 0, 0, 500000.0, 4e6, 0, 1, 1, 0, 500030.0, 4e6 - 30, 0}}});
         ADD_FAILURE() << "a raster placed by ground control points loaded";
-    } catch (const Error& e) {
+    } catch (const Error &e) {
         EXPECT_NE(std::string(e.what()).find("gcps.tif: georeferenced by 2 ground control points"),
                   std::string::npos)
             << e.what();
@@ -170,7 +171,7 @@ TEST(Raster, ModelTransformationPlacesTheRasterAsATiePointDoes) {
 
 TEST(Raster, BadFilesThrowNamingTheFile) {
     const std::string dir = tinlod::test::temp_dir();
-    auto write = [&](const std::string& name, const std::string& bytes) {
+    auto write = [&](const std::string &name, const std::string &bytes) {
         std::ofstream(dir + "/" + name, std::ios::binary) << bytes;
         return dir + "/" + name;
     };
@@ -180,12 +181,12 @@ TEST(Raster, BadFilesThrowNamingTheFile) {
         {write("short.hgt", std::string(1000, '\0')), "is not an SRTM tile"},
         {write("garbage.tif", "this is not a tiff at all"), "cannot read raster"},
     };
-    for (const auto& [path, reason] : cases) {
+    for (const auto &[path, reason] : cases) {
         SCOPED_TRACE(path);
         try {
             load_heightfield(path);
             ADD_FAILURE() << "no error";
-        } catch (const Error& e) {
+        } catch (const Error &e) {
             EXPECT_EQ(e.subject(), path);
             EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
         }

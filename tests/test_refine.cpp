@@ -9,13 +9,13 @@
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/refine.hpp"
-#include "tinlod/store.hpp"
 #include "tinlod/render.hpp"
+#include "tinlod/store.hpp"
 
 #include <gtest/gtest.h>
 #include <malloc.h>
-#include <sys/wait.h>
 #include <nlohmann/json.hpp>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <csignal>
@@ -30,7 +30,7 @@ using tinlod::test::crop;
 
 namespace {
 
-View look(const glm::dvec3& eye, const glm::dvec3& at) {
+View look(const glm::dvec3 &eye, const glm::dvec3 &at) {
     View v;
     v.eye = eye;
     v.at = at;
@@ -38,7 +38,7 @@ View look(const glm::dvec3& eye, const glm::dvec3& at) {
 }
 
 // Live nodes whose sample lies in the west (x < split) and east halves.
-std::pair<std::int64_t, std::int64_t> nodes_by_half(const Refiner& r, double split) {
+std::pair<std::int64_t, std::int64_t> nodes_by_half(const Refiner &r, double split) {
     std::int64_t west = 0, east = 0;
     for (auto v : r.mesh().vertices())
         (r.mesh().point(v)[0] < split ? west : east) += 1;
@@ -46,7 +46,7 @@ std::pair<std::int64_t, std::int64_t> nodes_by_half(const Refiner& r, double spl
 }
 
 // The comma-separated cells of one line of `fly --stats`.
-std::vector<std::string> csv_cells(const std::string& line) {
+std::vector<std::string> csv_cells(const std::string &line) {
     std::vector<std::string> cells;
     std::stringstream ss(line);
     for (std::string cell; std::getline(ss, cell, ',');)
@@ -98,7 +98,7 @@ TEST(Refiner, EveryFrameWithinTauWhileFlyingAcrossARealDem) {
 // TIN measured at every sample in view.
 TEST(Refiner, EveryFrameOfTheShippedPathsIsWithinTau) {
     const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
-    for (const char* name : {"n42_valley", "n42_flyover", "n42_descent"}) {
+    for (const char *name : {"n42_valley", "n42_flyover", "n42_descent"}) {
         SCOPED_TRACE(name);
         const CameraPath path = read_camera_path(asset(std::string("paths/") + name + ".csv"));
         const std::vector<View> views = path.sample(int(path.duration() * 4) + 1, View{});
@@ -176,7 +176,7 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
     // next sample that enters or comes back: an update adds vertices only while more nodes are
     // live than ever before (at most its final nodes plus those it erased after recovering).
     const auto check_vertices = [&](std::int64_t live) {
-        const Mesh& m = refiner.mesh();
+        const Mesh &m = refiner.mesh();
         const auto origin = find_origin_property(m);
         ASSERT_TRUE(origin.is_valid());
         std::int64_t undeleted = 0;
@@ -194,14 +194,13 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
     };
     check_vertices(refiner.first_frame().nodes);
     EXPECT_LT(refiner.mesh().n_vertices(), first.nodes.size() / 4);
-    for (const View& view : {low, high, low}) {
+    for (const View &view : {low, high, low}) {
         const std::size_t vertices = refiner.mesh().n_vertices();
         const FrameStats f = refiner.update(view);
         const FrameStats g = from_grid.update(view);
         EXPECT_EQ(g.entered, 0);
         check_vertices(f.nodes);
-        EXPECT_LE(refiner.mesh().n_vertices(),
-                  std::max(vertices, std::size_t(f.nodes + f.erased)));
+        EXPECT_LE(refiner.mesh().n_vertices(), std::max(vertices, std::size_t(f.nodes + f.erased)));
         const auto origin = find_origin_property(refiner.mesh());
         std::int64_t new_live = 0;
         for (auto v : refiner.mesh().vertices())
@@ -282,7 +281,7 @@ TEST(Refiner, LargeFacesKeepTauWithTileBoundsAndKeptFans) {
 TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
     const Heightfield n42 = load_heightfield(asset("N42E001.hgt"));
     std::int64_t entered = 0;
-    for (const auto& [cw, ch] : {std::pair{100, 3}, {3, 100}, {9, 17}, {65, 40}, {200, 77}}) {
+    for (const auto &[cw, ch] : {std::pair{100, 3}, {3, 100}, {9, 17}, {65, 40}, {200, 77}}) {
         const Heightfield hf = crop(n42, 600, 600, cw, ch);
         const double w = (cw - 1) * hf.dx, h = (ch - 1) * hf.dy;
         const double top = hf.max_z();
@@ -316,10 +315,10 @@ TEST(Refiner, PowerOfTwoCropsLetSamplesEnterWithoutAReplay) {
         std::int64_t entered = 0, lowest = 0, back = 0;
         for (int i = 1; i <= 7; ++i) { // down to the ground, then back where it started
             const double t = i / 6.0;
-            const View view =
-                i == 7 ? high
-                       : look({(t - 0.5) * w, 0.5 * h * t, top + 100 + 3000 * (1 - t)},
-                              {w, h / 2, hf.min_z()});
+            const View view = i == 7
+                                  ? high
+                                  : look({(t - 0.5) * w, 0.5 * h * t, top + 100 + 3000 * (1 - t)},
+                                         {w, h / 2, hf.min_z()});
             const FrameStats stats = refiner.update(view);
             entered += stats.entered;
             (i == 6 ? lowest : back) = stats.nodes;
@@ -367,8 +366,8 @@ TEST(Refiner, WiderHysteresisKeepsMoreNodesAndChangesFewer) {
         views.push_back(look({x, 0.3 * h, z}, {x + 0.3 * w, 0.6 * h, hf.min_z()}));
     }
     struct Flight {
-        double nodes = 0;          // mean over the frames after the first
-        std::int64_t changed = 0;  // erased + recovered over those frames
+        double nodes = 0;         // mean over the frames after the first
+        std::int64_t changed = 0; // erased + recovered over those frames
     };
     const auto fly = [&](double hysteresis) {
         RefineOptions options;
@@ -403,7 +402,8 @@ TEST(Refiner, BytesAreWhatTheHeapHolds) {
     const Heightfield hf = load_heightfield(asset("N42E001.hgt"));
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
     const View start = look({0.3 * w, 0.2 * h, hf.max_z() + 300}, {0.6 * w, 0.7 * h, hf.min_z()});
-    const View next = look({0.35 * w, 0.25 * h, hf.max_z() + 300}, {0.65 * w, 0.75 * h, hf.min_z()});
+    const View next =
+        look({0.35 * w, 0.25 * h, hf.max_z() + 300}, {0.65 * w, 0.75 * h, hf.min_z()});
     const auto heap = [] {
         const struct mallinfo2 m = mallinfo2();
         return double(m.uordblks + m.hblkhd);
@@ -418,9 +418,9 @@ TEST(Refiner, BytesAreWhatTheHeapHolds) {
 
 TEST(Refiner, FlyCommandMeasuresEveryFrameOfAShippedPath) {
     const std::string dir = tinlod::test::temp_dir();
-    const auto r = tinlod::test::run_cli("fly '" + asset("N42E001.hgt") + "' --path '" +
-                                         asset("paths/n42_descent.csv") +
-                                         "' --fps 0.5 --tol 1 --check --stats " + dir + "/frames.csv");
+    const auto r = tinlod::test::run_cli(
+        "fly '" + asset("N42E001.hgt") + "' --path '" + asset("paths/n42_descent.csv") +
+        "' --fps 0.5 --tol 1 --check --stats " + dir + "/frames.csv");
     ASSERT_EQ(r.status, 0) << r.err;
     std::ifstream in(dir + "/frames.csv");
     std::string line;
@@ -460,7 +460,7 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
     ASSERT_EQ(tinlod::test::run_cli("build '" + dem + "' -o " + dir + "/dem.tlq").status, 0);
     std::vector<std::vector<std::string>> runs;
     std::vector<std::int64_t> tiles;
-    for (const std::string& input : {"'" + dem + "'", dir + "/dem.tlq"}) {
+    for (const std::string &input : {"'" + dem + "'", dir + "/dem.tlq"}) {
         const auto r = tinlod::test::run_cli("fly " + input + " --path " + dir +
                                              "/path.csv --fps 4 --check --stats " + dir + "/f.csv");
         ASSERT_EQ(r.status, 0) << r.err;
@@ -481,12 +481,13 @@ TEST(Refiner, FlyReadsAStoreAsTheDemItWasBuiltFrom) {
     EXPECT_EQ(runs[0].size(), 5u);
     EXPECT_EQ(runs[0], runs[1]);
     EXPECT_EQ(tiles[0], 0) << "a DEM has no tiles";
-    EXPECT_EQ(tiles[1], TileStore(dir + "/dem.tlq").tile_count()) << "the store is read whole, once";
+    EXPECT_EQ(tiles[1], TileStore(dir + "/dem.tlq").tile_count())
+        << "the store is read whole, once";
 }
 
 // One second from high south of `hf` down over its southern part, looking north: the TIN grows
 // as the observer comes down. Written to dir/path.csv.
-static CameraPath write_coming_down(const Heightfield& hf, const std::string& dir) {
+static CameraPath write_coming_down(const Heightfield &hf, const std::string &dir) {
     const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
     CameraPath path;
     path.keys = {{0, {0, -h, hf.max_z() + 900}, {w / 2, h / 2, hf.min_z()}},
@@ -556,7 +557,7 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
         char name[32];
         std::snprintf(name, sizeof name, "/frame_%05d", i);
         frames.push_back(read_image(dir + "/frames" + name + ".png"));
-        const Image& frame = frames.back();
+        const Image &frame = frames.back();
         ASSERT_EQ(frame.width, 320);
         ASSERT_EQ(frame.height, 180);
         ASSERT_EQ(tinlod::test::run_cli("render " + dir + "/meshes" + name + ".ply --eye " + eye +
@@ -576,8 +577,8 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
     }
     std::size_t differ = 0;
     for (std::size_t p = 0; p < pixels; ++p)
-        differ += !std::equal(&frames[0].rgba[4 * p], &frames[0].rgba[4 * p + 3],
-                              &frames[3].rgba[4 * p]);
+        differ +=
+            !std::equal(&frames[0].rgba[4 * p], &frames[0].rgba[4 * p + 3], &frames[3].rgba[4 * p]);
     EXPECT_GT(differ, pixels / 100) << "the drawn TIN changes as the observer moves";
 }
 
@@ -594,7 +595,7 @@ TEST(Refiner, FlyThatFailsMidwayLeavesNoFrames) {
                              "/path.csv --fps 3 --meshes " + meshes + " --stats " + dir + "/f.csv";
     ASSERT_EQ(tinlod::test::run_cli(args).status, 0);
     std::vector<std::uintmax_t> sizes;
-    for (const auto& e : fs::directory_iterator(meshes))
+    for (const auto &e : fs::directory_iterator(meshes))
         sizes.push_back(fs::file_size(e.path()));
     ASSERT_EQ(sizes.size(), 4u) << "the four frames' TINs and nothing else";
     const std::uintmax_t first = fs::file_size(meshes + "/frame_00000.ply");
@@ -620,19 +621,19 @@ TEST(Refiner, FlyStoppedByCtrlCLeavesNoFrames) {
     const std::string meshes = dir + "/meshes";
     fs::create_directories(meshes);
     // 1001 frames, each writing its TIN: the flight is well under way once two are staged.
-    const pid_t pid = tinlod::test::start_cli({"fly", asset("dem_squared.tif"), "--path",
-                                               dir + "/path.csv", "--fps", "1000", "--meshes",
-                                               meshes, "--stats", dir + "/f.csv"},
-                                              dir + "/err");
+    const pid_t pid =
+        tinlod::test::start_cli({"fly", asset("dem_squared.tif"), "--path", dir + "/path.csv",
+                                 "--fps", "1000", "--meshes", meshes, "--stats", dir + "/f.csv"},
+                                dir + "/err");
     ASSERT_GT(pid, 0);
     // The staging folder may go while it is counted (a flight that fails removes it): no throw.
     const auto staged = [&] {
         std::error_code ec;
         std::size_t files = 0;
-        for (const auto& e : fs::directory_iterator(meshes, ec))
+        for (const auto &e : fs::directory_iterator(meshes, ec))
             if (e.is_directory(ec))
-                files += std::size_t(std::distance(fs::directory_iterator(e.path(), ec),
-                                                   fs::directory_iterator()));
+                files += std::size_t(
+                    std::distance(fs::directory_iterator(e.path(), ec), fs::directory_iterator()));
         return files;
     };
     int status = 0;

@@ -29,12 +29,12 @@ namespace {
             GTEST_SKIP() << "no OpenGL context: " << why;                                          \
     } while (0)
 
-const Heightfield& squared_dem() {
+const Heightfield &squared_dem() {
     static const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     return hf;
 }
 
-double sky_share(const Image& image, const RenderOptions& options) {
+double sky_share(const Image &image, const RenderOptions &options) {
     std::size_t sky = 0, n = std::size_t(image.width) * image.height;
     for (std::size_t i = 0; i < n; ++i)
         sky += is_sky(image, i, options);
@@ -42,7 +42,7 @@ double sky_share(const Image& image, const RenderOptions& options) {
 }
 
 // TIN over every `step`-th sample in both directions, spanning the same extent as the full grid.
-Mesh subsampled_tin(const Heightfield& hf, int step) {
+Mesh subsampled_tin(const Heightfield &hf, int step) {
     EXPECT_EQ((hf.width - 1) % step, 0);
     EXPECT_EQ((hf.height - 1) % step, 0);
     std::vector<std::uint32_t> triangles;
@@ -55,7 +55,7 @@ Mesh subsampled_tin(const Heightfield& hf, int step) {
     return tin_from_indices(hf, triangles);
 }
 
-View oblique_view(const Heightfield& hf, int w, int h) {
+View oblique_view(const Heightfield &hf, int w, int h) {
     const double ex = (hf.width - 1) * hf.dx, ey = (hf.height - 1) * hf.dy;
     View v;
     v.eye = {0.5 * ex, -0.4 * ey, hf.max_z() + 0.4 * ey};
@@ -70,7 +70,7 @@ View oblique_view(const Heightfield& hf, int w, int h) {
 
 TEST(Render, TopDownViewInsideTheTerrainLeavesNoSky) {
     REQUIRE_RENDER();
-    const Heightfield& hf = squared_dem();
+    const Heightfield &hf = squared_dem();
     const double ex = (hf.width - 1) * hf.dx, ey = (hf.height - 1) * hf.dy;
     View view;
     view.viewport_w = 400;
@@ -117,7 +117,7 @@ TEST(Render, TopDownViewInsideTheTerrainLeavesNoSky) {
 
 TEST(Render, DistantTopDownViewCoversThePredictedShare) {
     REQUIRE_RENDER();
-    const Heightfield& hf = squared_dem();
+    const Heightfield &hf = squared_dem();
     const double ex = (hf.width - 1) * hf.dx, ey = (hf.height - 1) * hf.dy;
     View view;
     view.viewport_w = 320;
@@ -143,7 +143,7 @@ TEST(Render, DistantTopDownViewCoversThePredictedShare) {
 
 TEST(Render, HorizontalViewHasSkyAboveTheHorizonAndGroundBelow) {
     REQUIRE_RENDER();
-    const Heightfield& hf = squared_dem();
+    const Heightfield &hf = squared_dem();
     const double ex = (hf.width - 1) * hf.dx, ey = (hf.height - 1) * hf.dy;
     View view;
     view.viewport_w = 320;
@@ -174,7 +174,7 @@ TEST(Render, HorizontalViewHasSkyAboveTheHorizonAndGroundBelow) {
 
 TEST(Render, SameInputGivesIdenticalBytesAndInfinitePsnr) {
     REQUIRE_RENDER();
-    const Heightfield& hf = squared_dem();
+    const Heightfield &hf = squared_dem();
     const Mesh tin = grid_tin(hf);
     const View view = oblique_view(hf, 480, 270);
     RenderOptions options;
@@ -197,7 +197,7 @@ TEST(Render, SameInputGivesIdenticalBytesAndInfinitePsnr) {
 
 TEST(Render, CoarserTinsShowLargerImageAndGeometricError) {
     REQUIRE_RENDER();
-    const Heightfield& hf = squared_dem();
+    const Heightfield &hf = squared_dem();
     const View view = oblique_view(hf, 640, 360);
     RenderOptions options;
     options.z_min = hf.min_z();
@@ -307,7 +307,7 @@ TEST(RenderCli, CompareMeshesByHausdorffAndImage) {
                                  "--samples 20000 --json");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    const auto& g = j["geometry"];
+    const auto &g = j["geometry"];
     // The bunny is about 0.15 across; res4 keeps its shape within a few percent of that.
     EXPECT_GT(g["hausdorff_max"].get<double>(), 0.0);
     EXPECT_LT(g["hausdorff_max"].get<double>(), 0.02);

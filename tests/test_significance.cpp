@@ -106,27 +106,26 @@ TEST(Weigher, MatchesScreenWeightAndBoundsItOverEveryBox) {
     narrow.fov_deg = 20.0;
     narrow.viewport_w = narrow.viewport_h = 512;
     views.push_back(narrow);
-    for (const View& view : views) {
+    for (const View &view : views) {
         const Weigher weigher(&view, options);
         const glm::dvec3 f = view.axis();
         // A point at distance r whose direction makes angle a with the axis, at azimuth b.
-        const glm::dvec3 side = glm::normalize(glm::cross(f, std::abs(f.z) > 0.9
-                                                                 ? glm::dvec3(0, 1, 0)
-                                                                 : glm::dvec3(0, 0, 1)));
+        const glm::dvec3 side = glm::normalize(
+            glm::cross(f, std::abs(f.z) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1)));
         const glm::dvec3 up = glm::cross(side, f);
-        const double cone = std::atan(0.5 * std::hypot(double(view.viewport_w),
-                                                        double(view.viewport_h)) / view.k());
+        const double cone = std::atan(
+            0.5 * std::hypot(double(view.viewport_w), double(view.viewport_h)) / view.k());
         auto around = [&](double r, double a, double b) {
-            return view.eye + r * (std::cos(a) * f +
-                                   std::sin(a) * (std::cos(b) * side + std::sin(b) * up));
+            return view.eye +
+                   r * (std::cos(a) * f + std::sin(a) * (std::cos(b) * side + std::sin(b) * up));
         };
         int boxes = 0;
         for (int k = 0; k < 4000; ++k) {
             // Centres at any angle, most near the cone's edge; sizes from a metre to kilometres.
             const double a = unit(rng) < 0.6 ? cone + 0.05 * (unit(rng) - 0.5) : M_PI * unit(rng);
             const glm::dvec3 c = around(50.0 + 5000.0 * unit(rng), a, 2.0 * M_PI * unit(rng));
-            const glm::dvec3 half = glm::dvec3(unit(rng), unit(rng), unit(rng)) *
-                                    std::pow(10.0, 3.5 * unit(rng));
+            const glm::dvec3 half =
+                glm::dvec3(unit(rng), unit(rng), unit(rng)) * std::pow(10.0, 3.5 * unit(rng));
             const glm::dvec3 lo = c - half, hi = c + half;
             if (glm::all(glm::lessThanEqual(lo, view.eye)) &&
                 glm::all(glm::lessThanEqual(view.eye, hi)))

@@ -25,25 +25,25 @@ View make_view(glm::dvec3 eye, glm::dvec3 at) {
     return v;
 }
 
-std::string read_all(const std::string& path) {
+std::string read_all(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
-void write_all(const std::string& path, const std::string& bytes) {
+void write_all(const std::string &path, const std::string &bytes) {
     std::ofstream out(path, std::ios::binary);
     out.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
 // A near view over the south-west corner of N42E001 (about 82 x 111 km), looking north-east.
-View near_view(const Heightfield& hf) {
+View near_view(const Heightfield &hf) {
     return make_view({6000, 8000, hf.at(70, 90) + 300.0}, {20000, 25000, 600});
 }
 
-std::string error_of(const std::function<void()>& f) {
+std::string error_of(const std::function<void()> &f) {
     try {
         f();
-    } catch (const Error& e) {
+    } catch (const Error &e) {
         return e.what();
     }
     return "";
@@ -63,15 +63,15 @@ struct StoreFixture : public ::testing::Test {
         delete dir;
         delete path;
     }
-    static Heightfield* hf;
-    static QuadTree* tree;
-    static std::string* dir;
-    static std::string* path;
+    static Heightfield *hf;
+    static QuadTree *tree;
+    static std::string *dir;
+    static std::string *path;
 };
-Heightfield* StoreFixture::hf = nullptr;
-QuadTree* StoreFixture::tree = nullptr;
-std::string* StoreFixture::dir = nullptr;
-std::string* StoreFixture::path = nullptr;
+Heightfield *StoreFixture::hf = nullptr;
+QuadTree *StoreFixture::tree = nullptr;
+std::string *StoreFixture::dir = nullptr;
+std::string *StoreFixture::path = nullptr;
 
 } // namespace
 
@@ -79,19 +79,19 @@ TEST_F(StoreFixture, RetrievalFromTheStoreEqualsRetrievalFromMemory) {
     EXPECT_TRUE(is_store_file(*path));
     EXPECT_FALSE(is_store_file(asset("N42E001.hgt")));
     auto owned = std::make_unique<TileStore>(*path);
-    TileStore* store = owned.get();
+    TileStore *store = owned.get();
     EXPECT_EQ(store->frame().width, hf->width);
     EXPECT_EQ(store->frame().dx, hf->dx);
     EXPECT_EQ(store->frame().crs, hf->crs);
     QuadTreeLod from_disk(std::move(owned));
     QuadTreeLod in_memory(*tree);
     const double span = (hf->width - 1) * hf->dx;
-    for (const View& view :
+    for (const View &view :
          {near_view(*hf), make_view({0.5 * span, 0.5 * span, 8000}, {0.5 * span, 0.5 * span, 0}),
           make_view({-0.5 * span, -0.5 * span, 4000}, {0.5 * span, 0.5 * span, 500})})
         for (double tol : {0.5, 2.0}) {
-            const Retrieval& a = from_disk.retrieve(view, {tol, false});
-            const Retrieval& b = in_memory.retrieve(view, {tol, false});
+            const Retrieval &a = from_disk.retrieve(view, {tol, false});
+            const Retrieval &b = in_memory.retrieve(view, {tol, false});
             EXPECT_EQ(a.triangles, b.triangles);
             EXPECT_EQ(a.nodes, b.nodes);
             EXPECT_EQ(a.z, b.z);
@@ -106,10 +106,10 @@ TEST_F(StoreFixture, NearViewReadsOnlyPartOfTheTilesAndCacheHolds) {
     StoreOptions so;
     so.cache_mb = 1.0;
     auto owned = std::make_unique<TileStore>(*path, so);
-    TileStore* store = owned.get();
+    TileStore *store = owned.get();
     QuadTreeLod lod(std::move(owned));
     const View view = near_view(*hf);
-    const Retrieval& r = lod.retrieve(view, {1.0, true});
+    const Retrieval &r = lod.retrieve(view, {1.0, true});
     const StoreStats first = store->last_stats();
     EXPECT_GT(first.tiles_read, 0);
     EXPECT_LT(first.tiles_read, store->tile_count());
@@ -126,7 +126,7 @@ TEST_F(StoreFixture, NearViewReadsOnlyPartOfTheTilesAndCacheHolds) {
     StoreOptions big;
     big.cache_mb = 1024;
     auto owned2 = std::make_unique<TileStore>(*path, big);
-    TileStore* store2 = owned2.get();
+    TileStore *store2 = owned2.get();
     QuadTreeLod lod2(std::move(owned2));
     lod2.retrieve(view, {1.0, true});
     EXPECT_EQ(store2->last_stats().tiles_read, first.tiles_read);
@@ -141,7 +141,7 @@ TEST_F(StoreFixture, FlippedByteInATileIsDetected) {
     std::string flipped = bytes;
     flipped[flipped.size() - 5] ^= 0x10;
     write_all(bad, flipped);
-    TileStore* store = nullptr;
+    TileStore *store = nullptr;
     auto owned = std::make_unique<TileStore>(bad);
     store = owned.get();
     const std::string whole = error_of([&] { store->heightfield(); });
@@ -149,8 +149,7 @@ TEST_F(StoreFixture, FlippedByteInATileIsDetected) {
     EXPECT_NE(whole.find(bad), std::string::npos) << whole;
     // A retrieval that reaches the tile (full resolution) fails with a clear error.
     QuadTreeLod lod(std::move(owned));
-    const std::string msg =
-        error_of([&] { lod.retrieve(near_view(*hf), {0.0, false}); });
+    const std::string msg = error_of([&] { lod.retrieve(near_view(*hf), {0.0, false}); });
     EXPECT_NE(msg.find("corrupt tile"), std::string::npos) << msg;
     // A flip in the header or directory is caught on opening.
     for (std::size_t at : {std::size_t(20), std::size_t(300)}) {
@@ -192,7 +191,8 @@ TEST(StoreCli, BuildThenRetrieveFromTheStore) {
     ASSERT_EQ(b.status, 0) << b.err;
     const RunResult r = run_cli("retrieve '" + store +
                                 "' --eye 6000,8000,1400 --at 20000,25000,600 --tol 1 --cull "
-                                "--check -o '" + dir + "/near.ply' --stats '" + dir + "/s.json'");
+                                "--check -o '" +
+                                dir + "/near.ply' --stats '" + dir + "/s.json'");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto stats = nlohmann::json::parse(read_all(dir + "/s.json"));
     EXPECT_GT(stats["store"]["tiles_read"].get<std::int64_t>(), 0);
@@ -201,7 +201,8 @@ TEST(StoreCli, BuildThenRetrieveFromTheStore) {
     EXPECT_GT(stats["store"]["bytes_read"].get<std::int64_t>(), 0);
     EXPECT_LE(stats["error"]["max_screen_px"].get<double>(), 1.0 + 1e-9);
     EXPECT_EQ(stats["error"]["uncovered_samples"].get<std::int64_t>(), 0);
-    EXPECT_LT(stats["output"]["nodes"].get<std::int64_t>(), stats["input"]["nodes"].get<std::int64_t>());
+    EXPECT_LT(stats["output"]["nodes"].get<std::int64_t>(),
+              stats["input"]["nodes"].get<std::int64_t>());
     EXPECT_TRUE(std::filesystem::exists(dir + "/near.ply"));
     // The same view from the DEM gives the same TIN.
     const RunResult m = run_cli("retrieve '" + asset("N42E001.hgt") +

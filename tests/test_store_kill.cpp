@@ -21,7 +21,10 @@ TEST(StoreKill, KilledBuildLeavesThePreviousStoreOrTheNewOneWhole) {
     const std::string dir = tinlod::test::temp_dir();
     const std::string store = dir + "/terrain.tlq";
     // The previous store: a small DEM. The build that gets killed writes a larger one over it.
-    ASSERT_EQ(tinlod::test::run_cli("build " + tinlod::test::asset("dem_squared.tif") + " -o " + store).status, 0);
+    ASSERT_EQ(
+        tinlod::test::run_cli("build " + tinlod::test::asset("dem_squared.tif") + " -o " + store)
+            .status,
+        0);
     int previous = 0, replaced = 0;
     for (int delay_ms : {0, 5, 20, 40, 60, 80, 100, 150, 200, 300, 500}) {
         SCOPED_TRACE(delay_ms);
@@ -54,7 +57,10 @@ TEST(StoreKill, InterruptedBuildLeavesNoTemporary) {
     namespace fs = std::filesystem;
     const std::string dir = tinlod::test::temp_dir();
     const std::string store = dir + "/terrain.tlq";
-    ASSERT_EQ(tinlod::test::run_cli("build " + tinlod::test::asset("dem_squared.tif") + " -o " + store).status, 0);
+    ASSERT_EQ(
+        tinlod::test::run_cli("build " + tinlod::test::asset("dem_squared.tif") + " -o " + store)
+            .status,
+        0);
     int stopped = 0;
     for (int delay_ms : {0, 20, 60, 100, 150, 200, 300, 500}) {
         SCOPED_TRACE(delay_ms);
@@ -79,7 +85,7 @@ TEST(StoreKill, InterruptedBuildLeavesNoTemporary) {
                 << status;
         }
         std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(dir))
+        for (const auto &e : fs::directory_iterator(dir))
             if (e.path().filename() != "err")
                 names.push_back(e.path().filename().string());
         EXPECT_EQ(names, std::vector<std::string>{"terrain.tlq"});

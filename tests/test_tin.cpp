@@ -16,7 +16,7 @@ using namespace tinlod;
 using tinlod::test::asset;
 
 TEST(GridTin, CountsManifoldAndCounterClockwise) {
-    for (const char* file : {"dem_squared.tif", "crater_u16.png", "dem_srtm30.tif"}) {
+    for (const char *file : {"dem_squared.tif", "crater_u16.png", "dem_srtm30.tif"}) {
         SCOPED_TRACE(file);
         const Heightfield hf = load_heightfield(asset(file));
         const Mesh mesh = grid_tin(hf);
@@ -46,7 +46,7 @@ TEST(GridTin, CountsManifoldAndCounterClockwise) {
     }
 }
 
-static std::set<std::array<std::int64_t, 3>> triangle_set(const Mesh& mesh) {
+static std::set<std::array<std::int64_t, 3>> triangle_set(const Mesh &mesh) {
     std::set<std::array<std::int64_t, 3>> set;
     for (auto f : mesh.faces()) {
         std::array<std::int64_t, 3> t;
@@ -63,7 +63,7 @@ TEST(MeshIo, RoundTripThroughEachFormatKeepsVerticesAndFaces) {
     const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     const Mesh mesh = grid_tin(hf);
     const std::string dir = tinlod::test::temp_dir();
-    for (const char* ext : {".ply", ".obj", ".off"}) {
+    for (const char *ext : {".ply", ".obj", ".off"}) {
         SCOPED_TRACE(ext);
         const std::string path = dir + "/grid" + ext;
         write_mesh(mesh, path);
@@ -85,7 +85,7 @@ TEST(MeshIo, RoundTripThroughEachFormatKeepsVerticesAndFaces) {
 
 // A real DEM's grid TIN erased in place to 2 m: most vertices, edges and faces marked deleted, the
 // live ones spread over the arrays (as in a refiner's TIN between frames).
-static Mesh erased_in_place(std::int64_t* erased_nodes = nullptr) {
+static Mesh erased_in_place(std::int64_t *erased_nodes = nullptr) {
     const Heightfield hf = load_heightfield(asset("crater_u16.png"));
     Mesh erased = grid_tin(hf);
     EraseOptions eo;
@@ -97,7 +97,7 @@ static Mesh erased_in_place(std::int64_t* erased_nodes = nullptr) {
     return erased;
 }
 
-static void expect_written_live_part(const Mesh& erased) {
+static void expect_written_live_part(const Mesh &erased) {
     const auto live_vertices =
         std::size_t(std::distance(erased.vertices_sbegin(), erased.vertices_end()));
     const auto live_faces = std::size_t(std::distance(erased.faces_sbegin(), erased.faces_end()));
@@ -105,7 +105,7 @@ static void expect_written_live_part(const Mesh& erased) {
     ASSERT_LT(live_faces, erased.n_faces());
     // Triangles by their corners' points (files renumber the vertices), each from its least point.
     using Corner = std::array<float, 3>;
-    const auto triangles = [](const Mesh& m) {
+    const auto triangles = [](const Mesh &m) {
         std::set<std::array<Corner, 3>> set;
         for (auto f : m.faces()) {
             std::array<Corner, 3> t;
@@ -118,7 +118,7 @@ static void expect_written_live_part(const Mesh& erased) {
         return set;
     };
     const std::string dir = tinlod::test::temp_dir();
-    for (const char* ext : {".ply", ".obj", ".off"}) {
+    for (const char *ext : {".ply", ".obj", ".off"}) {
         SCOPED_TRACE(ext);
         write_mesh(erased, dir + "/erased" + ext);
         const Mesh back = read_mesh(dir + "/erased" + ext);
@@ -190,15 +190,15 @@ struct Topology {
     std::vector<std::array<int, 3>> faces;
     std::vector<std::vector<int>> rings;
     std::vector<bool> boundary;
-    bool operator==(const Topology&) const = default;
+    bool operator==(const Topology &) const = default;
 };
 
-Topology topology(const Mesh& mesh) {
+Topology topology(const Mesh &mesh) {
     Topology t;
     for (auto f : mesh.faces()) {
         auto h = mesh.halfedge_handle(f);
         std::array<int, 3> c{};
-        for (int& k : c) {
+        for (int &k : c) {
             k = mesh.from_vertex_handle(h).idx();
             h = mesh.next_halfedge_handle(h);
         }
@@ -221,7 +221,7 @@ Topology topology(const Mesh& mesh) {
     return t;
 }
 
-Mesh with_vertices_of(const Mesh& mesh) {
+Mesh with_vertices_of(const Mesh &mesh) {
     Mesh out;
     for (auto v : mesh.vertices())
         out.add_vertex(mesh.point(v));
@@ -240,8 +240,9 @@ TEST(AddTriangles, BuildsTheMeshAddFaceBuilds) {
         Mesh by_face = with_vertices_of(grid), by_array = with_vertices_of(grid);
         std::vector<std::uint32_t> corners;
         for (auto f : grid.faces()) {
-            const glm::dvec3 c = (face_corners(grid, f)[0] + face_corners(grid, f)[1] +
-                                  face_corners(grid, f)[2]) / 3.0;
+            const glm::dvec3 c =
+                (face_corners(grid, f)[0] + face_corners(grid, f)[1] + face_corners(grid, f)[2]) /
+                3.0;
             if (hole && std::abs(c.x / hf.dx - hf.width / 2.0) < hf.width / 5.0 &&
                 std::abs(c.y / hf.dy - hf.height / 2.0) < hf.height / 7.0)
                 continue;
@@ -271,7 +272,7 @@ TEST(AddTriangles, BuildsTheMeshAddFaceBuilds) {
             EXPECT_EQ(by_array.is_boundary(next), by_array.is_boundary(h));
         }
         // OpenMesh's own edits then agree: the same face deleted in both, garbage collected.
-        for (Mesh* m : {&by_face, &by_array}) {
+        for (Mesh *m : {&by_face, &by_array}) {
             m->request_face_status();
             m->request_edge_status();
             m->request_vertex_status();
@@ -300,7 +301,7 @@ TEST(LiveCopy, GivesTheMeshGarbageCollectionGives) {
         std::set<std::array<std::int64_t, 3>> faces; // origins, from the smallest, in order
         std::set<std::int64_t> boundary;
     };
-    const auto describe = [](const Mesh& m) {
+    const auto describe = [](const Mesh &m) {
         Described d;
         const auto origin = find_origin_property(m);
         EXPECT_TRUE(origin.is_valid());
@@ -312,7 +313,7 @@ TEST(LiveCopy, GivesTheMeshGarbageCollectionGives) {
         for (auto f : m.faces()) {
             std::array<std::int64_t, 3> c{};
             auto h = m.halfedge_handle(f);
-            for (auto& k : c) {
+            for (auto &k : c) {
                 k = m.property(origin, m.from_vertex_handle(h));
                 h = m.next_halfedge_handle(h);
             }
@@ -325,9 +326,9 @@ TEST(LiveCopy, GivesTheMeshGarbageCollectionGives) {
     Described b = describe(collected);
     // live_copy keeps the input's order: origins ascend, as the grid TIN's vertex ids.
     EXPECT_TRUE(std::is_sorted(a.nodes.begin(), a.nodes.end(),
-                               [](const auto& x, const auto& y) { return x.first < y.first; }));
+                               [](const auto &x, const auto &y) { return x.first < y.first; }));
     std::sort(b.nodes.begin(), b.nodes.end(),
-              [](const auto& x, const auto& y) { return x.first < y.first; });
+              [](const auto &x, const auto &y) { return x.first < y.first; });
     EXPECT_TRUE(a.nodes == b.nodes);
     EXPECT_EQ(a.faces.size(), copy.n_faces());
     EXPECT_TRUE(a.faces == b.faces);
@@ -336,16 +337,16 @@ TEST(LiveCopy, GivesTheMeshGarbageCollectionGives) {
 
 TEST(AddTriangles, RefusesWhatIsNotAnOrientedManifold) {
     Mesh square;
-    for (const auto& p : {Mesh::Point(0, 0, 0), Mesh::Point(1, 0, 0), Mesh::Point(1, 1, 0),
+    for (const auto &p : {Mesh::Point(0, 0, 0), Mesh::Point(1, 0, 0), Mesh::Point(1, 1, 0),
                           Mesh::Point(0, 1, 0), Mesh::Point(2, 2, 0), Mesh::Point(2, 1, 0)})
         square.add_vertex(p);
     const auto fails = [&](std::vector<std::uint32_t> corners) {
         Mesh m = square;
         EXPECT_THROW(add_triangles(m, corners), std::invalid_argument);
     };
-    fails({0, 1, 2, 0, 2, 3, 3, 2, 0});      // edge 0 -> 2... used twice in the same direction
-    fails({0, 1, 2, 0, 3, 2});               // a face flipped against its neighbour
-    fails({0, 1, 2, 2, 5, 4});               // two fans meet at vertex 2 only (a bow-tie)
+    fails({0, 1, 2, 0, 2, 3, 3, 2, 0}); // edge 0 -> 2... used twice in the same direction
+    fails({0, 1, 2, 0, 3, 2});          // a face flipped against its neighbour
+    fails({0, 1, 2, 2, 5, 4});          // two fans meet at vertex 2 only (a bow-tie)
     // Two closed fans at one vertex: two tetrahedra sharing vertex 0, no boundary at all.
     Mesh apex;
     for (int i = 0; i < 7; ++i)
@@ -357,9 +358,9 @@ TEST(AddTriangles, RefusesWhatIsNotAnOrientedManifold) {
     add_triangles(apex, std::span(tetrahedra).first(12)); // one tetrahedron alone is closed
     EXPECT_EQ(apex.n_faces(), 4u);
     EXPECT_EQ(apex.n_edges(), 6u);
-    fails({0, 1, 6});                        // a corner out of range
-    fails({0, 1, 1});                        // a repeated corner
-    fails({0, 1});                           // a partial triangle
+    fails({0, 1, 6}); // a corner out of range
+    fails({0, 1, 1}); // a repeated corner
+    fails({0, 1});    // a partial triangle
     Mesh m = square;
     add_triangles(m, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
     EXPECT_EQ(m.n_faces(), 2u);

@@ -24,13 +24,13 @@ using namespace tinlod::viewer;
 
 namespace {
 
-void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol) {
+void expect_near(const glm::dvec3 &a, const glm::dvec3 &b, double tol) {
     EXPECT_NEAR(a.x, b.x, tol);
     EXPECT_NEAR(a.y, b.y, tol);
     EXPECT_NEAR(a.z, b.z, tol);
 }
 
-CameraControl camera(const glm::dvec3& eye, const glm::dvec3& at) {
+CameraControl camera(const glm::dvec3 &eye, const glm::dvec3 &at) {
     CameraControl c;
     c.look_at(eye, at);
     return c;
@@ -249,7 +249,7 @@ namespace {
 // Computes nothing but records which views it was asked for; the first call blocks until released.
 class GateEngine final : public LodEngine {
   public:
-    std::unique_ptr<LodResult> compute(const View& view, const LodSettings&) override {
+    std::unique_ptr<LodResult> compute(const View &view, const LodSettings &) override {
         std::unique_lock lock(mutex_);
         seen_.push_back(view.eye.x);
         started_.notify_all();
@@ -290,7 +290,7 @@ View view_at_x(double x) {
 
 TEST(ViewWorker, LatestRequestWinsAndRequestsNeverBlock) {
     auto owned = std::make_unique<GateEngine>();
-    GateEngine* engine = owned.get();
+    GateEngine *engine = owned.get();
     LodWorker worker(std::move(owned));
     worker.request(view_at_x(1.0), {});
     engine->wait_started(1);
@@ -348,7 +348,7 @@ TEST(ViewWorker, GroundUnderTheEyeIsTheDemAtFullResolution) {
     s.tol_px = 0.0; // the full grid: the TIN passes through every sample
     const auto r = engine->compute(v, s);
     ASSERT_EQ(r->nodes, hf.size());
-    for (const auto& [c, row] :
+    for (const auto &[c, row] :
          {std::pair{1, 1}, std::pair{64, 64}, std::pair{17, 101}, std::pair{127, 127}}) {
         const auto z = ground_height(*r, info, c * hf.dx, row * hf.dy);
         ASSERT_TRUE(z.has_value()) << c << ", " << row;
@@ -366,7 +366,7 @@ TEST(ViewWorker, GroundUnderTheEyeIsTheDemAtFullResolution) {
 namespace {
 
 // 800 x 600, from south of the scene and above it, looking at its centre.
-View oblique_view(const SceneInfo& info) {
+View oblique_view(const SceneInfo &info) {
     View v;
     v.viewport_w = 800;
     v.viewport_h = 600;
@@ -445,7 +445,7 @@ TEST(ViewWorker, RefineStageKeepsOneTinThatFollowsTheEye) {
     const auto far = engine->compute(high, s);
     const auto near = engine->compute(low, s);
     EXPECT_GT(near->nodes, far->nodes) << "descending recovers nodes";
-    for (const auto& [r, v] : {std::pair{far.get(), &high}, std::pair{near.get(), &low}}) {
+    for (const auto &[r, v] : {std::pair{far.get(), &high}, std::pair{near.get(), &low}}) {
         ErrorOptions eo;
         eo.view = v;
         EXPECT_LE(measure_error(hf, r->mesh, eo).max_screen_px, s.tol_px);

@@ -32,7 +32,7 @@ struct ViewRun {
     std::string err;
 };
 
-std::string slurp(const fs::path& p) {
+std::string slurp(const fs::path &p) {
     std::ifstream in(p);
     std::stringstream s;
     s << in.rdbuf();
@@ -44,14 +44,14 @@ std::string slurp(const fs::path& p) {
 // driver under Xvfb leaks 112 bytes that LeakSanitizer reports from the driver once it is
 // unloaded, with no name a suppression could match. ASan and UBSan still check it, and the viewer's
 // core is leak-checked in process by the ViewWorker tests.
-ViewRun run_view(const std::vector<std::string>& args, bool display) {
+ViewRun run_view(const std::vector<std::string> &args, bool display) {
     const fs::path dir = test::temp_dir();
     std::ostringstream cmd;
     if (display)
         cmd << "LSAN_OPTIONS=\"${LSAN_OPTIONS}:detect_leaks=0\" ";
     cmd << (display ? "timeout 300 xvfb-run -a -s '-screen 0 1280x720x24' " : "timeout 300 ")
         << '\'' << TINLOD_VIEW << '\'';
-    for (const std::string& a : args)
+    for (const std::string &a : args)
         cmd << " '" << a << '\'';
     cmd << " >/dev/null 2>'" << (dir / "err").string() << '\'';
     const int raw = std::system(cmd.str().c_str());
@@ -64,7 +64,7 @@ ViewRun run_view(const std::vector<std::string>& args, bool display) {
 bool have_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
 
 // The viewer names the display or OpenGL when it cannot get a window or a context.
-bool no_gl(const ViewRun& r) {
+bool no_gl(const ViewRun &r) {
     return r.status != 0 && (r.err.find("display:") != std::string::npos ||
                              r.err.find("OpenGL") != std::string::npos);
 }
@@ -74,7 +74,7 @@ struct Row {
     std::int64_t nodes = 0, triangles = 0;
 };
 
-std::vector<Row> read_stats(const std::string& file) {
+std::vector<Row> read_stats(const std::string &file) {
     std::ifstream in(file);
     std::string line;
     std::getline(in, line);
@@ -83,7 +83,7 @@ std::vector<Row> read_stats(const std::string& file) {
     while (std::getline(in, line)) {
         std::stringstream s(line);
         std::string cell[4];
-        for (auto& c : cell)
+        for (auto &c : cell)
             std::getline(s, c, ',');
         rows.push_back({std::stod(cell[1]), std::stoll(cell[2]), std::stoll(cell[3])});
     }
@@ -97,7 +97,7 @@ struct Coverage {
     std::vector<std::uint8_t> must, may;
 };
 
-Coverage terrain_coverage(const View& view, const Heightfield& hf) {
+Coverage terrain_coverage(const View &view, const Heightfield &hf) {
     const double x1 = (hf.width - 1) * hf.dx, y1 = (hf.height - 1) * hf.dy;
     const double zmin = hf.min_z(), zmax = hf.max_z();
     const glm::dmat4 inv = glm::inverse(view.projection_matrix(1.0, 1e7) * view.view_matrix());
@@ -138,7 +138,7 @@ Coverage terrain_coverage(const View& view, const Heightfield& hf) {
 }
 
 // Checks the screenshot of the last view of `path` over `hf`.
-void check_screenshot(const std::string& png, const View& last, const Heightfield& hf) {
+void check_screenshot(const std::string &png, const View &last, const Heightfield &hf) {
     const Image image = read_image(png);
     ASSERT_EQ(image.width, last.viewport_w);
     ASSERT_EQ(image.height, last.viewport_h);
@@ -153,7 +153,7 @@ void check_screenshot(const std::string& png, const View& last, const Heightfiel
     double sum = 0.0, sum2 = 0.0;
     std::set<std::uint32_t> colours;
     for (std::size_t i = 0; i < cover.must.size(); ++i) {
-        const std::uint8_t* p = &image.rgba[4 * i];
+        const std::uint8_t *p = &image.rgba[4 * i];
         const bool is_sky = std::abs(p[0] - sky.r) <= 2.0f && std::abs(p[1] - sky.g) <= 2.0f &&
                             std::abs(p[2] - sky.b) <= 2.0f;
         must += cover.must[i];
@@ -182,11 +182,11 @@ void check_screenshot(const std::string& png, const View& last, const Heightfiel
     EXPECT_GT(colours.size(), 200u);
 }
 
-void check_stats(const std::vector<Row>& rows, int frames, double duration, std::int64_t samples) {
+void check_stats(const std::vector<Row> &rows, int frames, double duration, std::int64_t samples) {
     ASSERT_EQ(rows.size(), std::size_t(frames));
     EXPECT_NEAR(rows.back().t - rows.front().t, duration, 1e-6);
     std::set<std::int64_t> counts;
-    for (const Row& row : rows) {
+    for (const Row &row : rows) {
         EXPECT_GT(row.nodes, 3);
         EXPECT_LE(row.nodes, samples);
         // A triangulated disc: T = 2N - B - 2 < 2N.

@@ -13,9 +13,10 @@
 
 namespace tinlod::cli {
 
-static Register build("build", 20, [](CLI::App& cmd) {
-    cmd.description("Write the quad-tree store of a DEM (.tlq): elevations in tiles, node error bounds, "
-                    "checksums; `retrieve` reads it partially");
+static Register build("build", 20, [](CLI::App &cmd) {
+    cmd.description(
+        "Write the quad-tree store of a DEM (.tlq): elevations in tiles, node error bounds, "
+        "checksums; `retrieve` reads it partially");
     struct Args {
         std::string input, output, stats;
         RasterOptions raster;
@@ -48,21 +49,29 @@ static Register build("build", 20, [](CLI::App& cmd) {
         const TileStore store(args->output);
         const double samples_per_s = hf.size() / ((ms_bounds + ms_write) / 1000.0);
         if (!args->stats.empty())
-            write_json(args->stats,
-                       {{"input", {{"file", args->input}, {"nodes", hf.size()},
-                                   {"width", hf.width}, {"height", hf.height}}},
-                        {"output", {{"file", args->output}, {"bytes", store.file_bytes()},
-                                    {"levels", levels}, {"tile_level", store.tile_level()},
-                                    {"tiles", store.tile_count()},
-                                    {"tree_nodes", tree.node_count()}}},
-                        {"time_ms", {{"load", ms_load}, {"bounds", ms_bounds}, {"write", ms_write}}},
-                        {"build_samples_per_s", samples_per_s},
-                        {"threads", max_threads()},
-                        {"peak_rss_mb", peak_rss_mb()}});
-        std::printf("%s: %dx%d samples, %d levels, %lld tiles, %.1f MB in %.0f ms (%.1f M samples/s)\n",
-                    args->output.c_str(), hf.width, hf.height, levels,
-                    static_cast<long long>(store.tile_count()), store.file_bytes() / 1e6,
-                    ms_bounds + ms_write, samples_per_s / 1e6);
+            write_json(
+                args->stats,
+                {{"input",
+                  {{"file", args->input},
+                   {"nodes", hf.size()},
+                   {"width", hf.width},
+                   {"height", hf.height}}},
+                 {"output",
+                  {{"file", args->output},
+                   {"bytes", store.file_bytes()},
+                   {"levels", levels},
+                   {"tile_level", store.tile_level()},
+                   {"tiles", store.tile_count()},
+                   {"tree_nodes", tree.node_count()}}},
+                 {"time_ms", {{"load", ms_load}, {"bounds", ms_bounds}, {"write", ms_write}}},
+                 {"build_samples_per_s", samples_per_s},
+                 {"threads", max_threads()},
+                 {"peak_rss_mb", peak_rss_mb()}});
+        std::printf(
+            "%s: %dx%d samples, %d levels, %lld tiles, %.1f MB in %.0f ms (%.1f M samples/s)\n",
+            args->output.c_str(), hf.width, hf.height, levels,
+            static_cast<long long>(store.tile_count()), store.file_bytes() / 1e6,
+            ms_bounds + ms_write, samples_per_s / 1e6);
     };
 });
 

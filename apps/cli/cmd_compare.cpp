@@ -22,7 +22,7 @@
 
 namespace tinlod::cli {
 
-static Register compare("compare", 70, [](CLI::App& cmd) {
+static Register compare("compare", 70, [](CLI::App &cmd) {
     cmd.description("Compare a TIN or mesh with its reference DEM or mesh: vertical, screen-space "
                     "or Hausdorff error, and the image error of the two renders from one camera");
     struct Args {
@@ -142,7 +142,7 @@ static Register compare("compare", 70, [](CLI::App& cmd) {
             std::cout << out.dump(2) << '\n';
             return;
         }
-        const auto& g = out["geometry"];
+        const auto &g = out["geometry"];
         std::printf("%s vs %s: %zu vs %zu triangles\n", args->input.c_str(),
                     args->reference.c_str(), mesh.n_faces(), reference.n_faces());
         if (dem)

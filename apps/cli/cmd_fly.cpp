@@ -31,8 +31,9 @@ namespace fs = std::filesystem;
 // tiles_read: a store's tiles, all on the first frame (fly reads a store whole), 0 for a DEM.
 // entered: recovered samples there for the first time (the first frame's retrieval left them out).
 // evaluations: erases tried by the update (each erased node's, and those that kept their node).
-static const char* k_frame_header = "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
-                                    "ms_erase,ms_recover,ms_total,max_screen_px,entered,evaluations";
+static const char *k_frame_header =
+    "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
+    "ms_erase,ms_recover,ms_total,max_screen_px,entered,evaluations";
 
 static double percentile(std::vector<double> v, double q) {
     if (v.empty())
@@ -41,7 +42,7 @@ static double percentile(std::vector<double> v, double q) {
     return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
 }
 
-static Register fly("fly", 50, [](CLI::App& cmd) {
+static Register fly("fly", 50, [](CLI::App &cmd) {
     cmd.description("Fly a camera path: one TIN follows the observer, erasing and recovering nodes "
                     "frame by frame");
     struct Args {
@@ -59,10 +60,10 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         ->required();
     cmd.add_option("--path", args->path, "camera path CSV: t,eye_x,eye_y,eye_z,at_x,at_y,at_z")
         ->required();
-    cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")->capture_default_str();
+    cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
+        ->capture_default_str();
     cmd.add_option("--fps", args->fps, "frames per second of path time")->capture_default_str();
-    cmd.add_option("--hysteresis", args->hysteresis,
-                   "erase down to (1 - h) tau, recover above tau")
+    cmd.add_option("--hysteresis", args->hysteresis, "erase down to (1 - h) tau, recover above tau")
         ->capture_default_str();
     cmd.add_option("--retrieve-share", args->retrieve_share,
                    "DEM, screen model: the first frame retrieves at this share of the erase's "
@@ -73,7 +74,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_flag("--check", args->check,
                  "measure every frame's screen-space error exhaustively against every DEM sample");
-    cmd.add_option("--frames", args->frames_dir, "write one rendered PNG per frame into this folder");
+    cmd.add_option("--frames", args->frames_dir,
+                   "write one rendered PNG per frame into this folder");
     cmd.add_option("--frames-eye", args->frames_eye,
                    "draw the frames from this fixed camera X,Y,Z instead of the observer's, to see "
                    "the TIN follow the observer from outside");
@@ -110,7 +112,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         parse_viewport(args->viewport, base.viewport_w, base.viewport_h);
         const int frames = std::max(1, int(std::floor(path.duration() * args->fps + 1e-9)) + 1);
         std::vector<View> views = path.sample(frames, base);
-        for (const View& v : views)
+        for (const View &v : views)
             validate(v, args->path);
         std::optional<View> outside; // the fixed camera of --frames-eye
         if (!args->frames_eye.empty()) {
@@ -144,7 +146,7 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
             } else {
                 hf = load_heightfield(args->input, lo);
             }
-            for (const View& v : views)
+            for (const View &v : views)
                 check_eye_above(*hf, v.eye, args->path);
             if (store)
                 refiner.emplace(*hf, std::move(store), views.front(), options);
@@ -214,21 +216,21 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                 std::snprintf(name, sizeof name, "frame_%05d.png", i);
                 const Image frame =
                     renderer->render(refiner->mesh(), outside ? *outside : views[i], ro);
-                frame_files->write(name, [&](const std::string& to) { write_image(to, frame); });
+                frame_files->write(name, [&](const std::string &to) { write_image(to, frame); });
             }
             if (mesh_files) {
                 std::snprintf(name, sizeof name, "frame_%05d.ply", i);
                 mesh_files->write(name,
-                                  [&](const std::string& to) { write_mesh(refiner->mesh(), to); });
+                                  [&](const std::string &to) { write_mesh(refiner->mesh(), to); });
             }
-            const double t = path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
+            const double t =
+                path.keys.front().t + (frames > 1 ? path.duration() * i / (frames - 1) : 0.0);
             char line[256];
             std::snprintf(line, sizeof line,
                           "%.3f,%lld,%lld,%lld,%lld,%lld,%.3f,%.3f,%.3f,%.3f,%s,%lld,%lld", t,
                           (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
                           (long long)f.recovered, (long long)(i == 0 ? store_tiles : 0),
-                          f.ms_retrieve, f.ms_erase + f.ms_weights,
-                          f.ms_recover, f.ms_total,
+                          f.ms_retrieve, f.ms_erase + f.ms_weights, f.ms_recover, f.ms_total,
                           max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered,
                           (long long)(i == 0 ? 0 : f.evaluations));
             csv << line << '\n';
@@ -240,13 +242,13 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
         if (mesh_files)
             mesh_files->commit();
         if (!args->stats.empty())
-            write_atomically(args->stats, [&](const std::string& tmp) {
+            write_atomically(args->stats, [&](const std::string &tmp) {
                 std::ofstream out(tmp);
                 out << csv.str();
                 if (!out.flush())
                     throw Error(args->stats, "cannot write: " + std::string(std::strerror(errno)));
             });
-        const auto& m = refiner->mesh();
+        const auto &m = refiner->mesh();
         std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), "
                     "then per frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all "
                     "(%lld there for the first time, %lld erased again by the update that "
@@ -256,7 +258,8 @@ static Register fly("fly", 50, [](CLI::App& cmd) {
                     (long long)erased_all, (long long)recovered_all, (long long)entered_all,
                     (long long)reerased_all, double(evaluations_all) / std::max(frames - 1, 1),
                     double(erased_after_first) / std::max(frames - 1, 1),
-                    double(refiner->bytes()) / double(hf ? hf->size() : std::int64_t(m.n_vertices())),
+                    double(refiner->bytes()) /
+                        double(hf ? hf->size() : std::int64_t(m.n_vertices())),
                     args->check ? (", measured max " + std::to_string(worst) + " px").c_str() : "");
     };
 });

@@ -11,7 +11,7 @@
 
 namespace tinlod::cli {
 
-static nlohmann::json raster_info(const std::string& path, const RasterOptions& ro) {
+static nlohmann::json raster_info(const std::string &path, const RasterOptions &ro) {
     const LoadOptions lo = ro.load_options();
     const Heightfield hf = load_heightfield(path, lo);
     const float lo_z = hf.min_z(), hi_z = hf.max_z();
@@ -30,7 +30,7 @@ static nlohmann::json raster_info(const std::string& path, const RasterOptions& 
             {"bounds", {0.0, 0.0, lo_z, (hf.width - 1) * hf.dx, (hf.height - 1) * hf.dy, hi_z}}};
 }
 
-static nlohmann::json mesh_info(const std::string& path) {
+static nlohmann::json mesh_info(const std::string &path) {
     MeshReport report;
     const Mesh mesh = read_mesh(path, &report);
     Mesh::Point lo(1e30f), hi(-1e30f);
@@ -49,7 +49,7 @@ static nlohmann::json mesh_info(const std::string& path) {
             {"bounds", {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}}};
 }
 
-static Register info("info", 10, [](CLI::App& cmd) {
+static Register info("info", 10, [](CLI::App &cmd) {
     cmd.description("Describe a DEM or mesh: size, values, voids, CRS, bounds in world units");
     struct Args {
         std::string input;
@@ -57,20 +57,21 @@ static Register info("info", 10, [](CLI::App& cmd) {
         RasterOptions raster;
     };
     auto args = std::make_shared<Args>();
-    cmd.add_option("INPUT", args->input, "DEM (GeoTIFF, PNG, EXR, .hgt, ...) or mesh (PLY, OBJ, OFF, STL)")
+    cmd.add_option("INPUT", args->input,
+                   "DEM (GeoTIFF, PNG, EXR, .hgt, ...) or mesh (PLY, OBJ, OFF, STL)")
         ->required();
     cmd.add_flag("--json", args->json, "print JSON instead of text");
     args->raster.add(cmd);
     return [args] {
-        const nlohmann::json j =
-            is_mesh_path(args->input) ? mesh_info(args->input) : raster_info(args->input, args->raster);
+        const nlohmann::json j = is_mesh_path(args->input) ? mesh_info(args->input)
+                                                           : raster_info(args->input, args->raster);
         if (args->json) {
             std::cout << j.dump(2) << '\n';
             return;
         }
-        for (const auto& [key, value] : j.items())
-            std::cout << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump())
-                      << '\n';
+        for (const auto &[key, value] : j.items())
+            std::cout << key << ": "
+                      << (value.is_string() ? value.get<std::string>() : value.dump()) << '\n';
     };
 });
 

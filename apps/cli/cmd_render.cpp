@@ -28,10 +28,10 @@ namespace {
 
 // Node deviation from its one-ring centroid along the node's normal (so the sideways offset of a
 // boundary node's ring does not count), in pixels as seen from the eye.
-std::vector<float> node_screen_deviation(const Mesh& mesh, const View& view) {
+std::vector<float> node_screen_deviation(const Mesh &mesh, const View &view) {
     std::vector<float> sp(mesh.n_vertices(), 0.0f);
     const auto at = [&](Mesh::VertexHandle v) {
-        const auto& q = mesh.point(v);
+        const auto &q = mesh.point(v);
         return glm::dvec3(q[0], q[1], q[2]);
     };
     for (auto v : mesh.vertices()) {
@@ -58,7 +58,7 @@ std::vector<float> node_screen_deviation(const Mesh& mesh, const View& view) {
 }
 
 // Grid column and row of the sample a node stands on; throws when it is off the grid.
-std::pair<int, int> grid_cell(const Heightfield& hf, const Mesh::Point& p) {
+std::pair<int, int> grid_cell(const Heightfield &hf, const Mesh::Point &p) {
     const double c = p[0] / hf.dx, r = p[1] / hf.dy;
     const double ci = std::round(c), ri = std::round(r);
     if (std::abs(c - ci) > 1e-3 || std::abs(r - ri) > 1e-3 || ci < 0 || ri < 0 || ci >= hf.width ||
@@ -67,7 +67,7 @@ std::pair<int, int> grid_cell(const Heightfield& hf, const Mesh::Point& p) {
     return {int(ci), int(ri)};
 }
 
-std::vector<float> node_levels(const Mesh& mesh, const Heightfield& hf, int& deepest) {
+std::vector<float> node_levels(const Mesh &mesh, const Heightfield &hf, int &deepest) {
     deepest = int(std::bit_width(unsigned(std::max(hf.width, hf.height) - 2)));
     std::vector<float> level(mesh.n_vertices(), 0.0f);
     for (auto v : mesh.vertices()) {
@@ -80,13 +80,13 @@ std::vector<float> node_levels(const Mesh& mesh, const Heightfield& hf, int& dee
 }
 
 // Largest |z_sample - z_face| over the DEM samples whose xy falls inside each face.
-std::vector<float> face_vertical_error(const Mesh& mesh, const Heightfield& hf) {
+std::vector<float> face_vertical_error(const Mesh &mesh, const Heightfield &hf) {
     std::vector<float> error(mesh.n_faces(), 0.0f);
     for (auto f : mesh.faces()) {
         if (mesh.status(f).deleted())
             continue;
         auto p = face_corners(mesh, f);
-        for (auto& q : p)
+        for (auto &q : p)
             q = glm::dvec3(q.x / hf.dx, q.y / hf.dy, q.z); // grid units
         const double area =
             (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
@@ -118,7 +118,7 @@ std::vector<float> face_vertical_error(const Mesh& mesh, const Heightfield& hf) 
 
 } // namespace
 
-static Register render("render", 60, [](CLI::App& cmd) {
+static Register render("render", 60, [](CLI::App &cmd) {
     cmd.description("Render a TIN, mesh or DEM to an image (headless OpenGL 3.3)");
     struct Args {
         std::string input, output, color = "shade", depth, reference;

@@ -1,6 +1,7 @@
-// `tinlod retrieve DEM|STORE (--eye X,Y,Z --at X,Y,Z [--fov] [--viewport] [--tol] [--cull] | --full)
-// -o OUT [--stats J] [--check] [--cache-mb M]`: the view-dependent TIN of the quad-tree (lib/quadtree),
-// from a DEM in memory or partially from a store (lib/store), or the full-resolution grid.
+// `tinlod retrieve DEM|STORE (--eye X,Y,Z --at X,Y,Z [--fov] [--viewport] [--tol] [--cull] |
+// --full) -o OUT [--stats J] [--check] [--cache-mb M]`: the view-dependent TIN of the quad-tree
+// (lib/quadtree), from a DEM in memory or partially from a store (lib/store), or the
+// full-resolution grid.
 #include "commands.hpp"
 
 #include "tinlod/error.hpp"
@@ -19,8 +20,8 @@
 namespace tinlod::cli {
 
 // Height of the retrieved surface under the eye, if the eye stands over the terrain.
-static std::optional<double> surface_under(const Retrieval& r, const GridFrame& frame,
-                                           const glm::dvec3& eye) {
+static std::optional<double> surface_under(const Retrieval &r, const GridFrame &frame,
+                                           const glm::dvec3 &eye) {
     const double u = eye.x / frame.dx, v = eye.y / frame.dy;
     if (!(u >= 0 && v >= 0 && u <= frame.width - 1 && v <= frame.height - 1))
         return std::nullopt;
@@ -48,9 +49,10 @@ static std::optional<double> surface_under(const Retrieval& r, const GridFrame& 
     return std::nullopt;
 }
 
-static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
-    cmd.description("Retrieve the view-dependent TIN of a DEM or store (screen-space error <= --tol), "
-                    "or the full grid (--full)");
+static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
+    cmd.description(
+        "Retrieve the view-dependent TIN of a DEM or store (screen-space error <= --tol), "
+        "or the full grid (--full)");
     struct Args {
         std::string input, output, stats;
         bool full = false, cull = false, check = false;
@@ -64,7 +66,8 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
     cmd.add_option("-o,--output", args->output, "output mesh (.ply .obj .off .stl)")->required();
     cmd.add_option("--stats", args->stats, "write statistics as JSON");
     cmd.add_flag("--full", args->full, "the full-resolution grid TIN (no level of detail)");
-    cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")->capture_default_str();
+    cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
+        ->capture_default_str();
     cmd.add_flag("--cull", args->cull, "leave the terrain outside the view frustum coarse");
     cmd.add_flag("--check", args->check,
                  "measure the error exhaustively over every sample (error.max_screen_px)");
@@ -92,10 +95,10 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
         nlohmann::json times;
         std::optional<Heightfield> hf;
         std::optional<QuadTree> tree;
-        TileStore* store = nullptr;
+        TileStore *store = nullptr;
         std::unique_ptr<QuadTreeLod> lod;
-        const bool from_store = is_store_file(args->input) ||
-                                std::filesystem::path(args->input).extension() == ".tlq";
+        const bool from_store =
+            is_store_file(args->input) || std::filesystem::path(args->input).extension() == ".tlq";
         if (from_store) {
             StoreOptions so;
             so.cache_mb = args->cache_mb;
@@ -117,9 +120,9 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
                 times["build"] = clock.ms();
             }
         }
-        const GridFrame frame = lod ? lod->frame()
-                                    : GridFrame{hf->width, hf->height, hf->dx, hf->dy,
-                                                hf->origin_x, hf->origin_y, hf->crs};
+        const GridFrame frame =
+            lod ? lod->frame() : GridFrame{hf->width,    hf->height,   hf->dx, hf->dy,
+                                           hf->origin_x, hf->origin_y, hf->crs};
         const std::int64_t grid_nodes = std::int64_t(frame.width) * frame.height;
         const std::int64_t grid_triangles = 2 * std::int64_t(frame.width - 1) * (frame.height - 1);
 
@@ -136,9 +139,10 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
             ro.tol_px = args->tol;
             ro.cull = args->cull;
             clock.reset();
-            const Retrieval& r = lod->retrieve(*view, ro);
+            const Retrieval &r = lod->retrieve(*view, ro);
             times["retrieve"] = clock.ms();
-            if (const auto ground = surface_under(r, frame, view->eye); ground && view->eye.z < *ground)
+            if (const auto ground = surface_under(r, frame, view->eye);
+                ground && view->eye.z < *ground)
                 throw Error("--eye", "the eye is below the terrain surface (" +
                                          std::to_string(*ground) + " there)");
             clock.reset();
@@ -185,10 +189,12 @@ static Register retrieve("retrieve", 30, [](CLI::App& cmd) {
                               {"measured", true}};
             times["check"] = clock.ms();
         }
-        stats["input"] = {{"file", args->input}, {"kind", from_store ? "store" : "raster"},
-                          {"nodes", grid_nodes}, {"triangles", grid_triangles}};
-        stats["output"] = {{"file", args->output}, {"nodes", mesh.n_vertices()},
-                           {"triangles", mesh.n_faces()}};
+        stats["input"] = {{"file", args->input},
+                          {"kind", from_store ? "store" : "raster"},
+                          {"nodes", grid_nodes},
+                          {"triangles", grid_triangles}};
+        stats["output"] = {
+            {"file", args->output}, {"nodes", mesh.n_vertices()}, {"triangles", mesh.n_faces()}};
         stats["time_ms"] = times;
         stats["peak_rss_mb"] = peak_rss_mb();
         if (!args->stats.empty())

@@ -14,7 +14,7 @@
 namespace tinlod::cli {
 
 // Sets up a subcommand on `app`; returns the function run when it is chosen.
-using Setup = std::function<std::function<void()>(CLI::App& app)>;
+using Setup = std::function<std::function<void()>(CLI::App &app)>;
 
 struct Command {
     std::string name;
@@ -22,7 +22,7 @@ struct Command {
     Setup setup;
 };
 
-std::vector<Command>& registry();
+std::vector<Command> &registry();
 
 struct Register {
     Register(std::string name, int order, Setup setup) {
@@ -34,7 +34,7 @@ struct Register {
 struct CameraOptions {
     std::string eye, at, viewport = "1920x1080";
     double fov = 60.0;
-    void add(CLI::App& cmd, bool required);
+    void add(CLI::App &cmd, bool required);
     bool given() const { return !eye.empty() || !at.empty(); }
     View view() const; // validated; throws Error naming the option
 };
@@ -44,7 +44,7 @@ struct RasterOptions {
     double cell = 1.0;
     double zscale = 1.0;
     bool terrain_rgb = false;
-    void add(CLI::App& cmd);
+    void add(CLI::App &cmd);
     LoadOptions load_options() const;
 };
 

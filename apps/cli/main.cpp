@@ -14,14 +14,15 @@
 
 namespace tinlod::cli {
 
-std::vector<Command>& registry() {
+std::vector<Command> &registry() {
     static std::vector<Command> commands;
     return commands;
 }
 
-void CameraOptions::add(CLI::App& cmd, bool required) {
-    auto* e = cmd.add_option("--eye", eye, "observer position X,Y,Z (world units, see `tinlod info`)");
-    auto* a = cmd.add_option("--at", at, "point the observer looks toward X,Y,Z");
+void CameraOptions::add(CLI::App &cmd, bool required) {
+    auto *e =
+        cmd.add_option("--eye", eye, "observer position X,Y,Z (world units, see `tinlod info`)");
+    auto *a = cmd.add_option("--at", at, "point the observer looks toward X,Y,Z");
     if (required) {
         e->required();
         a->required();
@@ -40,7 +41,7 @@ View CameraOptions::view() const {
     return v;
 }
 
-void RasterOptions::add(CLI::App& cmd) {
+void RasterOptions::add(CLI::App &cmd) {
     cmd.add_option("--cell", cell, "ground size of a pixel for rasters without georeferencing")
         ->capture_default_str();
     cmd.add_option("--zscale", zscale, "factor applied to every elevation")->capture_default_str();
@@ -49,7 +50,7 @@ void RasterOptions::add(CLI::App& cmd) {
 }
 
 // --threads N: a whole number from 1 to 1024, or 0 when the text is not one.
-static int parse_threads(const std::string& text) {
+static int parse_threads(const std::string &text) {
     if (text.empty() || text.size() > 4 ||
         !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); }))
         return 0;
@@ -73,32 +74,33 @@ LoadOptions RasterOptions::load_options() const {
 
 } // namespace tinlod::cli
 
-int main(int argc, char** argv) {
+int main(int argc, char **argv) {
     using namespace tinlod::cli;
-    CLI::App app{"tinlod: view-dependent triangulated irregular networks from elevation rasters and "
-                 "meshes"};
+    CLI::App app{
+        "tinlod: view-dependent triangulated irregular networks from elevation rasters and "
+        "meshes"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "tinlod 0.1.0");
     std::string threads;
-    const CLI::Option* threads_option =
+    const CLI::Option *threads_option =
         app.add_option("--threads", threads,
                        "threads to run at once: loading, building, measuring, rendering (default: "
                        "every core)");
     // Options of the main command may also follow the subcommand's.
     app.fallthrough();
-    auto& commands = registry();
+    auto &commands = registry();
     std::sort(commands.begin(), commands.end(),
-              [](const Command& a, const Command& b) { return a.order < b.order; });
-    std::vector<std::pair<CLI::App*, std::function<void()>>> runs;
-    for (auto& c : commands) {
-        CLI::App* sub = nullptr;
+              [](const Command &a, const Command &b) { return a.order < b.order; });
+    std::vector<std::pair<CLI::App *, std::function<void()>>> runs;
+    for (auto &c : commands) {
+        CLI::App *sub = nullptr;
         runs.emplace_back(nullptr, nullptr);
         runs.back().second = c.setup(*(sub = app.add_subcommand(c.name, "")));
         runs.back().first = sub;
     }
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::ParseError &e) {
         return app.exit(e);
     }
     if (threads_option->count() > 0) {
@@ -114,19 +116,19 @@ int main(int argc, char** argv) {
     }
     tinlod::install_interrupt_handlers();
     try {
-        for (auto& [sub, run] : runs)
+        for (auto &[sub, run] : runs)
             if (sub->parsed())
                 run();
-    } catch (const tinlod::Interrupted& e) {
+    } catch (const tinlod::Interrupted &e) {
         std::fprintf(stderr, "tinlod: interrupted\n");
         return 128 + e.signal();
-    } catch (const tinlod::Error& e) {
+    } catch (const tinlod::Error &e) {
         std::fprintf(stderr, "tinlod: error: %s\n", e.what());
         return 1;
-    } catch (const std::bad_alloc&) {
+    } catch (const std::bad_alloc &) {
         std::fprintf(stderr, "tinlod: error: out of memory\n");
         return 1;
-    } catch (const std::exception& e) {
+    } catch (const std::exception &e) {
         std::fprintf(stderr, "tinlod: error: %s\n", e.what());
         return 1;
     }

@@ -15,7 +15,7 @@ glm::dvec3 heading(double yaw, double pitch) {
 
 } // namespace
 
-void CameraControl::look_at(const glm::dvec3& eye, const glm::dvec3& at) {
+void CameraControl::look_at(const glm::dvec3 &eye, const glm::dvec3 &at) {
     const glm::dvec3 d = at - eye;
     const double len = glm::length(d);
     assert(len > 0.0);
@@ -37,7 +37,7 @@ void CameraControl::reset() {
 
 glm::dvec3 CameraControl::direction() const { return heading(yaw_, pitch_); }
 
-void CameraControl::set_mode(NavMode mode, const glm::dvec3& pivot) {
+void CameraControl::set_mode(NavMode mode, const glm::dvec3 &pivot) {
     mode_ = mode;
     if (mode != NavMode::orbit)
         return;
@@ -54,7 +54,7 @@ void CameraControl::place_on_orbit(double distance) {
     eye_ = pivot_ - distance * direction();
 }
 
-void CameraControl::update(const MoveKeys& keys, double dt) {
+void CameraControl::update(const MoveKeys &keys, double dt) {
     const double f = (keys.forward ? 1.0 : 0.0) - (keys.back ? 1.0 : 0.0);
     const double s = (keys.right ? 1.0 : 0.0) - (keys.left ? 1.0 : 0.0);
     const double u = (keys.up ? 1.0 : 0.0) - (keys.down ? 1.0 : 0.0);
@@ -94,7 +94,7 @@ void CameraControl::keep_above(double ground_z, double clearance) {
         look_at(eye_, pivot_);
 }
 
-View CameraControl::view(const View& base) const {
+View CameraControl::view(const View &base) const {
     View v = base;
     v.eye = eye_;
     v.at = eye_ + look_distance_ * direction();
@@ -107,21 +107,21 @@ void PathRecorder::start(double now) {
     path_ = CameraPath{};
 }
 
-void PathRecorder::sample(double now, const View& view) {
+void PathRecorder::sample(double now, const View &view) {
     if (!recording_)
         return;
     const double t = now - start_;
     if (!path_.keys.empty()) {
-        const Keyframe& last = path_.keys.back();
+        const Keyframe &last = path_.keys.back();
         if (t < last.t + interval_ || (last.eye == view.eye && last.at == view.at))
             return;
     }
     path_.keys.push_back({path_.keys.empty() ? 0.0 : t, view.eye, view.at});
 }
 
-CameraPath PathRecorder::stop(double now, const View& view) {
+CameraPath PathRecorder::stop(double now, const View &view) {
     if (recording_ && !path_.keys.empty()) {
-        const Keyframe& last = path_.keys.back();
+        const Keyframe &last = path_.keys.back();
         const double t = now - start_;
         if (t > last.t && (last.eye != view.eye || last.at != view.at))
             path_.keys.push_back({t, view.eye, view.at});
@@ -137,7 +137,7 @@ void PathPlayer::start(CameraPath path, double now) {
     playing_ = true;
 }
 
-std::optional<View> PathPlayer::view(double now, const View& base) {
+std::optional<View> PathPlayer::view(double now, const View &base) {
     if (!playing_)
         return std::nullopt;
     const double t = path_.keys.front().t + (now - start_);

@@ -38,25 +38,25 @@ struct ControlOptions {
 // the horizon. In orbit mode the eye sits at `distance` from the pivot, looking at it.
 class CameraControl {
   public:
-    explicit CameraControl(const ControlOptions& options = {}) : options_(options) {}
+    explicit CameraControl(const ControlOptions &options = {}) : options_(options) {}
 
     // Places the camera at `eye` looking toward `at` (eye != at); the look distance |at - eye| is
     // kept for View::at. Pitch is clamped to the limit.
-    void look_at(const glm::dvec3& eye, const glm::dvec3& at);
+    void look_at(const glm::dvec3 &eye, const glm::dvec3 &at);
     // Remembers the current camera as the one reset() returns to.
     void set_home() { home_ = State{eye_, yaw_, pitch_, look_distance_, speed_}; }
     void reset();
 
     // Orbit mode turns around `pivot` (the focal point); entering it points the camera at the pivot
     // without moving the eye.
-    void set_mode(NavMode mode, const glm::dvec3& pivot);
+    void set_mode(NavMode mode, const glm::dvec3 &pivot);
     NavMode mode() const { return mode_; }
 
     // Advances by dt seconds with `keys` held. Fly: W/S along the view direction, A/D sideways
     // (horizontal), E/Q straight up/down, each at speed() units per second. Orbit: W/S move toward
     // / away from the pivot (distance changes by a factor e^(dt)), A/D turn around it, E/Q raise
     // and lower the eye on the sphere.
-    void update(const MoveKeys& keys, double dt);
+    void update(const MoveKeys &keys, double dt);
     // Mouse moved by (dx, dy) pixels (x right, y down) with the look button held. Fly: turns the
     // head (yaw and pitch). Orbit: moves the eye around the pivot at constant distance.
     void drag(double dx_px, double dy_px);
@@ -67,13 +67,13 @@ class CameraControl {
     void keep_above(double ground_z, double clearance);
 
     // The View of the camera: eye, at = eye + look_distance * direction; the rest from `base`.
-    View view(const View& base) const;
+    View view(const View &base) const;
 
-    const glm::dvec3& eye() const { return eye_; }
+    const glm::dvec3 &eye() const { return eye_; }
     glm::dvec3 direction() const;
     double yaw() const { return yaw_; }
     double pitch() const { return pitch_; }
-    const glm::dvec3& pivot() const { return pivot_; }
+    const glm::dvec3 &pivot() const { return pivot_; }
     double speed() const { return speed_; } // fly speed, world units per second
     void set_speed(double speed) { speed_ = speed; }
     double look_distance() const { return look_distance_; }
@@ -104,11 +104,11 @@ class PathRecorder {
     explicit PathRecorder(double interval = 0.25) : interval_(interval) {}
     void start(double now);
     // Offers the camera at clock time `now`; keeps it as a keyframe when due.
-    void sample(double now, const View& view);
+    void sample(double now, const View &view);
     // Ends the recording; the path has at least one keyframe when anything was sampled.
-    CameraPath stop(double now, const View& view);
+    CameraPath stop(double now, const View &view);
     bool recording() const { return recording_; }
-    const CameraPath& path() const { return path_; }
+    const CameraPath &path() const { return path_; }
 
   private:
     double interval_;
@@ -124,8 +124,8 @@ class PathPlayer {
     void stop() { playing_ = false; }
     bool playing() const { return playing_; }
     // The view at clock time `now`, or nothing once the path has ended (playback then stops).
-    std::optional<View> view(double now, const View& base);
-    const CameraPath& path() const { return path_; }
+    std::optional<View> view(double now, const View &base);
+    const CameraPath &path() const { return path_; }
 
   private:
     CameraPath path_;

@@ -5,8 +5,8 @@
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/quadtree.hpp"
-#include "tinlod/refine.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/refine.hpp"
 #include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
 
@@ -18,11 +18,11 @@ namespace tinlod::viewer {
 
 namespace {
 
-glm::dvec3 to_glm(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
+glm::dvec3 to_glm(const Mesh::Point &p) { return {p[0], p[1], p[2]}; }
 
 // Quad-tree level of each face: log2 of the extent over the side of a square of twice the face's
 // area (xy area for TINs), so a face half of a leaf cell at level d gets d.
-std::vector<float> face_levels(const Mesh& mesh, double extent, bool xy) {
+std::vector<float> face_levels(const Mesh &mesh, double extent, bool xy) {
     std::vector<float> level(mesh.n_faces(), 0.0f);
     for (auto f : mesh.faces()) {
         glm::dvec3 p[3];
@@ -39,8 +39,8 @@ std::vector<float> face_levels(const Mesh& mesh, double extent, bool xy) {
 
 // Screen error of each face of a TIN over the DEM samples it covers: the largest vertical
 // deviation of a sample from the face times k / distance(eye, sample), pixels.
-std::vector<float> face_errors(const Mesh& mesh, const QuadTree& tree, const View& view) {
-    const GridFrame& g = tree.frame();
+std::vector<float> face_errors(const Mesh &mesh, const QuadTree &tree, const View &view) {
+    const GridFrame &g = tree.frame();
     const auto origin = find_origin_property(mesh);
     std::vector<float> error(mesh.n_faces(), 0.0f);
     if (!origin.is_valid())
@@ -98,8 +98,8 @@ float quantile(std::vector<float> values, double share) {
 class EngineBase : public LodEngine {
   protected:
     // `lattice`: the grid a sparse lattice TIN holds samples of (EraseOptions::lattice).
-    void finish(LodResult& result, const View& view, const LodSettings& settings, double extent,
-                bool tin, const Heightfield* lattice = nullptr) {
+    void finish(LodResult &result, const View &view, const LodSettings &settings, double extent,
+                bool tin, const Heightfield *lattice = nullptr) {
         Stopwatch clock;
         if (settings.stages == LodStages::retrieve_erase) {
             EraseOptions eo;
@@ -115,7 +115,7 @@ class EngineBase : public LodEngine {
         case ColorBy::sp: {
             result.vertex_scalar = node_significance(result.mesh, &view, settings.significance);
             result.scalar_max = std::max(quantile(result.vertex_scalar, 0.95), 1e-6f);
-            for (float& s : result.vertex_scalar)
+            for (float &s : result.vertex_scalar)
                 if (!std::isfinite(s))
                     s = result.scalar_max;
             break;
@@ -129,7 +129,7 @@ class EngineBase : public LodEngine {
                 result.scalar_min = std::floor(*lo);
                 result.scalar_max = std::max(std::ceil(*hi) - result.scalar_min, 1.0f);
             }
-            for (float& s : result.face_scalar)
+            for (float &s : result.face_scalar)
                 s -= result.scalar_min;
             break;
         }
@@ -148,7 +148,7 @@ class EngineBase : public LodEngine {
         result.triangles = std::int64_t(result.mesh.n_faces());
     }
     // Per-face screen errors against the input; zeros when the input is not in memory.
-    virtual std::vector<float> errors(const Mesh& mesh, const View&) {
+    virtual std::vector<float> errors(const Mesh &mesh, const View &) {
         return std::vector<float>(mesh.n_faces(), 0.0f);
     }
 };
@@ -157,11 +157,11 @@ class EngineBase : public LodEngine {
 // first frame a retrieval on the whole lattice, then the erase; a store is then read whole, once).
 class GridEngine final : public EngineBase {
   public:
-    explicit GridEngine(const Heightfield& hf) : hf_(hf), tree_(std::in_place, hf), lod_(*tree_) {}
+    explicit GridEngine(const Heightfield &hf) : hf_(hf), tree_(std::in_place, hf), lod_(*tree_) {}
     explicit GridEngine(std::unique_ptr<TileStore> store)
         : store_(store.get()), lod_(std::move(store)) {}
 
-    std::unique_ptr<LodResult> compute(const View& view, const LodSettings& settings) override {
+    std::unique_ptr<LodResult> compute(const View &view, const LodSettings &settings) override {
         if (settings.stages == LodStages::refine)
             return refine(view, settings);
         Stopwatch total;
@@ -177,19 +177,19 @@ class GridEngine final : public EngineBase {
         ro.cull = settings.cull;
         if (lattice && settings.significance.model == SpModel::screen)
             ro.peripheral = &settings.significance; // the erase's weighted bound, as erase_dem
-        const Retrieval& r = lod_.retrieve(view, ro);
+        const Retrieval &r = lod_.retrieve(view, ro);
         result->mesh = lattice ? to_sparse_lattice_mesh(r, *hf_) : to_mesh(r, lod_.frame());
         result->bound_px = r.bound_px;
         result->retrieve_ms = total.ms();
-        const GridFrame& g = lod_.frame();
-        finish(*result, view, settings, std::max((g.width - 1) * g.dx, (g.height - 1) * g.dy),
-               true, lattice ? &*hf_ : nullptr);
+        const GridFrame &g = lod_.frame();
+        finish(*result, view, settings, std::max((g.width - 1) * g.dx, (g.height - 1) * g.dy), true,
+               lattice ? &*hf_ : nullptr);
         result->total_ms = total.ms();
         return result;
     }
 
   private:
-    std::unique_ptr<LodResult> refine(const View& view, const LodSettings& settings) {
+    std::unique_ptr<LodResult> refine(const View &view, const LodSettings &settings) {
         Stopwatch total;
         auto result = std::make_unique<LodResult>();
         if (!refiner_ || refined_tol_ != settings.tol_px ||
@@ -211,18 +211,18 @@ class GridEngine final : public EngineBase {
         result->mesh = live_copy(refiner_->mesh());
         LodSettings shown = settings;
         shown.stages = LodStages::retrieve; // the erase is done: colour and index only
-        const GridFrame& g = lod_.frame();
+        const GridFrame &g = lod_.frame();
         finish(*result, view, shown, std::max((g.width - 1) * g.dx, (g.height - 1) * g.dy), true);
         result->total_ms = total.ms();
         return result;
     }
 
-    std::vector<float> errors(const Mesh& mesh, const View& view) override {
+    std::vector<float> errors(const Mesh &mesh, const View &view) override {
         return tree_ ? face_errors(mesh, *tree_, view) : EngineBase::errors(mesh, view);
     }
 
     std::optional<Heightfield> hf_;
-    TileStore* store_ = nullptr;
+    TileStore *store_ = nullptr;
     std::optional<QuadTree> tree_;
     QuadTreeLod lod_;
     std::unique_ptr<Refiner> refiner_;
@@ -235,7 +235,7 @@ class MeshEngine final : public EngineBase {
   public:
     MeshEngine(Mesh mesh, double extent) : mesh_(std::move(mesh)), extent_(extent) {}
 
-    std::unique_ptr<LodResult> compute(const View& view, const LodSettings& settings) override {
+    std::unique_ptr<LodResult> compute(const View &view, const LodSettings &settings) override {
         Stopwatch total;
         auto result = std::make_unique<LodResult>();
         result->mesh = mesh_;
@@ -251,7 +251,7 @@ class MeshEngine final : public EngineBase {
 
 } // namespace
 
-bool operator==(const LodSettings& a, const LodSettings& b) {
+bool operator==(const LodSettings &a, const LodSettings &b) {
     const SignificanceOptions &p = a.significance, &q = b.significance;
     return a.tol_px == b.tol_px && a.stages == b.stages && a.cull == b.cull && a.color == b.color &&
            p.model == q.model && p.cone_margin_px == q.cone_margin_px &&
@@ -259,7 +259,7 @@ bool operator==(const LodSettings& a, const LodSettings& b) {
            p.w_angle == q.w_angle && p.w_ration == q.w_ration;
 }
 
-std::optional<double> ground_height(const LodResult& result, const SceneInfo& scene, double x,
+std::optional<double> ground_height(const LodResult &result, const SceneInfo &scene, double x,
                                     double y) {
     if (!result.surface)
         return std::nullopt;
@@ -270,14 +270,14 @@ std::optional<double> ground_height(const LodResult& result, const SceneInfo& sc
     return hit.hit ? std::optional<double>(hit.point.z) : std::nullopt;
 }
 
-std::unique_ptr<LodEngine> open_scene(const std::string& path, SceneInfo& info) {
+std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info) {
     Stopwatch clock;
     info = SceneInfo{};
     info.path = path;
     std::unique_ptr<LodEngine> engine;
     if (is_store_file(path)) {
         auto store = std::make_unique<TileStore>(path);
-        const GridFrame& g = store->frame();
+        const GridFrame &g = store->frame();
         info.kind = "store";
         const NodeBound root = store->layout().levels() > 1 ? store->bound(0, 0, 0) : NodeBound{};
         info.lo = {0.0, 0.0, root.zmin};
@@ -324,7 +324,7 @@ LodWorker::~LodWorker() {
     thread_.join();
 }
 
-std::uint64_t LodWorker::request(const View& view, const LodSettings& settings) {
+std::uint64_t LodWorker::request(const View &view, const LodSettings &settings) {
     std::uint64_t serial;
     {
         std::lock_guard lock(mutex_);
@@ -377,7 +377,7 @@ void LodWorker::run() {
             result->serial = serial;
             result->view = view;
             result->settings = settings;
-        } catch (const std::exception& e) {
+        } catch (const std::exception &e) {
             failure = e.what();
         }
         lock.lock();

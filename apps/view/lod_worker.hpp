@@ -40,7 +40,7 @@ struct LodSettings {
     ColorBy color = ColorBy::height;  // which per-element scalars to compute
 };
 
-bool operator==(const LodSettings& a, const LodSettings& b);
+bool operator==(const LodSettings &a, const LodSettings &b);
 
 // One TIN ready to draw, with what it took. Held by pointer: OpenMesh meshes copy when moved.
 struct LodResult {
@@ -76,16 +76,16 @@ class LodEngine {
   public:
     virtual ~LodEngine() = default;
     // The TIN of `view`. Throws Error on failure (the worker reports it).
-    virtual std::unique_ptr<LodResult> compute(const View& view, const LodSettings& settings) = 0;
+    virtual std::unique_ptr<LodResult> compute(const View &view, const LodSettings &settings) = 0;
 };
 
 // Height of the surface of `result` under the point (x, y) (the highest face there, if several), or
 // nothing off the surface; `scene` bounds the search in z.
-std::optional<double> ground_height(const LodResult& result, const SceneInfo& scene, double x,
+std::optional<double> ground_height(const LodResult &result, const SceneInfo &scene, double x,
                                     double y);
 
 // Opens a DEM, a store (.tlq) or a mesh by its content / extension; throws Error naming the file.
-std::unique_ptr<LodEngine> open_scene(const std::string& path, SceneInfo& info);
+std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info);
 
 // Runs an engine on its own thread. request() never blocks on a computation; the render thread
 // polls take() each frame.
@@ -93,11 +93,11 @@ class LodWorker {
   public:
     explicit LodWorker(std::unique_ptr<LodEngine> engine);
     ~LodWorker();
-    LodWorker(const LodWorker&) = delete;
-    LodWorker& operator=(const LodWorker&) = delete;
+    LodWorker(const LodWorker &) = delete;
+    LodWorker &operator=(const LodWorker &) = delete;
 
     // Asks for the TIN of `view`; replaces any request not started yet. Returns its serial.
-    std::uint64_t request(const View& view, const LodSettings& settings);
+    std::uint64_t request(const View &view, const LodSettings &settings);
     // The newest finished result not taken yet, or null.
     std::unique_ptr<LodResult> take();
     // Blocks until the request `serial` (or a later one) has finished; returns take().

@@ -13,7 +13,7 @@
 #include <exception>
 #include <map>
 
-int main(int argc, char** argv) {
+int main(int argc, char **argv) {
     using namespace tinlod;
     using namespace tinlod::viewer;
     CLI::App app{"tinlod-view: fly over a terrain and watch its level of detail follow you"};
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
         if (c == colors.end())
             throw Error("--color", "unknown colouring '" + color + "'");
         options.lod.color = c->second;
-        options.lod.stages = refine ? LodStages::refine
+        options.lod.stages = refine  ? LodStages::refine
                              : erase ? LodStages::retrieve_erase
                                      : LodStages::retrieve;
         options.lod.cull = !no_cull;
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
             throw Error("--screenshot", "--screenshot and --stats need --script");
         }
         run_viewer(options);
-    } catch (const std::exception& e) {
+    } catch (const std::exception &e) {
         std::fprintf(stderr, "tinlod-view: %s\n", e.what());
         return 1;
     }

@@ -37,7 +37,7 @@ namespace tinlod::viewer {
 namespace {
 
 std::string glfw_last_error() {
-    const char* text = nullptr;
+    const char *text = nullptr;
     glfwGetError(&text);
     return text ? text : "unknown reason";
 }
@@ -49,17 +49,17 @@ struct GlfwSession {
             throw Error("display", "cannot open a window: " + glfw_last_error());
     }
     ~GlfwSession() { glfwTerminate(); }
-    GlfwSession(const GlfwSession&) = delete;
-    GlfwSession& operator=(const GlfwSession&) = delete;
+    GlfwSession(const GlfwSession &) = delete;
+    GlfwSession &operator=(const GlfwSession &) = delete;
 };
 
-GLFWwindow* open_window(int width, int height, bool visible) {
+GLFWwindow *open_window(int width, int height, bool visible) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
-    GLFWwindow* window = glfwCreateWindow(width, height, "tinlod-view", nullptr, nullptr);
+    GLFWwindow *window = glfwCreateWindow(width, height, "tinlod-view", nullptr, nullptr);
     if (window == nullptr)
         throw Error("OpenGL", "no OpenGL 3.3 core context: " + glfw_last_error());
     glfwMakeContextCurrent(window);
@@ -107,8 +107,8 @@ class Framebuffer {
         glDeleteRenderbuffers(2, buffers_);
         glDeleteFramebuffers(1, &fbo_);
     }
-    Framebuffer(const Framebuffer&) = delete;
-    Framebuffer& operator=(const Framebuffer&) = delete;
+    Framebuffer(const Framebuffer &) = delete;
+    Framebuffer &operator=(const Framebuffer &) = delete;
     void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, fbo_); }
 
   private:
@@ -116,18 +116,18 @@ class Framebuffer {
     GLuint buffers_[2] = {0, 0};
 };
 
-bool same_view(const View& a, const View& b) {
+bool same_view(const View &a, const View &b) {
     return a.eye == b.eye && a.at == b.at && a.fov_deg == b.fov_deg &&
            a.viewport_w == b.viewport_w && a.viewport_h == b.viewport_h;
 }
 
 // Near and far planes around the scene box known at load.
-glm::dvec2 clip_for(const SceneInfo& scene, const View& view) {
+glm::dvec2 clip_for(const SceneInfo &scene, const View &view) {
     return clip_range(scene.lo, scene.hi, view);
 }
 
 // The start view: from above the south edge, looking north at the centre.
-void home_view(const SceneInfo& scene, CameraControl& control) {
+void home_view(const SceneInfo &scene, CameraControl &control) {
     const glm::dvec3 c = 0.5 * (scene.lo + scene.hi);
     const double size = std::max({scene.hi.x - scene.lo.x, scene.hi.y - scene.lo.y, 1e-3});
     const glm::dvec3 eye(c.x, scene.lo.y - 0.35 * (scene.hi.y - scene.lo.y),
@@ -152,7 +152,7 @@ ColorMode color_mode(ColorBy by) {
     return ColorMode::shade;
 }
 
-std::string timestamp_name(const char* prefix, const char* extension) {
+std::string timestamp_name(const char *prefix, const char *extension) {
     const std::time_t now = std::time(nullptr);
     char text[64];
     std::strftime(text, sizeof text, "%Y%m%d-%H%M%S", std::localtime(&now));
@@ -162,7 +162,7 @@ std::string timestamp_name(const char* prefix, const char* extension) {
 // Everything that lives while a window is open.
 class Viewer {
   public:
-    Viewer(const ViewerOptions& options, GLFWwindow* window)
+    Viewer(const ViewerOptions &options, GLFWwindow *window)
         : options_(options), window_(window), settings_(options.lod) {
         base_.fov_deg = options.fov_deg;
         base_.viewport_w = options.width;
@@ -173,16 +173,16 @@ class Viewer {
         ImGui::GetIO().IniFilename = nullptr;
         ImGui::StyleColorsDark();
         glfwSetWindowUserPointer(window_, this);
-        glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
-            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->scroll_ += dy;
+        glfwSetScrollCallback(window_, [](GLFWwindow *w, double, double dy) {
+            static_cast<Viewer *>(glfwGetWindowUserPointer(w))->scroll_ += dy;
         });
-        glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+        glfwSetKeyCallback(window_, [](GLFWwindow *w, int key, int, int action, int) {
             if (action == GLFW_PRESS)
-                static_cast<Viewer*>(glfwGetWindowUserPointer(w))->taps_.push_back(key);
+                static_cast<Viewer *>(glfwGetWindowUserPointer(w))->taps_.push_back(key);
         });
-        glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
+        glfwSetDropCallback(window_, [](GLFWwindow *w, int count, const char **paths) {
             if (count > 0)
-                static_cast<Viewer*>(glfwGetWindowUserPointer(w))->dropped_ = paths[0];
+                static_cast<Viewer *>(glfwGetWindowUserPointer(w))->dropped_ = paths[0];
         });
         // Installed after ours, ImGui's callbacks chain to them.
         ImGui_ImplGlfw_InitForOpenGL(window_, true);
@@ -197,17 +197,17 @@ class Viewer {
         ImGui_ImplGlfw_Shutdown();
         ImGui::DestroyContext();
     }
-    Viewer(const Viewer&) = delete;
-    Viewer& operator=(const Viewer&) = delete;
+    Viewer(const Viewer &) = delete;
+    Viewer &operator=(const Viewer &) = delete;
 
     // Opens `path` (replacing the current scene); throws Error naming it.
-    void open(const std::string& path) {
+    void open(const std::string &path) {
         SceneInfo info;
         auto engine = open_scene(path, info);
         show(std::move(engine), info);
     }
     // Shows a scene already opened.
-    void show(std::unique_ptr<LodEngine> engine, const SceneInfo& info) {
+    void show(std::unique_ptr<LodEngine> engine, const SceneInfo &info) {
         worker_.reset();
         current_.reset();
         scene_ = info;
@@ -221,14 +221,14 @@ class Viewer {
     }
 
     void run_interactive();
-    void run_script(const CameraPath& path);
+    void run_script(const CameraPath &path);
 
   private:
     void swap_in(std::unique_ptr<LodResult> result);
-    void draw_scene(const View& view) const;
+    void draw_scene(const View &view) const;
     void handle_input(double dt);
     void panel(double frame_ms);
-    void save_screenshot(const std::string& path);
+    void save_screenshot(const std::string &path);
     // Freezes the LOD at the view of the TIN on screen, or thaws it.
     void toggle_freeze() {
         if (frozen_)
@@ -237,8 +237,8 @@ class Viewer {
             frozen_ = current_->view;
     }
 
-    const ViewerOptions& options_;
-    GLFWwindow* window_;
+    const ViewerOptions &options_;
+    GLFWwindow *window_;
     std::unique_ptr<MeshPainter> painter_;
     std::unique_ptr<LodWorker> worker_;
     SceneInfo scene_;
@@ -279,7 +279,7 @@ void Viewer::swap_in(std::unique_ptr<LodResult> result) {
     current_ = std::move(result);
 }
 
-void Viewer::draw_scene(const View& view) const {
+void Viewer::draw_scene(const View &view) const {
     RenderOptions ro = uploaded_;
     ro.wire = wire_;
     ro.z_min = float(scene_.lo.z);
@@ -293,7 +293,7 @@ void Viewer::draw_scene(const View& view) const {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void Viewer::save_screenshot(const std::string& path) {
+void Viewer::save_screenshot(const std::string &path) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     write_image(path, read_pixels(w, h));
@@ -301,7 +301,7 @@ void Viewer::save_screenshot(const std::string& path) {
 }
 
 void Viewer::handle_input(double dt) {
-    const ImGuiIO& io = ImGui::GetIO();
+    const ImGuiIO &io = ImGui::GetIO();
     auto down = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS; };
     // Presses come from the key callback: a tap shorter than a frame still counts.
     auto pressed = [&](int key) {
@@ -360,7 +360,7 @@ void Viewer::run_interactive() {
             try {
                 open(path);
                 message_ = "opened " + path;
-            } catch (const std::exception& e) {
+            } catch (const std::exception &e) {
                 message_ = e.what();
             }
         }
@@ -401,7 +401,7 @@ void Viewer::run_interactive() {
             screenshot_due_ = false;
             try {
                 save_screenshot(timestamp_name("tinlod-view-", ".png"));
-            } catch (const std::exception& e) {
+            } catch (const std::exception &e) {
                 message_ = e.what();
             }
         }
@@ -502,8 +502,8 @@ void Viewer::panel(double frame_ms) {
         int model = settings_.significance.model == SpModel::paper ? 1 : 0;
         if (ImGui::Combo("SP model", &model, "screen\0paper\0"))
             settings_.significance.model = model == 1 ? SpModel::paper : SpModel::screen;
-        SignificanceOptions& sp = settings_.significance;
-        auto slider = [](const char* label, double& value, float lo, float hi) {
+        SignificanceOptions &sp = settings_.significance;
+        auto slider = [](const char *label, double &value, float lo, float hi) {
             float v = float(value);
             if (ImGui::SliderFloat(label, &v, lo, hi, "%.2f"))
                 value = v;
@@ -524,7 +524,7 @@ void Viewer::panel(double frame_ms) {
     if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::Checkbox("wireframe", &wire_);
         int color = static_cast<int>(settings_.color);
-        const char* names = scene_.error_colors ? "shade\0height\0SP\0level\0error (px)\0"
+        const char *names = scene_.error_colors ? "shade\0height\0SP\0level\0error (px)\0"
                                                 : "shade\0height\0SP\0level\0";
         if (ImGui::Combo("colour", &color, names))
             settings_.color = static_cast<ColorBy>(color);
@@ -561,7 +561,7 @@ void Viewer::panel(double frame_ms) {
                 write_camera_path(path, path_file_);
                 message_ =
                     "saved " + std::to_string(path.keys.size()) + " keyframes to " + path_file_;
-            } catch (const std::exception& e) {
+            } catch (const std::exception &e) {
                 message_ = e.what();
             }
         }
@@ -570,7 +570,7 @@ void Viewer::panel(double frame_ms) {
             if (ImGui::Button("play")) {
                 try {
                     player_.start(read_camera_path(path_file_), now);
-                } catch (const std::exception& e) {
+                } catch (const std::exception &e) {
                     message_ = e.what();
                 }
             }
@@ -586,7 +586,7 @@ void Viewer::panel(double frame_ms) {
     ImGui::End();
 }
 
-void Viewer::run_script(const CameraPath& path) {
+void Viewer::run_script(const CameraPath &path) {
     const int frames = options_.frames > 0 ? options_.frames : static_cast<int>(path.keys.size());
     Framebuffer target(options_.width, options_.height);
     std::ostringstream stats;
@@ -632,7 +632,7 @@ void Viewer::run_script(const CameraPath& path) {
     }
     write_image(options_.screenshot, read_pixels(options_.width, options_.height));
     if (!options_.stats.empty())
-        write_atomically(options_.stats, [&](const std::string& tmp) {
+        write_atomically(options_.stats, [&](const std::string &tmp) {
             std::ofstream out(tmp);
             out << stats.str();
             if (!out.flush())
@@ -642,7 +642,7 @@ void Viewer::run_script(const CameraPath& path) {
 
 } // namespace
 
-void run_viewer(const ViewerOptions& options) {
+void run_viewer(const ViewerOptions &options) {
     // Files first, so a bad file is reported as such even where no window can open.
     SceneInfo info;
     std::unique_ptr<LodEngine> engine;
@@ -653,9 +653,9 @@ void run_viewer(const ViewerOptions& options) {
         path = read_camera_path(options.script);
 
     GlfwSession glfw;
-    GLFWwindow* window = open_window(options.width, options.height, !path);
+    GLFWwindow *window = open_window(options.width, options.height, !path);
     struct Closer {
-        GLFWwindow* w;
+        GLFWwindow *w;
         ~Closer() { glfwDestroyWindow(w); }
     } closer{window};
     glfwSwapInterval(1);

@@ -23,6 +23,6 @@ struct ViewerOptions {
 
 // Opens the window and runs until it is closed (interactive) or the path has played (scripted).
 // Throws Error naming the display, OpenGL or the file at fault.
-void run_viewer(const ViewerOptions& options);
+void run_viewer(const ViewerOptions &options);
 
 } // namespace tinlod::viewer

@@ -13,15 +13,15 @@
 
 namespace tinlod {
 
-static const char* k_header = "t,eye_x,eye_y,eye_z,at_x,at_y,at_z";
+static const char *k_header = "t,eye_x,eye_y,eye_z,at_x,at_y,at_z";
 
-static std::string trim(const std::string& s) {
+static std::string trim(const std::string &s) {
     const auto b = s.find_first_not_of(" \t\r");
     const auto e = s.find_last_not_of(" \t\r");
     return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
 
-CameraPath parse_camera_path(const std::string& text, const std::string& source) {
+CameraPath parse_camera_path(const std::string &text, const std::string &source) {
     CameraPath path;
     std::istringstream in(text);
     std::string line;
@@ -49,8 +49,9 @@ CameraPath parse_camera_path(const std::string& text, const std::string& source)
             const auto comma = line.find(',', pos);
             if ((i < 6) != (comma != std::string::npos))
                 throw Error(source, where + ": expected 7 comma-separated numbers");
-            const std::string field = trim(line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-            char* end = nullptr;
+            const std::string field = trim(
+                line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+            char *end = nullptr;
             errno = 0;
             v[i] = std::strtod(field.c_str(), &end);
             if (field.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v[i]))
@@ -65,13 +66,14 @@ CameraPath parse_camera_path(const std::string& text, const std::string& source)
         path.keys.push_back(k);
     }
     if (!header)
-        throw Error(source, "empty camera path (expected the header '" + std::string(k_header) + "')");
+        throw Error(source,
+                    "empty camera path (expected the header '" + std::string(k_header) + "')");
     if (path.keys.empty())
         throw Error(source, "camera path has no keyframe");
     return path;
 }
 
-CameraPath read_camera_path(const std::string& file) {
+CameraPath read_camera_path(const std::string &file) {
     std::ifstream in(file, std::ios::binary);
     if (!in)
         throw Error(file, "cannot open camera path");
@@ -82,12 +84,12 @@ CameraPath read_camera_path(const std::string& file) {
     return parse_camera_path(text.str(), file);
 }
 
-void write_camera_path(const CameraPath& path, const std::string& file) {
-    write_atomically(file, [&](const std::string& tmp) {
+void write_camera_path(const CameraPath &path, const std::string &file) {
+    write_atomically(file, [&](const std::string &tmp) {
         std::ofstream out(tmp);
         out.precision(17);
         out << k_header << '\n';
-        for (const auto& k : path.keys)
+        for (const auto &k : path.keys)
             out << k.t << ',' << k.eye.x << ',' << k.eye.y << ',' << k.eye.z << ',' << k.at.x << ','
                 << k.at.y << ',' << k.at.z << '\n';
         if (!out.flush())
@@ -95,7 +97,7 @@ void write_camera_path(const CameraPath& path, const std::string& file) {
     });
 }
 
-View CameraPath::at_time(double t, const View& base) const {
+View CameraPath::at_time(double t, const View &base) const {
     assert(!keys.empty());
     View v = base;
     if (t <= keys.front().t || keys.size() == 1) {
@@ -111,20 +113,21 @@ View CameraPath::at_time(double t, const View& base) const {
     std::size_t i = 1;
     while (keys[i].t < t)
         ++i;
-    const Keyframe& a = keys[i - 1];
-    const Keyframe& b = keys[i];
+    const Keyframe &a = keys[i - 1];
+    const Keyframe &b = keys[i];
     const double s = (t - a.t) / (b.t - a.t);
     v.eye = glm::mix(a.eye, b.eye, s);
     v.at = glm::mix(a.at, b.at, s);
     return v;
 }
 
-std::vector<View> CameraPath::sample(int frames, const View& base) const {
+std::vector<View> CameraPath::sample(int frames, const View &base) const {
     assert(frames >= 1 && !keys.empty());
     std::vector<View> views;
     views.reserve(std::size_t(frames));
     for (int i = 0; i < frames; ++i) {
-        const double t = frames == 1 ? keys.front().t : keys.front().t + duration() * i / (frames - 1);
+        const double t =
+            frames == 1 ? keys.front().t : keys.front().t + duration() * i / (frames - 1);
         views.push_back(at_time(t, base));
     }
     return views;

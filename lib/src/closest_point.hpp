@@ -8,8 +8,8 @@ namespace tinlod {
 
 // The point of triangle abc nearest to p (a point of the triangle in every case, so its distance
 // to p never understates p's distance to the triangle).
-inline glm::dvec3 closest_on_triangle(const glm::dvec3& p, const glm::dvec3& a,
-                                      const glm::dvec3& b, const glm::dvec3& c) {
+inline glm::dvec3 closest_on_triangle(const glm::dvec3 &p, const glm::dvec3 &a, const glm::dvec3 &b,
+                                      const glm::dvec3 &c) {
     const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
     if (d1 <= 0.0 && d2 <= 0.0)
@@ -39,8 +39,8 @@ inline glm::dvec3 closest_on_triangle(const glm::dvec3& p, const glm::dvec3& a,
 }
 
 // The distance from p to triangle abc.
-inline double triangle_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                const glm::dvec3& c) {
+inline double triangle_distance(const glm::dvec3 &p, const glm::dvec3 &a, const glm::dvec3 &b,
+                                const glm::dvec3 &c) {
     return glm::length(p - closest_on_triangle(p, a, b, c));
 }
 

@@ -15,11 +15,11 @@
 #include "closest_point.hpp"
 #include "lattice_rings.hpp"
 #include "lattice_triangle.hpp"
-#include "weigher.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/greedy.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
+#include "weigher.hpp"
 
 #include <algorithm>
 #include <array>
@@ -270,8 +270,8 @@ struct Hole {
     std::array<TriangleFrame, k_max_ring> frame;
     int ntri = 0;
     glm::dvec3 origin{0.0}, ex{1, 0, 0}, ey{0, 1, 0}; // projection frame (xy: the world frame)
-    double delta = 0.0; // the node's own deviation from the new triangles
-    double cost = 0.0;  // max weighted deviation over the node and the fan's swallowed nodes
+    double delta = 0.0;     // the node's own deviation from the new triangles
+    double cost = 0.0;      // max weighted deviation over the node and the fan's swallowed nodes
     std::uint32_t star = 0; // the node that gave the cost, and its (unweighted) deviation
     double star_dev = 0.0;
     bool deferred = false; // the fan swallowed more nodes than the evaluation may visit
@@ -313,13 +313,14 @@ struct EraseRecord {
 struct LiveNode {
     std::uint32_t node;
     std::int32_t vertex; // its vertex (the node id itself unless Impl::lattice)
-    Mesh::Point p; // its point (an update reads it for every node it visits)
+    Mesh::Point p;       // its point (an update reads it for every node it visits)
     // The node whose deviation gave the last evaluated cost, and that deviation: the cost under
     // any later view is at least star_dev times the star's weight there while the fan stands.
     std::uint32_t star;
     float star_dev;
     // Bounds on the fan's swallowed nodes: each lies within `reach` of the node (3-D) and deviates
-    // at most `fan_dev` from its face. Raised as the fan changes, tightened when an update walks it.
+    // at most `fan_dev` from its face. Raised as the fan changes, tightened when an update walks
+    // it.
     float reach;
     float fan_dev;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
@@ -361,11 +362,11 @@ struct Block {
 // A square of the grid in xy that lets an update skip whole regions: bounds over the live nodes in
 // it, kept conservative between updates (raised, or lowered for star_dev, as the nodes change).
 struct Cell {
-    float fan_dev = 0.0f;  // >= every live node's fan_dev
-    float reach = 0.0f;    // >= every live node's reach
-    float star_dev = 0.0f; // <= every live node's star_dev
+    float fan_dev = 0.0f;                  // >= every live node's fan_dev
+    float reach = 0.0f;                    // >= every live node's reach
+    float star_dev = 0.0f;                 // <= every live node's star_dev
     float zlo = INFINITY, zhi = -INFINITY; // the heights of every node in it, live or erased
-    bool dirty = true;     // some live node in it may be dirty
+    bool dirty = true;                     // some live node in it may be dirty
 };
 
 // An append-only array in chunks of 2^20 entries. It grows without moving what it holds (the
@@ -413,10 +414,10 @@ template <class T> class ChunkedPool {
     std::size_t size_ = 0;
 };
 
-constexpr std::uint8_t k_locked = 1; // never erased (corner, general-mesh boundary, isolated)
-constexpr std::uint8_t k_dirty = 2;  // its key predates a change of its neighbourhood
+constexpr std::uint8_t k_locked = 1;    // never erased (corner, general-mesh boundary, isolated)
+constexpr std::uint8_t k_dirty = 2;     // its key predates a change of its neighbourhood
 constexpr std::uint8_t k_recovered = 4; // recovered by the update under way
-constexpr std::uint8_t k_unread = 8; // a sample the input TIN left out, never live yet
+constexpr std::uint8_t k_unread = 8;    // a sample the input TIN left out, never live yet
 
 constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN never held
 // record_of of a sample left out whose ring is its lattice's regular one (RegularRings): no record.
@@ -431,7 +432,7 @@ struct NodeEraser::Impl {
     View view;
     bool xy = true;
     double focal_distance = 1.0;
-    Weigher weigher;                          // pixels per unit deviation for the current view
+    Weigher weigher;          // pixels per unit deviation for the current view
     bool unit_weights = true; // no view, or the vertical model: every weight is 1
     // Per vertex while erase() runs (it asks for a node's weight again and again): the weigher at
     // the node rounded up, all computed in one run over the vertices when the view is set. The
@@ -518,7 +519,8 @@ struct NodeEraser::Impl {
     double area_per_node = 0.0; // xy: the input's bounding-box area over its nodes
     int grid_nx = 1, grid_ny = 1;
     std::vector<std::uint8_t> flags; // per vertex: k_locked, k_dirty, k_recovered, k_unread
-    std::vector<std::uint8_t> stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
+    std::vector<std::uint8_t>
+        stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
     // Set by compact(): the live nodes' keys and stamps are in their LiveNode, and the per-vertex
     // ones (heap, stamp) are freed, as only an update's sweeps, over live nodes, read them; 5
     // bytes per input node, and a stamp reset that visits the live nodes, not the terrain. The
@@ -534,9 +536,9 @@ struct NodeEraser::Impl {
     std::vector<VH> free_vertices; // a sparse lattice's: the vertices its erases freed
     std::int64_t live = 0, live_faces = 0;
     std::int64_t evaluations = 0;
-    std::int64_t reerased = 0; // the update under way's erases of nodes it recovered
-    std::int64_t entered = 0;  // k_unread samples re-inserted so far
-    std::int64_t fans_kept = 0; // re-inserts whose fan faces took back a KeptFan so far
+    std::int64_t reerased = 0;    // the update under way's erases of nodes it recovered
+    std::int64_t entered = 0;     // k_unread samples re-inserted so far
+    std::int64_t fans_kept = 0;   // re-inserts whose fan faces took back a KeptFan so far
     bool absent_for_good = false; // some samples are k_absent: they can never enter
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
@@ -596,7 +598,7 @@ static float float_down(double d) {
 
 // A grid TIN's samples by lattice column and row: the mesh's points, or a sparse lattice's.
 struct Samples {
-    const Mesh::Point *pts = nullptr; // dense: vertex = sample
+    const Mesh::Point *pts = nullptr;                       // dense: vertex = sample
     const float *z = nullptr, *xs = nullptr, *ys = nullptr; // sparse
     std::int64_t w = 0;
 
@@ -808,8 +810,8 @@ static glm::dvec2 project(const Hole &h, const glm::dvec3 &p) {
 
 // The frame of the triangle with projected corners qa, qb, qc; `xy`: its heights za, zb, zc too.
 static TriangleFrame triangle_frame(const glm::dvec2 &qa, const glm::dvec2 &qb,
-                                    const glm::dvec2 &qc, bool xy, double za = 0.0,
-                                    double zb = 0.0, double zc = 0.0) {
+                                    const glm::dvec2 &qc, bool xy, double za = 0.0, double zb = 0.0,
+                                    double zc = 0.0) {
     const double inv = 1.0 / orient(qa, qb, qc);
     TriangleFrame f;
     // w0 = orient(qb, qc, x) / area, w1 = orient(qc, qa, x) / area
@@ -938,9 +940,9 @@ constexpr std::int64_t k_band_rows = 16;
 // the band. visit returns false to stop the scan; then so does scan_lattice, and so does band_end,
 // called after each band's samples.
 template <class Band, class Visit, class BandEnd = bool (*)()>
-static bool scan_lattice(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
-                         std::uint32_t c, const Band &band, const Visit &visit,
-                         const BandEnd &band_end = [] { return true; }) {
+static bool scan_lattice(
+    const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b, std::uint32_t c, const Band &band,
+    const Visit &visit, const BandEnd &band_end = [] { return true; }) {
     const std::int64_t w = s.grid_w;
     const LatticeTriangle t(s.grid_w, a, b, c);
     const Samples g = samples(s);
@@ -1039,8 +1041,7 @@ struct Tiling {
     std::int64_t row0, x0, columns; // tile columns: [x0 + k * k_tile_cols, ... + k_tile_cols)
 };
 
-static Tiling tiling(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
-                     std::uint32_t c) {
+static Tiling tiling(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     const std::int64_t w = s.grid_w;
     const std::int64_t x0 = std::min({a % w, b % w, c % w}) / k_tile_cols * k_tile_cols,
                        x1 = std::max({a % w, b % w, c % w});
@@ -1053,9 +1054,9 @@ static Tiling tiling(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b
 // is given for each of them (q its point, dev = deviation(q)), or a negative value to skip the
 // tile. A tile visited lowers its bound in `dev` to its samples' largest deviation.
 template <class Tile, class Deviation, class Visit>
-static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b,
-                       std::uint32_t c, std::vector<float> &dev, const Tile &tile,
-                       const Deviation &deviation, const Visit &visit) {
+static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                       std::vector<float> &dev, const Tile &tile, const Deviation &deviation,
+                       const Visit &visit) {
     const std::int64_t w = s.grid_w;
     const Tiling g = tiling(s, a, b, c);
     const Samples lattice = samples(s);
@@ -1080,9 +1081,9 @@ static void scan_tiles(const NodeEraser::Impl &s, std::uint32_t a, std::uint32_t
                                c1 = std::min(hi, g.x0 + (k + 1) * k_tile_cols - 1);
             const double xa = lattice.x(c0), xb = lattice.x(c1), yl = lattice.y(ya),
                          yh = lattice.y(y1);
-            const double value = tile(glm::dvec2(std::min(xa, xb), std::min(yl, yh)),
-                                      glm::dvec2(std::max(xa, xb), std::max(yl, yh)),
-                                      double(bound));
+            const double value =
+                tile(glm::dvec2(std::min(xa, xb), std::min(yl, yh)),
+                     glm::dvec2(std::max(xa, xb), std::max(yl, yh)), double(bound));
             if (value < 0.0)
                 continue;
             double most = 0.0;
@@ -1123,7 +1124,8 @@ static std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::uint32_
     if (s.tile_z.empty())
         build_tile_z(s);
     const std::int64_t w = s.grid_w, columns = tile_columns(s);
-    const std::int64_t x_lo = std::min({a % w, b % w, c % w}), x_hi = std::max({a % w, b % w, c % w});
+    const std::int64_t x_lo = std::min({a % w, b % w, c % w}),
+                       x_hi = std::max({a % w, b % w, c % w});
     const Samples lattice = samples(s);
     const std::int64_t bands = (g.t.last_row - g.row0) / k_band_rows + 1;
     std::vector<float> dev(std::size_t(bands * g.columns));
@@ -1142,10 +1144,10 @@ static std::vector<float> *lattice_tiles(NodeEraser::Impl &s, FH f, std::uint32_
                          ph = std::max({p[0], p[1], p[2], p[3]});
             const double far = std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
             const double most = std::max({double(z[1]) - pl, ph - double(z[0]), 0.0});
-            dev[std::size_t(j * g.columns + k)] = float_up(
-                most + rounding_margin(far, slope) +
-                1e-9 * (std::abs(pl) + std::abs(ph) + std::abs(double(z[0])) +
-                        std::abs(double(z[1])) + 1.0));
+            dev[std::size_t(j * g.columns + k)] =
+                float_up(most + rounding_margin(far, slope) +
+                         1e-9 * (std::abs(pl) + std::abs(ph) + std::abs(double(z[0])) +
+                                 std::abs(double(z[1])) + 1.0));
         }
     }
     s.face_blocked[f.idx()] = 1;
@@ -2005,9 +2007,8 @@ static bool sweep_node(NodeEraser::Impl &s, std::uint32_t x, double limit,
 // erased: a pass costs the nodes still live, not the input's. The refiner's first erase on the
 // 4097² flight makes 20 passes, which each read the state of all 16.8 M ids before, 0.83 M of them
 // live at first: 0.35-0.5 s of its 6.9 s (scratch runs).
-static std::int64_t sweep_pass(NodeEraser::Impl &s, std::vector<std::uint32_t> &order,
-                               double limit, std::int64_t stop_at,
-                               const std::function<void(double)> &report) {
+static std::int64_t sweep_pass(NodeEraser::Impl &s, std::vector<std::uint32_t> &order, double limit,
+                               std::int64_t stop_at, const std::function<void(double)> &report) {
     next_pass(s);
     std::int64_t erased = 0;
     std::size_t kept = 0, i = 0;
@@ -2081,8 +2082,8 @@ static std::int64_t fine_rungs(NodeEraser::Impl &s, double limit, double tau, st
             if (!(s.flags[l.node] & k_locked) &&
                 ((s.flags[l.node] & k_dirty) || double(node_key(s, l)) <= limit))
                 list.push_back(l.node);
-        erased += sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(),
-                              budget);
+        erased +=
+            sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(), budget);
         if (limit >= tau)
             break;
         double least = INFINITY;
@@ -2114,10 +2115,10 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
     // (from 0) spans [1 - 0.1^k, 1 - 0.1^(k+1)).
     double pass_share = 1.0;
     const auto by_erases = [&] {
-        progress(first_live > budget ? std::clamp(double(first_live - s.live) /
-                                                      double(first_live - budget),
-                                                  0.0, 1.0)
-                                     : 1.0);
+        progress(
+            first_live > budget
+                ? std::clamp(double(first_live - s.live) / double(first_live - budget), 0.0, 1.0)
+                : 1.0);
     };
     const auto report = [&](double within) {
         if (s.options.max_nodes > 0)
@@ -2126,9 +2127,8 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
             progress(1.0 - pass_share + 0.9 * pass_share * within);
     };
     auto sweep = [&](double limit, std::int64_t stop_at) {
-        const std::int64_t made =
-            sweep_pass(s, order, limit, stop_at,
-                       progress ? std::function<void(double)>(report) : nullptr);
+        const std::int64_t made = sweep_pass(
+            s, order, limit, stop_at, progress ? std::function<void(double)>(report) : nullptr);
         pass_share *= 0.1;
         return made;
     };
@@ -2172,8 +2172,8 @@ static std::int64_t sweep_erase(NodeEraser::Impl &s) {
             limit /= k_budget_rung_ratio;
         }
     }
-    return erased + fine_rungs(s, limit, tau, budget,
-                               progress ? std::function<void()>(by_erases) : nullptr);
+    return erased +
+           fine_rungs(s, limit, tau, budget, progress ? std::function<void()>(by_erases) : nullptr);
 }
 
 // ---- Recovery ----------------------------------------------------------------------------------
@@ -2428,7 +2428,8 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
 // live nodes of a 4097² flight) those passes cost as much as the walks over the nodes. At 30 frames
 // per second with the camera 8 times slower than the flight benchmark's paths, a frame's median
 // took 19-24 % less with 64 live nodes per cell than with 1024 input nodes (scratch runs on the
-// fly-over: 20 to 1,400 live nodes per cell were within 13 % of each other, 80 to 1,400 within 5 %).
+// fly-over: 20 to 1,400 live nodes per cell were within 13 % of each other, 80 to 1,400 within 5
+// %).
 constexpr double k_live_per_cell = 64.0;
 // The grid is sized again once the live nodes are this many times more, or fewer, than it was for.
 constexpr std::int64_t k_regrid_ratio = 4;
@@ -2441,8 +2442,8 @@ static void regrid(NodeEraser::Impl &s) {
     const glm::dvec2 extent = s.grid_hi - s.grid_lo;
     const double cells = std::max(1.0, double(s.live) / k_live_per_cell);
     const double area = extent.x * extent.y;
-    s.cell_side = std::max({area > 0.0 ? std::sqrt(area / cells) : 0.0,
-                            std::max(extent.x, extent.y) / 4000.0, 1e-30});
+    s.cell_side = std::max(
+        {area > 0.0 ? std::sqrt(area / cells) : 0.0, std::max(extent.x, extent.y) / 4000.0, 1e-30});
     s.grid_nx = int(extent.x / s.cell_side) + 1;
     s.grid_ny = int(extent.y / s.cell_side) + 1;
     s.grid_live = s.live;
@@ -3107,8 +3108,7 @@ static void remember_seen(NodeEraser::Impl &s, FH f, double seen, const glm::dve
 
 // The worst swallowed node of face f whose weighted deviation exceeds `above`, and that weighted
 // deviation (-1 when none does).
-static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f,
-                                                       double above) {
+static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f, double above) {
     const Mesh &m = *s.mesh;
     std::int32_t u = s.face_head[f.idx()];
     if (u < 0)
@@ -3118,7 +3118,8 @@ static std::pair<std::int32_t, double> worst_swallowed(NodeEraser::Impl &s, FH f
     const glm::dvec3 b = to_glm(m.point(m.to_vertex_handle(he)));
     const glm::dvec3 c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
     const glm::dvec3 normal = glm::cross(b - a, c - a);
-    const double slope = s.xy ? glm::length(glm::dvec2(normal.x, normal.y)) / std::abs(normal.z) : 0.0;
+    const double slope =
+        s.xy ? glm::length(glm::dvec2(normal.x, normal.y)) / std::abs(normal.z) : 0.0;
     // A node's weight is looked up only when its deviation times a bound of the weights over the
     // face (TINs: over its corners' box in xy, within its largest deviation in z) could beat the
     // worst so far; that bound may clear the whole face at once (with a margin for the float
@@ -3261,10 +3262,9 @@ static double face_bound(const NodeEraser::Impl &s, FH f) {
     if (s.face_head[f.idx()] < 0 || s.face_maxdev[f.idx()] <= 0.0f)
         return 0.0;
     const HH he = m.halfedge_handle(f);
-    const auto [lo, hi] =
-        swallowed_box(s, f, to_glm(m.point(m.from_vertex_handle(he))),
-                      to_glm(m.point(m.to_vertex_handle(he))),
-                      to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he)))));
+    const auto [lo, hi] = swallowed_box(
+        s, f, to_glm(m.point(m.from_vertex_handle(he))), to_glm(m.point(m.to_vertex_handle(he))),
+        to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he)))));
     return std::min(double(s.face_maxdev[f.idx()]) * s.weigher.bound(lo, hi) * k_rounded_weight,
                     seen_bound(s, f, lo, hi));
 }
@@ -3289,7 +3289,8 @@ static bool fan_cleared(const NodeEraser::Impl &s, LiveNode &l, double recover_a
         if (const NodeEraser::Impl::Since *d = since(s, l.seen_at)) {
             const double falloff = s.weigher.falloff();
             if (moved_within(s.view.eye, to_glm(l.p), double(l.reach), d->moved,
-                             log_recover - double(l.seen_log) - (l.seen_cone ? 0.0 : d->turn / falloff),
+                             log_recover - double(l.seen_log) -
+                                 (l.seen_cone ? 0.0 : d->turn / falloff),
                              l.seen_cone ? 1.0 : 1.0 + k_asin_quarter / falloff))
                 return true;
             if (seen_now(s, l) <= log_recover)
@@ -3414,9 +3415,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
         Cell &cell = s.cells[c];
         const auto [lo, hi] = cell_box(s, c, double(cell.reach));
-        visit[c] = cell.fan_dev > 0.0f && double(cell.fan_dev) * s.weigher.bound(lo, hi) *
-                                                  k_rounded_weight >
-                                              recover_above;
+        visit[c] =
+            cell.fan_dev > 0.0f &&
+            double(cell.fan_dev) * s.weigher.bound(lo, hi) * k_rounded_weight > recover_above;
         cell.fan_dev = 0.0f;
         cell.reach = 0.0f;
     }
@@ -3548,9 +3549,9 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         s.flags[x] &= std::uint8_t(~k_recovered);
     for (Cell &cell : s.cells)
         cell.dirty = false; // the sweep left no live node dirty
-    if (s.advised[0] && (s.advised[0] != m.points() ||
-                         (m.n_edges() > 0 && s.advised[1] != &m.edge(EH(0))) ||
-                         (m.n_faces() > 0 && s.advised[2] != &m.face(FH(0)))))
+    if (s.advised[0] &&
+        (s.advised[0] != m.points() || (m.n_edges() > 0 && s.advised[1] != &m.edge(EH(0))) ||
+         (m.n_faces() > 0 && s.advised[2] != &m.face(FH(0)))))
         advise_huge(s); // an array grew out of its room
     stats.ms_erase = clock.ms();
     return stats;
@@ -3605,8 +3606,7 @@ EraseStats NodeEraser::measure() const {
         const auto [lo, hi] = swallowed_box(s, f, a, b, c);
         const double near = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
         faces.push_back({s.xy ? dev * s.weigher.bound(lo, hi) * k_rounded_weight : INFINITY,
-                         s.xy && s.has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY,
-                         f});
+                         s.xy && s.has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY, f});
     }
     std::sort(faces.begin(), faces.end(),
               [](const Bounded &x, const Bounded &y) { return x.weighted > y.weighted; });
@@ -3634,7 +3634,8 @@ EraseStats NodeEraser::measure() const {
                 dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
             }
             stats.max_vertical = std::max(stats.max_vertical, dev);
-            stats.max_weighted = std::max(stats.max_weighted, weighted(s, std::uint32_t(node), dev));
+            stats.max_weighted =
+                std::max(stats.max_weighted, weighted(s, std::uint32_t(node), dev));
             if (s.has_view && s.view.in_frustum(p))
                 stats.max_screen_px =
                     std::max(stats.max_screen_px, dev * k / glm::length(p - s.view.eye));
@@ -3672,15 +3673,14 @@ static std::size_t block_bytes(const NodeEraser::Impl &s) {
 
 std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
-    return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 + s.face_head.capacity() * 4 +
-           s.face_blocked.capacity() + s.block_scratch.capacity() * 4 + block_bytes(s) +
-           s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() + s.heap.bytes() +
-           s.weight.capacity() * sizeof(float) +
+    return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 +
+           s.face_head.capacity() * 4 + s.face_blocked.capacity() + s.block_scratch.capacity() * 4 +
+           block_bytes(s) + s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() +
+           s.heap.bytes() + s.weight.capacity() * sizeof(float) +
            s.live_list.capacity() * sizeof(LiveNode) + s.cells.capacity() * sizeof(Cell) +
-           s.cell_visit.capacity() +
-           s.records.bytes() + s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
-           s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
-           s.free_vertices.capacity() * sizeof(VH) +
+           s.cell_visit.capacity() + s.records.bytes() + s.ring_pool.bytes() +
+           (s.regular ? s.regular->bytes() : 0) + s.free_edges.capacity() * sizeof(EH) +
+           s.free_faces.capacity() * sizeof(FH) + s.free_vertices.capacity() * sizeof(VH) +
            s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
            s.sample_of.capacity() * sizeof(std::uint32_t) +
            (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float);
@@ -3757,9 +3757,8 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         const View &eye = *view;
         RetrieveOptions ro;
         ro.peripheral = &options.significance;
-        const double shared = std::isfinite(options.tolerance)
-                                  ? options.tolerance * dem.retrieve_share
-                                  : INFINITY;
+        const double shared =
+            std::isfinite(options.tolerance) ? options.tolerance * dem.retrieve_share : INFINITY;
         ro.tol_px = shared;
         const Retrieval *r = nullptr; // the last retrieval (it lives until the next one)
         if (budget && shared > 1e-6) {
@@ -3821,8 +3820,8 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
         GreedyOptions go;
         go.max_error = options.tolerance;
         go.max_nodes = std::int64_t(dem.greedy_cap * double(hf.size()));
-        go.slope_margin = 2.0 * rounding_margin(std::max((hf.width - 1) * hf.dx,
-                                                         (hf.height - 1) * hf.dy), 1.0);
+        go.slope_margin =
+            2.0 * rounding_margin(std::max((hf.width - 1) * hf.dx, (hf.height - 1) * hf.dy), 1.0);
         go.seed_step = 16; // the erase drops the seed's nodes the insertion did not need
         if (greedy_pays(hf, go)) {
             const GreedyTin greedy = greedy_tin(hf, go);

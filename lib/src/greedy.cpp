@@ -46,12 +46,12 @@ struct Inserter {
     std::vector<std::int32_t> px, py;  // lattice column and row per node
     std::vector<std::int32_t> corner;  // node per half-edge: the half-edge's start
     std::vector<std::int32_t> twin;
-    std::vector<std::uint32_t> candidate; // per triangle: its farthest sample
-    std::vector<std::uint32_t> version;   // per triangle: bumped when its slot is rewritten
-    std::vector<std::uint8_t> is_pending; // per triangle: waiting for its scan
+    std::vector<std::uint32_t> candidate;     // per triangle: its farthest sample
+    std::vector<std::uint32_t> version;       // per triangle: bumped when its slot is rewritten
+    std::vector<std::uint8_t> is_pending;     // per triangle: waiting for its scan
     std::vector<std::vector<Queued>> buckets; // by distance over the threshold, half-octaves
     int top_bucket = -1;                      // no bucket above holds an entry
-    std::vector<std::int32_t> pending;    // triangles to scan
+    std::vector<std::int32_t> pending;        // triangles to scan
 
     Inserter(const Heightfield &h, const GreedyOptions &o)
         : hf(h), w(h.width), threshold(o.max_error), slope_margin(o.slope_margin),
@@ -176,8 +176,8 @@ struct Inserter {
         candidate[t] = at;
         is_pending[t] = 0;
         if (slope_margin > 0.0)
-            worst += slope_margin * std::sqrt(gx * gx / (hf.dx * hf.dx) +
-                                              gy * gy / (hf.dy * hf.dy));
+            worst +=
+                slope_margin * std::sqrt(gx * gx / (hf.dx * hf.dx) + gy * gy / (hf.dy * hf.dy));
         if (worst > threshold && at != sa && at != sb && at != sc) {
             const int b = int(std::min(double(k_buckets - 1),
                                        std::log2(worst / threshold) * k_buckets_per_octave));
@@ -300,8 +300,8 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
         for (std::size_t i = 0; i < cells_x; ++i) {
             const std::int32_t below = j > 0 ? half_edge(2 * ((j - 1) * cells_x + i) + 1, 1) : -1;
             const std::int32_t left = i > 0 ? half_edge(2 * (j * cells_x + i - 1), 1) : -1;
-            const std::int32_t se = ins.set_triangle(node(i, j), node(i + 1, j), node(i + 1, j + 1),
-                                                     below, -1, -1);
+            const std::int32_t se =
+                ins.set_triangle(node(i, j), node(i + 1, j), node(i + 1, j + 1), below, -1, -1);
             ins.set_triangle(node(i, j), node(i + 1, j + 1), node(i, j + 1), se + 2, -1, left);
         }
     ins.flush();

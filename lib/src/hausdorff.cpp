@@ -24,7 +24,7 @@ struct Triangle {
     glm::dvec3 a, b, c;
 };
 
-std::vector<Triangle> live_triangles(const Mesh& mesh) {
+std::vector<Triangle> live_triangles(const Mesh &mesh) {
     std::vector<Triangle> out;
     out.reserve(mesh.n_faces());
     for (auto f : mesh.faces()) {
@@ -36,7 +36,7 @@ std::vector<Triangle> live_triangles(const Mesh& mesh) {
     return out;
 }
 
-double squared(const glm::dvec3& v) { return glm::dot(v, v); }
+double squared(const glm::dvec3 &v) { return glm::dot(v, v); }
 
 class TriangleBvh {
   public:
@@ -46,18 +46,18 @@ class TriangleBvh {
     }
 
     // Squared distance from p to the nearest point of any triangle.
-    double squared_distance(const glm::dvec3& p) const {
+    double squared_distance(const glm::dvec3 &p) const {
         double best = std::numeric_limits<double>::infinity();
         std::size_t stack[128];
         int top = 0;
         stack[top++] = 0;
         while (top > 0) {
-            const Node& node = nodes_[stack[--top]];
+            const Node &node = nodes_[stack[--top]];
             if (box_distance(node, p) >= best)
                 continue;
             if (node.count > 0) {
                 for (std::size_t i = node.first; i < node.first + node.count; ++i) {
-                    const Triangle& t = triangles_[i];
+                    const Triangle &t = triangles_[i];
                     best = std::min(best, squared(p - closest_on_triangle(p, t.a, t.b, t.c)));
                 }
                 continue;
@@ -86,7 +86,7 @@ class TriangleBvh {
         std::size_t right = 0; // inner: right child
     };
 
-    static double box_distance(const Node& node, const glm::dvec3& p) {
+    static double box_distance(const Node &node, const glm::dvec3 &p) {
         return squared(p - glm::clamp(p, node.lo, node.hi));
     }
 
@@ -98,7 +98,7 @@ class TriangleBvh {
         glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
         glm::dvec3 clo = lo, chi = hi;
         for (std::size_t i = begin; i < end; ++i) {
-            const Triangle& t = triangles_[i];
+            const Triangle &t = triangles_[i];
             lo = glm::min(lo, glm::min(t.a, glm::min(t.b, t.c)));
             hi = glm::max(hi, glm::max(t.a, glm::max(t.b, t.c)));
             const glm::dvec3 centre = (t.a + t.b + t.c) / 3.0;
@@ -119,7 +119,7 @@ class TriangleBvh {
         const std::size_t mid = begin + (end - begin) / 2;
         std::nth_element(
             triangles_.begin() + std::ptrdiff_t(begin), triangles_.begin() + std::ptrdiff_t(mid),
-            triangles_.begin() + std::ptrdiff_t(end), [axis](const Triangle& s, const Triangle& t) {
+            triangles_.begin() + std::ptrdiff_t(end), [axis](const Triangle &s, const Triangle &t) {
                 return s.a[axis] + s.b[axis] + s.c[axis] < t.a[axis] + t.b[axis] + t.c[axis];
             });
         const std::size_t left = build(begin, mid);
@@ -134,7 +134,7 @@ class TriangleBvh {
 };
 
 // Every vertex used by a live face, then `count` points spread over the faces by area.
-std::vector<glm::dvec3> sample_surface(const Mesh& mesh, const std::vector<Triangle>& triangles,
+std::vector<glm::dvec3> sample_surface(const Mesh &mesh, const std::vector<Triangle> &triangles,
                                        std::int64_t count, std::uint64_t seed) {
     std::vector<glm::dvec3> points;
     points.reserve(mesh.n_vertices() + std::size_t(std::max<std::int64_t>(count, 0)));
@@ -143,14 +143,14 @@ std::vector<glm::dvec3> sample_surface(const Mesh& mesh, const std::vector<Trian
         for (auto f : v.faces())
             used = used || !mesh.status(f).deleted();
         if (used) {
-            const auto& q = mesh.point(v);
+            const auto &q = mesh.point(v);
             points.emplace_back(q[0], q[1], q[2]);
         }
     }
     std::vector<double> cumulative(triangles.size());
     double total = 0.0;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
-        const Triangle& t = triangles[i];
+        const Triangle &t = triangles[i];
         total += 0.5 * glm::length(glm::cross(t.b - t.a, t.c - t.a));
         cumulative[i] = total;
     }
@@ -166,14 +166,14 @@ std::vector<glm::dvec3> sample_surface(const Mesh& mesh, const std::vector<Trian
                         cumulative.begin()),
             triangles.size() - 1);
         const double s = std::sqrt(uniform()), r = uniform();
-        const Triangle& t = triangles[f];
+        const Triangle &t = triangles[f];
         points.push_back((1.0 - s) * t.a + s * (1.0 - r) * t.b + s * r * t.c);
     }
     return points;
 }
 
 // Distance from each point to the surface, over max_threads() threads.
-std::vector<double> distances(const std::vector<glm::dvec3>& points, const TriangleBvh& bvh) {
+std::vector<double> distances(const std::vector<glm::dvec3> &points, const TriangleBvh &bvh) {
     std::vector<double> out(points.size());
     const std::size_t threads = std::size_t(max_threads());
     const std::size_t chunk = (points.size() + threads - 1) / threads;
@@ -183,7 +183,7 @@ std::vector<double> distances(const std::vector<glm::dvec3>& points, const Trian
             for (std::size_t i = t * chunk; i < std::min(points.size(), (t + 1) * chunk); ++i)
                 out[i] = std::sqrt(bvh.squared_distance(points[i]));
         });
-    for (auto& w : workers)
+    for (auto &w : workers)
         w.join();
     return out;
 }
@@ -193,8 +193,7 @@ struct OneWay {
     std::size_t count = 0;
 };
 
-OneWay one_way(const std::vector<glm::dvec3>& points, const TriangleBvh& target,
-               const View* view) {
+OneWay one_way(const std::vector<glm::dvec3> &points, const TriangleBvh &target, const View *view) {
     OneWay r;
     const std::vector<double> d = distances(points, target);
     for (std::size_t i = 0; i < d.size(); ++i) {
@@ -210,7 +209,7 @@ OneWay one_way(const std::vector<glm::dvec3>& points, const TriangleBvh& target,
 
 } // namespace
 
-HausdorffResult hausdorff(const Mesh& a, const Mesh& b, const HausdorffOptions& options) {
+HausdorffResult hausdorff(const Mesh &a, const Mesh &b, const HausdorffOptions &options) {
     std::vector<Triangle> ta = live_triangles(a), tb = live_triangles(b);
     if (ta.empty() || tb.empty())
         throw Error("hausdorff", "a mesh has no faces");

@@ -14,7 +14,7 @@ namespace tinlod {
 
 namespace {
 
-void check_same_size(const Image& a, const Image& b) {
+void check_same_size(const Image &a, const Image &b) {
     assert(a.rgba.size() == std::size_t(a.width) * a.height * 4);
     assert(b.rgba.size() == std::size_t(b.width) * b.height * 4);
     if (a.width != b.width || a.height != b.height)
@@ -24,16 +24,16 @@ void check_same_size(const Image& a, const Image& b) {
 }
 
 // A read-only view of an Image's pixels as an OpenImageIO buffer (no copy).
-OIIO::ImageBuf wrap(const Image& image) {
+OIIO::ImageBuf wrap(const Image &image) {
     const OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-    return OIIO::ImageBuf(spec, const_cast<std::uint8_t*>(image.rgba.data()));
+    return OIIO::ImageBuf(spec, const_cast<std::uint8_t *>(image.rgba.data()));
 }
 
-OIIO::ROI rgb(const Image& image) { return OIIO::ROI(0, image.width, 0, image.height, 0, 1, 0, 3); }
+OIIO::ROI rgb(const Image &image) { return OIIO::ROI(0, image.width, 0, image.height, 0, 1, 0, 3); }
 
 } // namespace
 
-ImageDifference compare_images(const Image& a, const Image& b, const ImageCompareOptions& options) {
+ImageDifference compare_images(const Image &a, const Image &b, const ImageCompareOptions &options) {
     check_same_size(a, b);
     const OIIO::ImageBuf A = wrap(a), B = wrap(b);
     // OpenImageIO reads 8-bit values as v / 255; half a level above the threshold makes "differs
@@ -55,7 +55,7 @@ ImageDifference compare_images(const Image& a, const Image& b, const ImageCompar
     return d;
 }
 
-Image difference_image(const Image& a, const Image& b, double gain) {
+Image difference_image(const Image &a, const Image &b, double gain) {
     check_same_size(a, b);
     const OIIO::ImageBuf A = wrap(a), B = wrap(b);
     const OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(A, B, rgb(a));

@@ -258,20 +258,18 @@ int RegularRings::ring(std::uint32_t sample, std::uint32_t *ring, bool &boundary
         const int d = b - 1;
         const std::uint32_t j = ay.interval_of(d, r), y0 = ay.lo(d, j), y1 = ay.hi(d, j);
         const std::uint32_t right = ax.bound_index(d, c);
-        n = c == 0        ? put({id(c, y0), centre(d, 0, j), id(c, y1)}, true)
-            : c == w_ - 1 ? put({id(c, y1), centre(d, right - 1, j), id(c, y0)}, true)
-                          : put({id(c, y0), centre(d, right, j), id(c, y1),
-                                 centre(d, right - 1, j)},
-                                false);
+        n = c == 0 ? put({id(c, y0), centre(d, 0, j), id(c, y1)}, true)
+            : c == w_ - 1
+                ? put({id(c, y1), centre(d, right - 1, j), id(c, y0)}, true)
+                : put({id(c, y0), centre(d, right, j), id(c, y1), centre(d, right - 1, j)}, false);
     } else { // the midpoint of a south or north side, y = r
         const int d = a - 1;
         const std::uint32_t i = ax.interval_of(d, c), x0 = ax.lo(d, i), x1 = ax.hi(d, i);
         const std::uint32_t above = ay.bound_index(d, r);
-        n = r == 0        ? put({id(x1, r), centre(d, i, 0), id(x0, r)}, true)
-            : r == h_ - 1 ? put({id(x0, r), centre(d, i, above - 1), id(x1, r)}, true)
-                          : put({id(x1, r), centre(d, i, above), id(x0, r),
-                                 centre(d, i, above - 1)},
-                                false);
+        n = r == 0 ? put({id(x1, r), centre(d, i, 0), id(x0, r)}, true)
+            : r == h_ - 1
+                ? put({id(x0, r), centre(d, i, above - 1), id(x1, r)}, true)
+                : put({id(x1, r), centre(d, i, above), id(x0, r), centre(d, i, above - 1)}, false);
     }
     if (!boundary)
         std::rotate(ring, std::min_element(ring, ring + n), ring + n);

@@ -25,8 +25,8 @@ using RingVisitor =
 // (QuadLayout): each level's node centres, then its side midpoints. Each is inserted into the
 // triangle that holds it (ring: its 3 corners) or into the two that share the edge it lies on
 // (ring: their 4 corners; an outline edge gives the chain of its triangle's 3 corners from the
-// edge's end round to its start, as ErasedNodeRing has it), and its ring is passed to `visit`: undone
-// in reverse, these insertions are erases whose records the eraser can recover from. A ring
+// edge's end round to its start, as ErasedNodeRing has it), and its ring is passed to `visit`:
+// undone in reverse, these insertions are erases whose records the eraser can recover from. A ring
 // that closes starts at its least sample id (a chain keeps its order). Cost: O(samples) time, 32
 // bytes per sample while it runs.
 void absent_sample_rings(const Mesh &tin, std::uint32_t width, std::uint32_t height,

@@ -14,21 +14,22 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace tinlod {
 
 namespace fs = std::filesystem;
 
-static std::string extension(const std::string& path) {
+static std::string extension(const std::string &path) {
     std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return ext;
 }
 
-bool is_mesh_path(const std::string& path) {
+bool is_mesh_path(const std::string &path) {
     const std::string ext = extension(path);
     return ext == ".ply" || ext == ".obj" || ext == ".off" || ext == ".stl";
 }
@@ -36,13 +37,16 @@ bool is_mesh_path(const std::string& path) {
 // OpenMesh prints "complex edge" and similar complaints on its streams and on std::cerr; we
 // report counts instead, so silence them while reading.
 struct QuietOpenMesh {
-    QuietOpenMesh() : cerr_(std::cerr.rdbuf(nullptr)) { omerr().disable(); omlog().disable(); }
+    QuietOpenMesh() : cerr_(std::cerr.rdbuf(nullptr)) {
+        omerr().disable();
+        omlog().disable();
+    }
     ~QuietOpenMesh() {
         omerr().enable();
         omlog().enable();
         std::cerr.rdbuf(cerr_);
     }
-    std::streambuf* cerr_;
+    std::streambuf *cerr_;
 };
 
 // --- Checks before OpenMesh reads a file ---
@@ -57,11 +61,11 @@ struct QuietOpenMesh {
 // value as OpenMesh will read it: a file is refused unless every value it will read is there and
 // parses, after which OpenMesh's loops run on good values only.
 
-[[noreturn]] static void refuse(const std::string& path, const std::string& why) {
+[[noreturn]] static void refuse(const std::string &path, const std::string &why) {
     throw Error(path, why);
 }
 
-static void check_count(const std::string& path, const char* what, std::uintmax_t count,
+static void check_count(const std::string &path, const char *what, std::uintmax_t count,
                         std::uintmax_t bytes, std::uintmax_t min_bytes) {
     if (count > bytes / min_bytes)
         refuse(path, "header declares " + std::to_string(count) + " " + what +
@@ -91,7 +95,7 @@ struct PlyHeader {
 // How OpenMesh's PLY reader reads a property (by element and property name, as its header parser).
 enum class PlyRead { coordinate, color, indices, other };
 
-static PlyRead ply_read(const PlyElement& e, const PlyProperty& p) {
+static PlyRead ply_read(const PlyElement &e, const PlyProperty &p) {
     static const std::set<std::string> k_coordinates = {"x",  "y", "z", "nx", "ny",
                                                         "nz", "u", "s", "v",  "t"};
     static const std::set<std::string> k_vertex_colors = {
@@ -109,7 +113,7 @@ static PlyRead ply_read(const PlyElement& e, const PlyProperty& p) {
     return PlyRead::other;
 }
 
-static std::uintmax_t ply_type_bytes(const std::string& type) {
+static std::uintmax_t ply_type_bytes(const std::string &type) {
     if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
         return 1;
     if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
@@ -119,14 +123,14 @@ static std::uintmax_t ply_type_bytes(const std::string& type) {
     return 4;
 }
 
-static bool ply_is_float(const std::string& type) { return type == "float" || type == "float32"; }
-static bool ply_is_real(const std::string& type) {
+static bool ply_is_float(const std::string &type) { return type == "float" || type == "float32"; }
+static bool ply_is_real(const std::string &type) {
     return ply_is_float(type) || type == "double" || type == "float64";
 }
 
 // The header as OpenMesh's PLY reader parses it, refused unless it follows the PLY grammar (which
 // OpenMesh assumes without checking) and its counts fit in the file.
-static PlyHeader parse_ply_header(const std::string& path, const std::string& head,
+static PlyHeader parse_ply_header(const std::string &path, const std::string &head,
                                   std::uintmax_t bytes) {
     static const std::set<std::string> k_types = {
         "char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
@@ -183,7 +187,7 @@ static PlyHeader parse_ply_header(const std::string& path, const std::string& he
             if (!(words >> e.name >> e.count) || (words >> extra))
                 refuse(path, where + "malformed element '" + line + "'");
             check_count(path, e.name == "face" ? "faces" : "elements", e.count, bytes, 1);
-            for (const PlyElement& other : h.elements)
+            for (const PlyElement &other : h.elements)
                 if (other.name == e.name && (e.name == "vertex" || e.name == "face"))
                     refuse(path, where + "a second '" + e.name + "' element");
             h.elements.push_back(e);
@@ -209,18 +213,18 @@ static PlyHeader parse_ply_header(const std::string& path, const std::string& he
 }
 
 // Every value OpenMesh's ASCII reader will extract, with the same types and in the same order.
-static void walk_ply_ascii(const std::string& path, const PlyHeader& h) {
+static void walk_ply_ascii(const std::string &path, const PlyHeader &h) {
     std::ifstream in(path, std::ios::binary);
     in.seekg(std::streamoff(h.ascii_body));
     float real = 0;
     int integer = 0;
     unsigned count = 0, index = 0;
     std::string word;
-    for (const PlyElement& e : h.elements) {
+    for (const PlyElement &e : h.elements) {
         if (in.eof())
             return; // OpenMesh stops here: "unexpected end of file"
         for (std::uintmax_t n = 0; n < e.count && !in.eof(); ++n)
-            for (const PlyProperty& p : e.properties) {
+            for (const PlyProperty &p : e.properties) {
                 switch (ply_read(e, p)) {
                 case PlyRead::coordinate:
                     in >> real;
@@ -250,11 +254,11 @@ static void walk_ply_ascii(const std::string& path, const PlyHeader& h) {
 }
 
 // The bytes OpenMesh's binary reader will consume, and every face's vertex count.
-static void walk_ply_binary(const std::string& path, const PlyHeader& h, std::uintmax_t bytes) {
+static void walk_ply_binary(const std::string &path, const PlyHeader &h, std::uintmax_t bytes) {
     std::ifstream in(path, std::ios::binary);
     in.seekg(std::streamoff(std::min(h.binary_body, bytes)));
     std::uintmax_t at = h.binary_body;
-    for (const PlyElement& e : h.elements) {
+    for (const PlyElement &e : h.elements) {
         auto take = [&](std::uintmax_t n) {
             if (at > bytes || n > bytes - at)
                 refuse(path, "truncated PLY body: the " + e.name +
@@ -266,7 +270,7 @@ static void walk_ply_binary(const std::string& path, const PlyHeader& h, std::ui
         std::vector<std::uintmax_t> width;
         std::uintmax_t fixed = 0;
         bool has_indices = false;
-        for (const PlyProperty& p : e.properties) {
+        for (const PlyProperty &p : e.properties) {
             std::uintmax_t w = ply_type_bytes(p.type); // of a list: one entry, all OpenMesh skips
             switch (ply_read(e, p)) {
             case PlyRead::coordinate: // read as float or double, else as nothing
@@ -296,7 +300,7 @@ static void walk_ply_binary(const std::string& path, const PlyHeader& h, std::ui
         } else {
             for (std::uintmax_t n = 0; n < e.count; ++n)
                 for (std::size_t i = 0; i < e.properties.size(); ++i) {
-                    const PlyProperty& p = e.properties[i];
+                    const PlyProperty &p = e.properties[i];
                     if (ply_read(e, p) != PlyRead::indices) {
                         take(width[i]);
                         in.ignore(std::streamsize(width[i]));
@@ -305,7 +309,7 @@ static void walk_ply_binary(const std::string& path, const PlyHeader& h, std::ui
                     const std::uintmax_t count_bytes = ply_type_bytes(p.count_type);
                     take(count_bytes);
                     unsigned char raw[8] = {};
-                    in.read(reinterpret_cast<char*>(raw), std::streamsize(count_bytes));
+                    in.read(reinterpret_cast<char *>(raw), std::streamsize(count_bytes));
                     std::uint32_t count = 0;
                     for (std::uintmax_t k = 0; k < count_bytes && k < 4; ++k)
                         count |= std::uint32_t(raw[h.big_endian ? count_bytes - 1 - k : k])
@@ -321,7 +325,7 @@ static void walk_ply_binary(const std::string& path, const PlyHeader& h, std::ui
 }
 
 // OFF: OpenMesh reads the first line as a header, [ST][C][N][4][n]OFF [BINARY], then the counts.
-static void check_off(const std::string& path, const std::string& head, std::uintmax_t bytes) {
+static void check_off(const std::string &path, const std::string &head, std::uintmax_t bytes) {
     const std::string first = head.substr(0, head.find('\n'));
     std::size_t p = 0;
     const bool texcoords = first.rfind("ST", 0) == 0;
@@ -339,10 +343,10 @@ static void check_off(const std::string& path, const std::string& head, std::uin
     if (binary) {
         std::uintmax_t at = line.size() + 1;
         unsigned char raw[12] = {};
-        if (!in.read(reinterpret_cast<char*>(raw), 12))
+        if (!in.read(reinterpret_cast<char *>(raw), 12))
             refuse(path, "truncated binary OFF: no counts");
         at += 12;
-        auto u32 = [&](const unsigned char* b) {
+        auto u32 = [&](const unsigned char *b) {
             return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
                    std::uint32_t(b[3]) << 24;
         };
@@ -354,7 +358,7 @@ static void check_off(const std::string& path, const std::string& head, std::uin
         in.ignore(std::streamsize(nv * vertex_bytes));
         at += nv * vertex_bytes;
         for (std::uintmax_t f = 0; f < nf; ++f) {
-            if (at > bytes || bytes - at < 4 || !in.read(reinterpret_cast<char*>(raw), 4))
+            if (at > bytes || bytes - at < 4 || !in.read(reinterpret_cast<char *>(raw), 4))
                 refuse(path, "truncated binary OFF: face " + std::to_string(f) + " of " +
                                  std::to_string(nf));
             at += 4;
@@ -396,7 +400,7 @@ static void check_off(const std::string& path, const std::string& head, std::uin
 // OBJ: OpenMesh's reader asserts (aborts the process) on a face vertex without a position index
 // ("f /2 3"), and takes a position that fails to parse as whatever value it read last. The OBJ
 // grammar asks every face vertex for an integer position: v, v/vt, v//vn or v/vt/vn.
-static void check_obj(const std::string& path) {
+static void check_obj(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     std::string line, word;
     for (std::int64_t number = 1; std::getline(in, line); ++number) {
@@ -416,7 +420,7 @@ static void check_obj(const std::string& path) {
     }
 }
 
-static void check_header(const std::string& path, const std::string& ext, std::uintmax_t bytes) {
+static void check_header(const std::string &path, const std::string &ext, std::uintmax_t bytes) {
     std::ifstream in(path, std::ios::binary);
     std::string head(std::size_t(std::min<std::uintmax_t>(bytes, 1 << 16)), '\0');
     in.read(head.data(), std::streamsize(head.size()));
@@ -431,7 +435,7 @@ static void check_header(const std::string& path, const std::string& ext, std::u
     } else if (ext == ".obj") {
         check_obj(path);
     } else if (ext == ".stl" && head.rfind("solid", 0) != 0 && bytes >= 84) {
-        const auto* p = reinterpret_cast<const unsigned char*>(head.data()) + 80;
+        const auto *p = reinterpret_cast<const unsigned char *>(head.data()) + 80;
         const std::uintmax_t n = p[0] | p[1] << 8 | p[2] << 16 | std::uintmax_t(p[3]) << 24;
         if (84 + 50 * n != bytes)
             refuse(path, "binary STL declares " + std::to_string(n) + " triangles but holds " +
@@ -442,11 +446,11 @@ static void check_header(const std::string& path, const std::string& ext, std::u
 // OpenMesh splits faces that would make an edge non-manifold onto duplicated vertices. Welding
 // vertices by exact position recovers the file's topology, so edges used by more than two faces
 // there can be counted.
-static std::int64_t count_non_manifold_edges(const Mesh& mesh, std::int64_t& duplicated) {
+static std::int64_t count_non_manifold_edges(const Mesh &mesh, std::int64_t &duplicated) {
     std::map<std::array<float, 3>, int> first;
     std::vector<int> weld(mesh.n_vertices());
     for (auto v : mesh.vertices()) {
-        const auto& p = mesh.point(v);
+        const auto &p = mesh.point(v);
         weld[v.idx()] = first.try_emplace({p[0], p[1], p[2]}, v.idx()).first->second;
     }
     duplicated = static_cast<std::int64_t>(mesh.n_vertices() - first.size());
@@ -461,12 +465,12 @@ static std::int64_t count_non_manifold_edges(const Mesh& mesh, std::int64_t& dup
         }
     }
     std::int64_t count = 0;
-    for (const auto& [edge, n] : uses)
+    for (const auto &[edge, n] : uses)
         count += n > 2;
     return count;
 }
 
-Mesh read_mesh(const std::string& path, MeshReport* report) {
+Mesh read_mesh(const std::string &path, MeshReport *report) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw Error(path, "no such file");
@@ -488,15 +492,16 @@ Mesh read_mesh(const std::string& path, MeshReport* report) {
     try {
         QuietOpenMesh quiet;
         ok = OpenMesh::IO::read_mesh(mesh, path, options);
-    } catch (const std::exception& e) {
+    } catch (const std::exception &e) {
         throw Error(path, std::string("cannot parse mesh: ") + e.what());
     }
     if (!ok)
-        throw Error(path, "cannot parse mesh (truncated or not a valid " + extension(path).substr(1) + " file)");
+        throw Error(path, "cannot parse mesh (truncated or not a valid " +
+                              extension(path).substr(1) + " file)");
     if (mesh.n_faces() == 0)
         throw Error(path, "mesh has no faces");
     for (auto v : mesh.vertices()) {
-        const auto& p = mesh.point(v);
+        const auto &p = mesh.point(v);
         if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
             throw Error(path, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
     }
@@ -516,7 +521,7 @@ Mesh read_mesh(const std::string& path, MeshReport* report) {
     return mesh;
 }
 
-void write_mesh(const Mesh& input, const std::string& path) {
+void write_mesh(const Mesh &input, const std::string &path) {
     const std::string ext = extension(path);
     if (!is_mesh_path(path))
         throw Error(path, "unknown mesh format '" + ext + "' (use .ply, .obj, .off or .stl)");
@@ -525,13 +530,12 @@ void write_mesh(const Mesh& input, const std::string& path) {
     // part. The plain iterators see every element; the skipping ones (`_sbegin`) would hide them.
     // OpenMesh's compaction, not live_copy: a surface mesh may join two boundary fans at a vertex,
     // which live_copy refuses.
-    const Mesh* mesh = &input;
+    const Mesh *mesh = &input;
     Mesh compact;
-    const bool garbage =
-        std::any_of(input.vertices_begin(), input.vertices_end(),
-                    [&](auto v) { return input.status(v).deleted(); }) ||
-        std::any_of(input.faces_begin(), input.faces_end(),
-                    [&](auto f) { return input.status(f).deleted(); });
+    const bool garbage = std::any_of(input.vertices_begin(), input.vertices_end(),
+                                     [&](auto v) { return input.status(v).deleted(); }) ||
+                         std::any_of(input.faces_begin(), input.faces_end(),
+                                     [&](auto f) { return input.status(f).deleted(); });
     if (garbage) {
         compact = input;
         compact.garbage_collection();
@@ -540,7 +544,7 @@ void write_mesh(const Mesh& input, const std::string& path) {
     OpenMesh::IO::Options options;
     if (ext == ".ply" || ext == ".stl")
         options += OpenMesh::IO::Options::Binary;
-    write_atomically(path, [&](const std::string& tmp) {
+    write_atomically(path, [&](const std::string &tmp) {
         // Through a stream of our own: OpenMesh's file writers do not look at their stream's state,
         // so a full disk left a short file and a success.
         std::ofstream out(tmp, std::ios::binary);

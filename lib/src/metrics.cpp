@@ -18,21 +18,24 @@ struct Corner {
 
 class ErrorAccumulator {
   public:
-    ErrorAccumulator(const Heightfield& hf, const ErrorOptions& options)
+    ErrorAccumulator(const Heightfield &hf, const ErrorOptions &options)
         : hf_(hf), options_(options), covered_(static_cast<std::size_t>(hf.size()), false) {
         if (options.view)
             k_ = options.view->k();
     }
 
-    void triangle(const std::array<Corner, 3>& t) {
-        const double area = (t[1].u - t[0].u) * (t[2].v - t[0].v) - (t[2].u - t[0].u) * (t[1].v - t[0].v);
+    void triangle(const std::array<Corner, 3> &t) {
+        const double area =
+            (t[1].u - t[0].u) * (t[2].v - t[0].v) - (t[2].u - t[0].u) * (t[1].v - t[0].v);
         if (std::abs(area) < 1e-12)
             return; // degenerate in xy: covers no sample that a neighbour does not
         const double eps = 1e-7 * std::abs(area);
         const int c0 = std::max(0, int(std::ceil(std::min({t[0].u, t[1].u, t[2].u}) - 1e-6)));
-        const int c1 = std::min(hf_.width - 1, int(std::floor(std::max({t[0].u, t[1].u, t[2].u}) + 1e-6)));
+        const int c1 =
+            std::min(hf_.width - 1, int(std::floor(std::max({t[0].u, t[1].u, t[2].u}) + 1e-6)));
         const int r0 = std::max(0, int(std::ceil(std::min({t[0].v, t[1].v, t[2].v}) - 1e-6)));
-        const int r1 = std::min(hf_.height - 1, int(std::floor(std::max({t[0].v, t[1].v, t[2].v}) + 1e-6)));
+        const int r1 =
+            std::min(hf_.height - 1, int(std::floor(std::max({t[0].v, t[1].v, t[2].v}) + 1e-6)));
         for (int r = r0; r <= r1; ++r)
             for (int c = c0; c <= c1; ++c) {
                 // Barycentric weights from the three edge functions, scaled by the signed area.
@@ -84,8 +87,8 @@ class ErrorAccumulator {
         }
     }
 
-    const Heightfield& hf_;
-    const ErrorOptions& options_;
+    const Heightfield &hf_;
+    const ErrorOptions &options_;
     std::vector<bool> covered_;
     double k_ = 0.0;
     double sum_sq_ = 0.0;
@@ -100,14 +103,14 @@ double snap(double g) {
 
 } // namespace
 
-TinError measure_error(const Heightfield& hf, const Mesh& tin, const ErrorOptions& options) {
+TinError measure_error(const Heightfield &hf, const Mesh &tin, const ErrorOptions &options) {
     assert(hf.width >= 2 && hf.height >= 2);
     ErrorAccumulator acc(hf, options);
     for (auto f : tin.faces()) {
         std::array<Corner, 3> t;
         int i = 0;
         for (auto v : f.vertices()) {
-            const auto& p = tin.point(v);
+            const auto &p = tin.point(v);
             t[i++] = {snap(p[0] / hf.dx), snap(p[1] / hf.dy), p[2]};
         }
         acc.triangle(t);
@@ -115,8 +118,8 @@ TinError measure_error(const Heightfield& hf, const Mesh& tin, const ErrorOption
     return acc.finish();
 }
 
-TinError measure_error(const Heightfield& hf, const std::vector<std::uint32_t>& triangles,
-                       const ErrorOptions& options) {
+TinError measure_error(const Heightfield &hf, const std::vector<std::uint32_t> &triangles,
+                       const ErrorOptions &options) {
     assert(hf.width >= 2 && hf.height >= 2 && triangles.size() % 3 == 0);
     ErrorAccumulator acc(hf, options);
     const std::uint32_t w = static_cast<std::uint32_t>(hf.width);

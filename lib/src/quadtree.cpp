@@ -40,9 +40,9 @@ AxisSplit::AxisSplit(int samples, int levels) {
     starts_[0] = {0, static_cast<std::uint32_t>(samples - 1)};
     parent_[0] = {0};
     for (int d = 1; d < levels; ++d) {
-        const auto& prev = starts_[d - 1];
-        auto& cur = starts_[d];
-        auto& fc = first_child_[d - 1];
+        const auto &prev = starts_[d - 1];
+        auto &cur = starts_[d];
+        auto &fc = first_child_[d - 1];
         fc.resize(prev.size() - 1);
         for (std::uint32_t k = 0; k + 1 < prev.size(); ++k) {
             fc[k] = static_cast<std::uint32_t>(cur.size());
@@ -59,14 +59,14 @@ AxisSplit::AxisSplit(int samples, int levels) {
 }
 
 std::uint32_t AxisSplit::bound_index(int d, std::uint32_t s) const {
-    const auto& st = starts_[d];
+    const auto &st = starts_[d];
     const auto it = std::lower_bound(st.begin(), st.end(), s);
     assert(it != st.end() && *it == s);
     return static_cast<std::uint32_t>(it - st.begin());
 }
 
 std::uint32_t AxisSplit::interval_of(int d, std::uint32_t s) const {
-    const auto& st = starts_[d];
+    const auto &st = starts_[d];
     assert(s < st.back());
     return static_cast<std::uint32_t>(std::upper_bound(st.begin(), st.end(), s) - st.begin() - 1);
 }
@@ -89,7 +89,7 @@ struct GridPoint {
 // z of the plane through a triangle, evaluated at grid position (c, r).
 struct Plane {
     double z0, c0, r0, gc, gr;
-    Plane(const GridPoint& p0, const GridPoint& p1, const GridPoint& p2) {
+    Plane(const GridPoint &p0, const GridPoint &p1, const GridPoint &p2) {
         const double e1c = p1.c - p0.c, e1r = p1.r - p0.r, e2c = p2.c - p0.c, e2r = p2.r - p0.r;
         const double d1 = p1.z - p0.z, d2 = p2.z - p0.z;
         const double det = e1c * e2r - e1r * e2c;
@@ -123,7 +123,7 @@ struct OwnBound {
 // the 16 variants is, per sample, the worse of its wedge with and without the side midpoint. Each
 // row crosses the wedges in at most three spans (cut by the diagonals), and inside a span the half
 // of the split wedge is fixed by the row or by the centre column.
-OwnBound fan_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::uint32_t x1,
+OwnBound fan_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t x1,
                    std::uint32_t y0, std::uint32_t y1, bool box) {
     auto at = [&](std::uint32_t c, std::uint32_t r) {
         return GridPoint{double(c), double(r), double(z[std::size_t{r} * w + c])};
@@ -141,17 +141,18 @@ OwnBound fan_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::ui
     const Plane left[2] = {Plane(ctr, ml, bl), Plane(ctr, tl, ml)};   // r <= my, r >= my
     OwnBound out;
     double e = 0.0;
-    auto span = [&](const float* row, double r, std::uint32_t c0, std::uint32_t c1, const Plane& a,
-                    const Plane& b) {
+    auto span = [&](const float *row, double r, std::uint32_t c0, std::uint32_t c1, const Plane &a,
+                    const Plane &b) {
         const double za = a.z0 + a.gr * (r - a.r0) - a.gc * a.c0;
         const double zb = b.z0 + b.gr * (r - b.r0) - b.gc * b.c0;
         for (std::uint32_t c = c0; c <= c1; ++c) {
             const double zs = row[c];
-            e = std::max(e, std::max(std::abs(zs - (za + a.gc * c)), std::abs(zs - (zb + b.gc * c))));
+            e = std::max(e,
+                         std::max(std::abs(zs - (za + a.gc * c)), std::abs(zs - (zb + b.gc * c))));
         }
     };
     for (std::uint32_t r = y0; r <= y1; ++r) {
-        const float* row = &z[std::size_t{r} * w];
+        const float *row = &z[std::size_t{r} * w];
         if (box)
             for (std::uint32_t c = x0; c <= x1; ++c)
                 out.box(row[c]);
@@ -161,12 +162,12 @@ OwnBound fan_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::ui
         // Columns up to `lo` lie in the left wedge, from `hi` in the right one.
         const auto lo = static_cast<std::int64_t>(std::floor(mx - (mx - x0) * t));
         const auto hi = static_cast<std::int64_t>(std::ceil(mx + (x1 - mx) * t));
-        const Plane& lh = left[below ? 0 : 1];
-        const Plane& rh = right[below ? 0 : 1];
+        const Plane &lh = left[below ? 0 : 1];
+        const Plane &rh = right[below ? 0 : 1];
         span(row, rr, x0, std::uint32_t(lo), full[3], lh);
         span(row, rr, std::uint32_t(hi), x1, full[1], rh);
-        const Plane& mid = full[below ? 0 : 2];
-        const Plane* halves = below ? bottom : top;
+        const Plane &mid = full[below ? 0 : 2];
+        const Plane *halves = below ? bottom : top;
         if (std::int64_t(mx) > lo)
             span(row, rr, std::uint32_t(lo), mx, mid, halves[0]);
         if (std::int64_t(mx) < hi)
@@ -178,13 +179,15 @@ OwnBound fan_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::ui
 
 // A node of 2x2 cells (the most numerous): every sample is a vertex of the fan with all side
 // midpoints, so the error is that of a side midpoint left out.
-OwnBound small_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::uint32_t y0) {
+OwnBound small_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t y0) {
     OwnBound out;
     float s[3][3];
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
             out.box(s[r][c] = z[std::size_t{y0 + r} * w + x0 + c]);
-    auto gap = [](float m, float a, float b) { return std::abs(double(m) - 0.5 * (double(a) + b)); };
+    auto gap = [](float m, float a, float b) {
+        return std::abs(double(m) - 0.5 * (double(a) + b));
+    };
     out.error = std::max({gap(s[0][1], s[0][0], s[0][2]), gap(s[2][1], s[2][0], s[2][2]),
                           gap(s[1][0], s[0][0], s[2][0]), gap(s[1][2], s[0][2], s[2][2])});
     return out;
@@ -205,7 +208,7 @@ template <class Z> double side_bound(Z z, std::uint32_t n) {
     return e;
 }
 
-OwnBound strip_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::uint32_t x1,
+OwnBound strip_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t x1,
                      std::uint32_t y0, std::uint32_t y1, bool box) {
     OwnBound out;
     if (box)
@@ -214,21 +217,23 @@ OwnBound strip_bound(const std::vector<float>& z, int w, std::uint32_t x0, std::
                 out.box(z[std::size_t{r} * w + c]);
     if (x1 - x0 == 1) {
         for (std::uint32_t c : {x0, x1})
-            out.error = std::max(out.error, side_bound([&](std::uint32_t s) {
-                                     return double(z[std::size_t{y0 + s} * w + c]);
-                                 }, y1 - y0));
+            out.error = std::max(
+                out.error,
+                side_bound([&](std::uint32_t s) { return double(z[std::size_t{y0 + s} * w + c]); },
+                           y1 - y0));
     } else if (y1 - y0 == 1) {
         for (std::uint32_t r : {y0, y1})
-            out.error = std::max(out.error, side_bound([&](std::uint32_t s) {
-                                     return double(z[std::size_t{r} * w + x0 + s]);
-                                 }, x1 - x0));
+            out.error = std::max(
+                out.error,
+                side_bound([&](std::uint32_t s) { return double(z[std::size_t{r} * w + x0 + s]); },
+                           x1 - x0));
     }
     return out;
 }
 
 } // namespace
 
-static void check_grid(const Heightfield& hf) {
+static void check_grid(const Heightfield &hf) {
     if (hf.width < 2 || hf.height < 2)
         throw Error("quad-tree", "the grid must be at least 2x2 samples, got " +
                                      std::to_string(hf.width) + "x" + std::to_string(hf.height));
@@ -237,7 +242,7 @@ static void check_grid(const Heightfield& hf) {
     assert(hf.z.size() == static_cast<std::size_t>(hf.size()));
 }
 
-QuadTree::QuadTree(const Heightfield& hf, Progress* progress) {
+QuadTree::QuadTree(const Heightfield &hf, Progress *progress) {
     check_grid(hf);
     // On huge pages, asked for before the first touch (as the bounds below): one fault per 2 MB
     // instead of 512.
@@ -247,13 +252,13 @@ QuadTree::QuadTree(const Heightfield& hf, Progress* progress) {
     build(hf, progress);
 }
 
-QuadTree::QuadTree(Heightfield&& hf, Progress* progress) {
+QuadTree::QuadTree(Heightfield &&hf, Progress *progress) {
     check_grid(hf);
     z_ = std::move(hf.z);
     build(hf, progress);
 }
 
-void QuadTree::build(const Heightfield& hf, Progress* progress) {
+void QuadTree::build(const Heightfield &hf, Progress *progress) {
     layout_ = QuadLayout(hf.width, hf.height);
     frame_ = {hf.width, hf.height, hf.dx, hf.dy, hf.origin_x, hf.origin_y, hf.crs};
     const int levels = layout_.levels();
@@ -261,7 +266,7 @@ void QuadTree::build(const Heightfield& hf, Progress* progress) {
     std::int64_t done = 0;
     for (int d = levels - 2; d >= 0; --d) {
         const std::uint32_t nx = layout_.x.count(d), ny = layout_.y.count(d);
-        auto& level = bounds_[d];
+        auto &level = bounds_[d];
         level.reserve(std::size_t{nx} * ny);
         advise_huge_pages(level.data(), std::size_t{nx} * ny * sizeof(NodeBound));
         level.resize(std::size_t{nx} * ny);
@@ -273,11 +278,10 @@ void QuadTree::build(const Heightfield& hf, Progress* progress) {
                 for (std::uint32_t i = 0; i < nx; ++i) {
                     const std::uint32_t x0 = layout_.x.lo(d, i), x1 = layout_.x.hi(d, i);
                     const std::uint32_t y0 = layout_.y.lo(d, j), y1 = layout_.y.hi(d, j);
-                    OwnBound own =
-                        x1 - x0 == 2 && y1 - y0 == 2 ? small_bound(z_, hf.width, x0, y0)
-                        : x1 - x0 >= 2 && y1 - y0 >= 2
-                            ? fan_bound(z_, hf.width, x0, x1, y0, y1, leaf)
-                            : strip_bound(z_, hf.width, x0, x1, y0, y1, leaf);
+                    OwnBound own = x1 - x0 == 2 && y1 - y0 == 2 ? small_bound(z_, hf.width, x0, y0)
+                                   : x1 - x0 >= 2 && y1 - y0 >= 2
+                                       ? fan_bound(z_, hf.width, x0, x1, y0, y1, leaf)
+                                       : strip_bound(z_, hf.width, x0, x1, y0, y1, leaf);
                     float children = 0.0f;
                     if (!leaf) {
                         const std::uint32_t cx = layout_.x.first_child(d, i);
@@ -285,7 +289,7 @@ void QuadTree::build(const Heightfield& hf, Progress* progress) {
                         const std::uint32_t ncx = x1 - x0 >= 2 ? 2 : 1, ncy = y1 - y0 >= 2 ? 2 : 1;
                         for (std::uint32_t b = 0; b < ncy; ++b)
                             for (std::uint32_t a = 0; a < ncx; ++a) {
-                                const NodeBound& child = bound(d + 1, cx + a, cy + b);
+                                const NodeBound &child = bound(d + 1, cx + a, cy + b);
                                 children = std::max(children, child.error);
                                 own.box(child.zmin);
                                 own.box(child.zmax);
@@ -301,7 +305,7 @@ void QuadTree::build(const Heightfield& hf, Progress* progress) {
         for (std::uint32_t t = 1; t < workers; ++t)
             pool.emplace_back(rows, ny * t / workers, ny * (t + 1) / workers);
         rows(0, ny / workers);
-        for (auto& th : pool)
+        for (auto &th : pool)
             th.join();
         done += hf.size();
         if (progress)
@@ -311,7 +315,7 @@ void QuadTree::build(const Heightfield& hf, Progress* progress) {
 
 std::int64_t QuadTree::node_count() const {
     std::int64_t n = 0;
-    for (const auto& level : bounds_)
+    for (const auto &level : bounds_)
         n += static_cast<std::int64_t>(level.size());
     return n;
 }
@@ -323,9 +327,9 @@ namespace {
 
 class MemorySource final : public NodeSource {
   public:
-    explicit MemorySource(const QuadTree& tree) : tree_(tree) {}
-    const QuadLayout& layout() const override { return tree_.layout(); }
-    const GridFrame& frame() const override { return tree_.frame(); }
+    explicit MemorySource(const QuadTree &tree) : tree_(tree) {}
+    const QuadLayout &layout() const override { return tree_.layout(); }
+    const GridFrame &frame() const override { return tree_.frame(); }
     NodeBound bound(int d, std::uint32_t i, std::uint32_t j) override {
         return tree_.bound(d, i, j);
     }
@@ -334,18 +338,18 @@ class MemorySource final : public NodeSource {
     }
 
   private:
-    const QuadTree& tree_;
+    const QuadTree &tree_;
 };
 
 // Zero-initialised arrays from calloc: untouched pages of a large status array cost no memory.
 struct FreeDeleter {
-    void operator()(void* p) const { std::free(p); }
+    void operator()(void *p) const { std::free(p); }
 };
 template <class T> std::unique_ptr<T[], FreeDeleter> zeroed(std::size_t n) {
-    void* p = std::calloc(std::max<std::size_t>(n, 1), sizeof(T));
+    void *p = std::calloc(std::max<std::size_t>(n, 1), sizeof(T));
     if (!p)
         throw std::bad_alloc();
-    return std::unique_ptr<T[], FreeDeleter>(static_cast<T*>(p));
+    return std::unique_ptr<T[], FreeDeleter>(static_cast<T *>(p));
 }
 
 constexpr std::uint8_t k_unread = 0, k_leaf = 1, k_split = 2;
@@ -358,7 +362,7 @@ std::uint64_t pack(int d, std::uint32_t i, std::uint32_t j) {
 
 struct QuadTreeLod::Impl {
     std::unique_ptr<NodeSource> source;
-    const QuadLayout* lay = nullptr;
+    const QuadLayout *lay = nullptr;
     int last = 0; // the level of one-cell nodes only; it has no status array
     std::vector<std::unique_ptr<std::uint8_t[], FreeDeleter>> status;
     std::unique_ptr<std::uint64_t[], FreeDeleter> emitted; // one bit per sample
@@ -387,11 +391,11 @@ struct QuadTreeLod::Impl {
         dy = source->frame().dy;
     }
 
-    std::uint8_t& st(int d, std::uint32_t i, std::uint32_t j) {
+    std::uint8_t &st(int d, std::uint32_t i, std::uint32_t j) {
         return status[d][std::size_t{j} * lay->x.count(d) + i];
     }
 
-    void set_view(const View& view, const RetrieveOptions& options) {
+    void set_view(const View &view, const RetrieveOptions &options) {
         eye = view.eye;
         k = view.k();
         tol = options.tol_px;
@@ -411,8 +415,8 @@ struct QuadTreeLod::Impl {
         planes[4] = -f;
     }
 
-    bool outside_frustum(const glm::dvec3& lo, const glm::dvec3& hi) const {
-        for (const glm::dvec3& n : planes) {
+    bool outside_frustum(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
+        for (const glm::dvec3 &n : planes) {
             // The box corner deepest inside this plane; slack of a micrometre for rounding.
             const glm::dvec3 p(n.x > 0 ? lo.x : hi.x, n.y > 0 ? lo.y : hi.y, n.z > 0 ? lo.z : hi.z);
             if (glm::dot(n, p - eye) > 1e-6 * glm::length(n))
@@ -502,7 +506,7 @@ struct QuadTreeLod::Impl {
     void traverse() {
         int d = 0;
         while (d < last) {
-            auto& queue = pending[d];
+            auto &queue = pending[d];
             while (cursor[d] < queue.size()) {
                 const std::uint64_t key = queue[cursor[d]++];
                 const std::uint32_t i = (key >> 29) & 0x1fffffff, j = key & 0x1fffffff;
@@ -539,9 +543,10 @@ struct QuadTreeLod::Impl {
         out.bound_px = 0.0;
     }
 
-    std::uint32_t vertex(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c, std::uint32_t r) {
+    std::uint32_t vertex(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
+                         std::uint32_t r) {
         const std::uint32_t id = r * static_cast<std::uint32_t>(lay->width) + c;
-        std::uint64_t& word = emitted[id >> 6];
+        std::uint64_t &word = emitted[id >> 6];
         const std::uint64_t bit = std::uint64_t{1} << (id & 63);
         if (!(word & bit)) {
             word |= bit;
@@ -633,7 +638,7 @@ struct QuadTreeLod::Impl {
         }
     }
 
-    const Retrieval& run(const View& view, const RetrieveOptions& options) {
+    const Retrieval &run(const View &view, const RetrieveOptions &options) {
         assert(options.tol_px >= 0.0);
         reset();
         set_view(view, options);
@@ -659,7 +664,7 @@ struct QuadTreeLod::Impl {
     }
 };
 
-QuadTreeLod::QuadTreeLod(const QuadTree& tree)
+QuadTreeLod::QuadTreeLod(const QuadTree &tree)
     : impl_(std::make_unique<Impl>(std::make_unique<MemorySource>(tree))) {}
 
 QuadTreeLod::QuadTreeLod(std::unique_ptr<NodeSource> source)
@@ -667,12 +672,12 @@ QuadTreeLod::QuadTreeLod(std::unique_ptr<NodeSource> source)
 
 QuadTreeLod::~QuadTreeLod() = default;
 
-const Retrieval& QuadTreeLod::retrieve(const View& view, const RetrieveOptions& options) {
+const Retrieval &QuadTreeLod::retrieve(const View &view, const RetrieveOptions &options) {
     return impl_->run(view, options);
 }
 
-const QuadLayout& QuadTreeLod::layout() const { return *impl_->lay; }
-const GridFrame& QuadTreeLod::frame() const { return impl_->source->frame(); }
+const QuadLayout &QuadTreeLod::layout() const { return *impl_->lay; }
+const GridFrame &QuadTreeLod::frame() const { return impl_->source->frame(); }
 
 NodeStatus QuadTreeLod::status(int d, std::uint32_t i, std::uint32_t j) const {
     assert(d >= 0 && d <= impl_->last);
@@ -693,21 +698,22 @@ NodeStatus QuadTreeLod::status(int d, std::uint32_t i, std::uint32_t j) const {
     }
 }
 
-Retrieval retrieve(const QuadTree& tree, const View& view, const RetrieveOptions& options) {
+Retrieval retrieve(const QuadTree &tree, const View &view, const RetrieveOptions &options) {
     QuadTreeLod lod(tree);
     return lod.retrieve(view, options);
 }
 
-Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame) {
+Mesh to_mesh(const Retrieval &retrieval, const GridFrame &frame) {
     Mesh mesh;
-    mesh.reserve(retrieval.nodes.size(), 3 * retrieval.nodes.size(), retrieval.triangles.size() / 3);
+    mesh.reserve(retrieval.nodes.size(), 3 * retrieval.nodes.size(),
+                 retrieval.triangles.size() / 3);
     auto origin = get_origin_property(mesh);
     std::vector<std::pair<std::uint32_t, int>> index(retrieval.nodes.size());
     const auto w = static_cast<std::uint32_t>(frame.width);
     for (std::size_t n = 0; n < retrieval.nodes.size(); ++n) {
         const std::uint32_t id = retrieval.nodes[n];
-        const auto v = mesh.add_vertex(Mesh::Point(float((id % w) * frame.dx),
-                                                   float((id / w) * frame.dy), retrieval.z[n]));
+        const auto v = mesh.add_vertex(
+            Mesh::Point(float((id % w) * frame.dx), float((id / w) * frame.dy), retrieval.z[n]));
         mesh.property(origin, v) = id;
         index[n] = {id, v.idx()};
     }
@@ -729,7 +735,8 @@ Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame) {
 // the nodes row by row walked the retrieval's level order before, 16 % slower on N42E001. A
 // counting sort on the first vertex, stable (ties keep the retrieval's order): a comparison sort of
 // the keys took 24 ms of N42E001's 352 k-node budget retrieval.
-static void add_in_row_order(Mesh& mesh, const std::vector<std::uint32_t>& t, std::size_t vertices) {
+static void add_in_row_order(Mesh &mesh, const std::vector<std::uint32_t> &t,
+                             std::size_t vertices) {
     const std::size_t faces = t.size() / 3;
     const auto first = [&](std::size_t k) {
         return std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]});
@@ -747,7 +754,7 @@ static void add_in_row_order(Mesh& mesh, const std::vector<std::uint32_t>& t, st
     add_triangles(mesh, corners);
 }
 
-Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
+Mesh to_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
     Mesh mesh = grid_vertices(hf);
     std::vector<std::uint8_t> held(mesh.n_vertices(), 0);
     for (const std::uint32_t id : retrieval.nodes)
@@ -759,7 +766,7 @@ Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
     return mesh;
 }
 
-Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
+Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
     std::vector<std::uint32_t> nodes = retrieval.nodes;
     std::sort(nodes.begin(), nodes.end());
     Mesh mesh;
@@ -785,8 +792,8 @@ Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf) {
 // ---------------------------------------------------------------------------------------------
 // The heights a TIN's bound rests on
 
-int level_for_cells(const QuadLayout& layout, int cells) {
-    const auto widest = [](const AxisSplit& axis, int d) {
+int level_for_cells(const QuadLayout &layout, int cells) {
+    const auto widest = [](const AxisSplit &axis, int d) {
         std::uint32_t most = 0;
         for (std::uint32_t k = 0; k < axis.count(d); ++k)
             most = std::max(most, axis.length(d, k));
@@ -849,10 +856,10 @@ struct WorkingFace {
 
 } // namespace
 
-WorkingSet height_working_set(const QuadTree& tree, const Mesh& tin, const View& view,
-                              const SignificanceOptions& significance, double tol_px, int level) {
-    const QuadLayout& lay = tree.layout();
-    const GridFrame& frame = tree.frame();
+WorkingSet height_working_set(const QuadTree &tree, const Mesh &tin, const View &view,
+                              const SignificanceOptions &significance, double tol_px, int level) {
+    const QuadLayout &lay = tree.layout();
+    const GridFrame &frame = tree.frame();
     if (lay.levels() < 2 || level < 0 || level > lay.levels() - 2)
         throw std::invalid_argument("height_working_set: level " + std::to_string(level) +
                                     " has no node bounds");
@@ -871,7 +878,7 @@ WorkingSet height_working_set(const QuadTree& tree, const Mesh& tin, const View&
         WorkingFace face;
         int k = 0;
         for (const auto v : tin.fv_range(f)) {
-            const Mesh::Point& point = tin.point(v);
+            const Mesh::Point &point = tin.point(v);
             face.p[k] = glm::dvec3(point[0], point[1], point[2]);
             face.q[k] = glm::dvec2(face.p[k].x / frame.dx, face.p[k].y / frame.dy);
             ++k;
@@ -889,12 +896,12 @@ WorkingSet height_working_set(const QuadTree& tree, const Mesh& tin, const View&
             const std::uint32_t y0 = lay.y.lo(n.d, n.j), y1 = lay.y.hi(n.d, n.j);
             if (!face.meets(x0, y0, x1, y1))
                 continue;
-            const NodeBound& b = tree.bound(n.d, n.i, n.j);
+            const NodeBound &b = tree.bound(n.d, n.i, n.j);
             if (x1 - x0 >= 2 && y1 - y0 >= 2) {
                 const std::uint32_t mx = (x0 + x1) / 2, my = (y0 + y1) / 2;
                 double dev = 0.0;
-                for (const auto& [c, r] : {std::pair{x0, y0}, std::pair{x1, y0}, std::pair{x0, y1},
-                                          std::pair{x1, y1}, std::pair{mx, my}}) {
+                for (const auto &[c, r] : {std::pair{x0, y0}, std::pair{x1, y0}, std::pair{x0, y1},
+                                           std::pair{x1, y1}, std::pair{mx, my}}) {
                     const double x = double(float(c * frame.dx)), y = double(float(r * frame.dy));
                     dev = std::max(dev, std::abs(double(tree.elevation(c, r)) - face.plane(x, y)));
                 }
@@ -914,7 +921,7 @@ WorkingSet height_working_set(const QuadTree& tree, const Mesh& tin, const View&
                         stack.push_back({n.d + 1, ci + a, cj + c});
                 continue;
             }
-            std::uint8_t& need = out.needed[std::size_t(n.j) * lay.x.count(level) + n.i];
+            std::uint8_t &need = out.needed[std::size_t(n.j) * lay.x.count(level) + n.i];
             if (need)
                 continue;
             const auto c0 = std::uint32_t(std::max(double(x0), std::ceil(face.lo.x - 1e-6)));

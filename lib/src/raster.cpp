@@ -35,10 +35,10 @@ namespace {
 // What a file says about where it stands on Earth.
 struct Georef {
     bool present = false;
-    bool geographic = false; // degrees of longitude/latitude
-    int epsg = 0;            // EPSG code of the CRS (geographic or projected), 0 if unknown
+    bool geographic = false;    // degrees of longitude/latitude
+    int epsg = 0;               // EPSG code of the CRS (geographic or projected), 0 if unknown
     double west = 0, north = 0; // CRS coordinates of the NW corner of the NW pixel's area
-    double sx = 1, sy = 1;   // pixel size in CRS units (positive)
+    double sx = 1, sy = 1;      // pixel size in CRS units (positive)
     std::optional<double> nodata;
 };
 
@@ -49,9 +49,10 @@ struct RawGrid {
     std::vector<std::uint8_t> is_void;
 };
 
-std::string lower_extension(const std::string& path) {
+std::string lower_extension(const std::string &path) {
     std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return ext;
 }
 
@@ -63,7 +64,7 @@ double load_bytes(std::int64_t w, std::int64_t h, int channels, int sample_bytes
 
 // Refuses a raster whose load would need more than options.max_memory_mb, or more than half of
 // this machine's memory, before any allocation: a header can declare any size.
-void check_memory(const std::string& path, const LoadOptions& options, std::int64_t w,
+void check_memory(const std::string &path, const LoadOptions &options, std::int64_t w,
                   std::int64_t h, int channels, int sample_bytes) {
     const double need = load_bytes(w, h, channels, sample_bytes);
     const double mib = 1 << 20;
@@ -79,7 +80,7 @@ void check_memory(const std::string& path, const LoadOptions& options, std::int6
                               std::to_string(std::int64_t(have / mib)) + " MiB");
 }
 
-void check_size(const std::string& path, std::int64_t w, std::int64_t h) {
+void check_size(const std::string &path, std::int64_t w, std::int64_t h) {
     if (w < 2 || h < 2)
         throw Error(path, "raster is " + std::to_string(w) + "x" + std::to_string(h) +
                               "; at least 2x2 samples are needed");
@@ -90,7 +91,7 @@ void check_size(const std::string& path, std::int64_t w, std::int64_t h) {
 
 // --- SRTM .hgt: big-endian int16, square 1201 or 3601, row 0 north, file name = SW corner. ---
 
-RawGrid read_hgt(const std::string& path, const LoadOptions& options, Georef& geo) {
+RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &geo) {
     const auto bytes = fs::file_size(path);
     int n = 0;
     for (int side : {1201, 3601})
@@ -99,8 +100,8 @@ RawGrid read_hgt(const std::string& path, const LoadOptions& options, Georef& ge
     if (n == 0)
         throw Error(path, "size " + std::to_string(bytes) +
                               " bytes is not an SRTM tile (1201x1201 or 3601x3601 int16 = " +
-                              std::to_string(1201 * 1201 * 2) + " or " + std::to_string(3601 * 3601 * 2) +
-                              " bytes)");
+                              std::to_string(1201 * 1201 * 2) + " or " +
+                              std::to_string(3601 * 3601 * 2) + " bytes)");
     check_memory(path, options, n, n, 1, 2);
     // SRTM names the tile by its south-west corner: [NS]dd[EW]ddd, e.g. N42E001.
     const std::string stem = fs::path(path).filename().string();
@@ -126,7 +127,7 @@ RawGrid read_hgt(const std::string& path, const LoadOptions& options, Georef& ge
     geo.nodata = -32768.0;
     std::ifstream in(path, std::ios::binary);
     std::vector<unsigned char> buf(bytes);
-    if (!in.read(reinterpret_cast<char*>(buf.data()), std::streamsize(bytes)))
+    if (!in.read(reinterpret_cast<char *>(buf.data()), std::streamsize(bytes)))
         throw Error(path, "cannot read file");
     RawGrid g;
     g.width = g.height = n;
@@ -138,18 +139,18 @@ RawGrid read_hgt(const std::string& path, const LoadOptions& options, Georef& ge
 
 // --- GeoTIFF tags through libgeotiff. ---
 
-Georef read_geotiff_tags(const std::string& path) {
+Georef read_geotiff_tags(const std::string &path) {
     Georef geo;
     TIFFSetWarningHandler(nullptr);
     TIFFSetErrorHandler(nullptr);
-    const std::unique_ptr<TIFF, void (*)(TIFF*)> file(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
-    TIFF* tif = file.get();
+    const std::unique_ptr<TIFF, void (*)(TIFF *)> file(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
+    TIFF *tif = file.get();
     if (!tif)
         return geo;
     std::uint16_t count = 0;
-    double* scale = nullptr;
-    double* ties = nullptr;
-    double* matrix = nullptr;
+    double *scale = nullptr;
+    double *ties = nullptr;
+    double *matrix = nullptr;
     if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
         geo.sx = std::abs(scale[0]);
         geo.sy = std::abs(scale[1]);
@@ -178,23 +179,26 @@ Georef read_geotiff_tags(const std::string& path) {
     }
     // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
     std::uint16_t ncount = 0;
-    char* nodata = nullptr;
+    char *nodata = nullptr;
     if (TIFFGetField(tif, TIFFTAG_GDAL_NODATA, &ncount, &nodata) && nodata && ncount > 0) {
-        char* end = nullptr;
+        char *end = nullptr;
         const double v = std::strtod(nodata, &end);
         if (end != nodata)
             geo.nodata = v;
     }
-    if (GTIF* gtif = GTIFNew(tif)) {
+    if (GTIF *gtif = GTIFNew(tif)) {
         unsigned short model = 0, code = 0, raster = RasterPixelIsArea;
         GTIFKeyGetSHORT(gtif, GTModelTypeGeoKey, &model, 0, 1);
         GTIFKeyGetSHORT(gtif, GTRasterTypeGeoKey, &raster, 0, 1);
         if (model == ModelTypeGeographic) {
             geo.geographic = true;
-            geo.epsg = GTIFKeyGetSHORT(gtif, GeographicTypeGeoKey, &code, 0, 1) && code != KvUserDefined
-                           ? code : 4326;
+            geo.epsg =
+                GTIFKeyGetSHORT(gtif, GeographicTypeGeoKey, &code, 0, 1) && code != KvUserDefined
+                    ? code
+                    : 4326;
         } else if (model == ModelTypeProjected &&
-                   GTIFKeyGetSHORT(gtif, ProjectedCSTypeGeoKey, &code, 0, 1) && code != KvUserDefined) {
+                   GTIFKeyGetSHORT(gtif, ProjectedCSTypeGeoKey, &code, 0, 1) &&
+                   code != KvUserDefined) {
             geo.epsg = code;
         }
         if (raster == RasterPixelIsPoint) {
@@ -210,7 +214,7 @@ Georef read_geotiff_tags(const std::string& path) {
 // --- Everything else through OpenImageIO, samples in their native type. ---
 
 template <typename T>
-void copy_channel(const std::vector<T>& src, int channels, std::vector<float>& dst) {
+void copy_channel(const std::vector<T> &src, int channels, std::vector<float> &dst) {
     for (std::size_t i = 0; i < dst.size(); ++i)
         dst[i] = static_cast<float>(src[i * channels]);
 }
@@ -233,14 +237,14 @@ class QuietStderr {
         ::dup2(saved_, STDERR_FILENO);
         ::close(saved_);
     }
-    QuietStderr(const QuietStderr&) = delete;
-    QuietStderr& operator=(const QuietStderr&) = delete;
+    QuietStderr(const QuietStderr &) = delete;
+    QuietStderr &operator=(const QuietStderr &) = delete;
 
   private:
     int saved_;
 };
 
-RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
+RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
     const QuietStderr quiet;
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
@@ -250,7 +254,7 @@ RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
         const auto nl = why.find('\n');
         throw Error(path, "cannot read raster: " + why.substr(0, nl));
     }
-    const OIIO::ImageSpec& spec = in->spec();
+    const OIIO::ImageSpec &spec = in->spec();
     check_size(path, spec.width, spec.height);
     check_memory(path, options, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
     if (spec.depth > 1)
@@ -285,27 +289,43 @@ RawGrid read_oiio(const std::string& path, const LoadOptions& options) {
                                   std::to_string(nc) + " channel(s) of " + spec.format.c_str());
         const auto buf = read(std::uint8_t{});
         for (std::size_t i = 0; i < n; ++i) {
-            const std::uint8_t* px = &buf[i * nc];
+            const std::uint8_t *px = &buf[i * nc];
             g.z[i] = static_cast<float>((px[0] * 65536.0 + px[1] * 256.0 + px[2]) / 10.0 - 10000.0);
         }
         return g;
     }
     switch (spec.format.basetype) {
-    case OIIO::TypeDesc::INT16: copy_channel(read(std::int16_t{}), nc, g.z); break;
-    case OIIO::TypeDesc::UINT16: copy_channel(read(std::uint16_t{}), nc, g.z); break;
-    case OIIO::TypeDesc::INT32: copy_channel(read(std::int32_t{}), nc, g.z); break;
-    case OIIO::TypeDesc::UINT32: copy_channel(read(std::uint32_t{}), nc, g.z); break;
-    case OIIO::TypeDesc::UINT8: copy_channel(read(std::uint8_t{}), nc, g.z); break;
-    case OIIO::TypeDesc::INT8: copy_channel(read(char{}), nc, g.z); break;
-    case OIIO::TypeDesc::DOUBLE: copy_channel(read(double{}), nc, g.z); break;
-    default: copy_channel(read(float{}), nc, g.z); break; // half and float
+    case OIIO::TypeDesc::INT16:
+        copy_channel(read(std::int16_t{}), nc, g.z);
+        break;
+    case OIIO::TypeDesc::UINT16:
+        copy_channel(read(std::uint16_t{}), nc, g.z);
+        break;
+    case OIIO::TypeDesc::INT32:
+        copy_channel(read(std::int32_t{}), nc, g.z);
+        break;
+    case OIIO::TypeDesc::UINT32:
+        copy_channel(read(std::uint32_t{}), nc, g.z);
+        break;
+    case OIIO::TypeDesc::UINT8:
+        copy_channel(read(std::uint8_t{}), nc, g.z);
+        break;
+    case OIIO::TypeDesc::INT8:
+        copy_channel(read(char{}), nc, g.z);
+        break;
+    case OIIO::TypeDesc::DOUBLE:
+        copy_channel(read(double{}), nc, g.z);
+        break;
+    default:
+        copy_channel(read(float{}), nc, g.z);
+        break; // half and float
     }
     return g;
 }
 
 // Marks voids (the nodata value; NaN only when NaN is the declared nodata) and rejects
 // non-finite heights.
-void mark_voids(const std::string& path, RawGrid& g, const Georef& geo) {
+void mark_voids(const std::string &path, RawGrid &g, const Georef &geo) {
     g.is_void.assign(g.z.size(), 0);
     const bool nan_is_nodata = geo.nodata && std::isnan(*geo.nodata);
     for (std::size_t i = 0; i < g.z.size(); ++i) {
@@ -313,10 +333,11 @@ void mark_voids(const std::string& path, RawGrid& g, const Georef& geo) {
         if (std::isnan(v)) {
             if (!nan_is_nodata)
                 throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
-                                      std::to_string(i % g.width) + " is NaN (no nodata value declared)");
+                                      std::to_string(i % g.width) +
+                                      " is NaN (no nodata value declared)");
             g.is_void[i] = 1;
-        } else if (geo.nodata && (v == static_cast<float>(*geo.nodata) ||
-                                  (*geo.nodata < -1e30 && v < -1e30))) {
+        } else if (geo.nodata &&
+                   (v == static_cast<float>(*geo.nodata) || (*geo.nodata < -1e30 && v < -1e30))) {
             g.is_void[i] = 1;
         } else if (!std::isfinite(v)) {
             throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
@@ -327,7 +348,7 @@ void mark_voids(const std::string& path, RawGrid& g, const Georef& geo) {
 
 // Voids are missing data, never heights. Whole rows/columns of voids at the edges are cropped
 // away (too large to invent); the rest are filled from valid neighbours, ring by ring inward.
-void crop_and_fill(const std::string& path, RawGrid& g, Georef& geo, Heightfield& hf, bool fill) {
+void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield &hf, bool fill) {
     int top = g.height, bottom = -1, left = g.width, right = -1;
     std::int64_t voids = 0;
     for (int r = 0; r < g.height; ++r)
@@ -375,7 +396,7 @@ void crop_and_fill(const std::string& path, RawGrid& g, Georef& geo, Heightfield
     std::vector<std::uint8_t> known(g.z.size()), queued(g.z.size());
     for (std::size_t i = 0; i < g.z.size(); ++i)
         known[i] = !g.is_void[i];
-    auto neighbours = [&](std::size_t i, auto&& visit) {
+    auto neighbours = [&](std::size_t i, auto &&visit) {
         const int r = int(i / w), c = int(i % w);
         for (int dr = -1; dr <= 1; ++dr)
             for (int dc = -1; dc <= 1; ++dc) {
@@ -426,8 +447,8 @@ void crop_and_fill(const std::string& path, RawGrid& g, Georef& geo, Heightfield
 
 // Local metric frame: projected CRSs keep their units; geographic ones go to the UTM zone of
 // the centre with PROJ; ground spacing is measured there at the centre of the raster.
-void apply_georef(const std::string& path, const Georef& geo, const LoadOptions& options,
-                  const RawGrid& g, Heightfield& hf) {
+void apply_georef(const std::string &path, const Georef &geo, const LoadOptions &options,
+                  const RawGrid &g, Heightfield &hf) {
     if (!geo.present) {
         hf.dx = hf.dy = options.cell;
         hf.crs = "none (cell " + std::to_string(options.cell) + ")";
@@ -457,11 +478,11 @@ void apply_georef(const std::string& path, const Georef& geo, const LoadOptions&
                               ", not on Earth");
     const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
-    PJ_CONTEXT* ctx = proj_context_create();
+    PJ_CONTEXT *ctx = proj_context_create();
     const std::string src = "EPSG:" + std::to_string(geo.epsg ? geo.epsg : 4326);
     const std::string dst = "EPSG:" + std::to_string(utm);
-    PJ* raw = proj_create_crs_to_crs(ctx, src.c_str(), dst.c_str(), nullptr);
-    PJ* pj = raw ? proj_normalize_for_visualization(ctx, raw) : nullptr;
+    PJ *raw = proj_create_crs_to_crs(ctx, src.c_str(), dst.c_str(), nullptr);
+    PJ *pj = raw ? proj_normalize_for_visualization(ctx, raw) : nullptr;
     if (raw)
         proj_destroy(raw);
     if (!pj) {
@@ -482,13 +503,13 @@ void apply_georef(const std::string& path, const Georef& geo, const LoadOptions&
         throw Error(path, "georeferencing gives no usable ground spacing");
     hf.origin_x = sw.x;
     hf.origin_y = sw.y;
-    hf.crs = dst + " (UTM zone " + std::to_string(zone) + (lat_c >= 0 ? "N" : "S") + ", from " + src +
-             " degrees)";
+    hf.crs = dst + " (UTM zone " + std::to_string(zone) + (lat_c >= 0 ? "N" : "S") + ", from " +
+             src + " degrees)";
 }
 
 } // namespace
 
-Heightfield load_heightfield(const std::string& path, const LoadOptions& options) {
+Heightfield load_heightfield(const std::string &path, const LoadOptions &options) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw Error(path, "no such file");

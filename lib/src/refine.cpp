@@ -86,7 +86,7 @@ static void start_on_grid(Refiner::Impl &s, const Heightfield &hf, const View &f
     start(s, first, share > 0);
 }
 
-Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& options)
+Refiner::Refiner(const Heightfield &hf, const View &first, const RefineOptions &options)
     : impl_(std::make_unique<Impl>()) {
     impl_->options = options;
     start_on_grid(*impl_, hf, first, [&](const RetrieveOptions &ro) {
@@ -95,8 +95,8 @@ Refiner::Refiner(const Heightfield& hf, const View& first, const RefineOptions& 
     });
 }
 
-Refiner::Refiner(const Heightfield& hf, std::unique_ptr<NodeSource> tree, const View& first,
-                 const RefineOptions& options)
+Refiner::Refiner(const Heightfield &hf, std::unique_ptr<NodeSource> tree, const View &first,
+                 const RefineOptions &options)
     : impl_(std::make_unique<Impl>()) {
     assert(tree->frame().width == hf.width && tree->frame().height == hf.height);
     impl_->options = options;
@@ -106,7 +106,7 @@ Refiner::Refiner(const Heightfield& hf, std::unique_ptr<NodeSource> tree, const 
     });
 }
 
-Refiner::Refiner(Mesh mesh, const View& first, const RefineOptions& options)
+Refiner::Refiner(Mesh mesh, const View &first, const RefineOptions &options)
     : impl_(std::make_unique<Impl>()) {
     impl_->mesh = std::make_unique<Mesh>(std::move(mesh));
     impl_->options = options;
@@ -115,10 +115,10 @@ Refiner::Refiner(Mesh mesh, const View& first, const RefineOptions& options)
 
 Refiner::~Refiner() = default;
 
-const FrameStats& Refiner::first_frame() const { return impl_->first; }
+const FrameStats &Refiner::first_frame() const { return impl_->first; }
 
-FrameStats Refiner::update(const View& view) {
-    Impl& s = *impl_;
+FrameStats Refiner::update(const View &view) {
+    Impl &s = *impl_;
     Stopwatch clock;
     const UpdateStats u =
         s.eraser->update(view, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
@@ -139,12 +139,12 @@ FrameStats Refiner::update(const View& view) {
     return f;
 }
 
-const Mesh& Refiner::mesh() const { return *impl_->mesh; }
+const Mesh &Refiner::mesh() const { return *impl_->mesh; }
 
 bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_erased(v); }
 
 std::size_t Refiner::bytes() const {
-    const Mesh& m = *impl_->mesh;
+    const Mesh &m = *impl_->mesh;
     // OpenMesh's arrays, each entry as large as the mesh's types make it (a malloc count of the
     // mesh's copy agrees): per vertex a point, its item (an outgoing halfedge), a status word (4
     // bytes, not 1), the traits' data (an empty struct, still a byte) and the origin property if

@@ -34,7 +34,7 @@ namespace tinlod {
 
 namespace {
 
-const char* k_vertex_shader = R"(#version 330 core
+const char *k_vertex_shader = R"(#version 330 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in float scalar;
@@ -50,7 +50,7 @@ void main() {
 }
 )";
 
-const char* k_geometry_shader = R"(#version 330 core
+const char *k_geometry_shader = R"(#version 330 core
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 in VertexData { vec3 normal; float scalar; float z; vec2 uv; } gs[];
@@ -85,7 +85,7 @@ void main() {
 }
 )";
 
-const char* k_fragment_shader = R"(#version 330 core
+const char *k_fragment_shader = R"(#version 330 core
 in FragmentData { vec3 normal; float scalar; float z; vec2 uv; noperspective vec3 edge; } fs;
 flat in int face;
 uniform bool dem_normals;
@@ -154,7 +154,7 @@ void main() {
 }
 )";
 
-GLuint compile(GLenum kind, const char* source, const char* name) {
+GLuint compile(GLenum kind, const char *source, const char *name) {
     const GLuint shader = glCreateShader(kind);
     glShaderSource(shader, 1, &source, nullptr);
     glCompileShader(shader);
@@ -190,7 +190,7 @@ GLuint link_program() {
     return program;
 }
 
-void check_gl(const char* stage) {
+void check_gl(const char *stage) {
     const GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
         char code[16];
@@ -205,10 +205,10 @@ struct Bounds {
     bool empty() const { return !(lo.x <= hi.x); }
 };
 
-Bounds live_bounds(const Mesh& mesh) {
+Bounds live_bounds(const Mesh &mesh) {
     Bounds b;
     for (auto v : mesh.vertices()) {
-        const auto& p = mesh.point(v);
+        const auto &p = mesh.point(v);
         const glm::dvec3 q(p[0], p[1], p[2]);
         b.lo = glm::min(b.lo, q);
         b.hi = glm::max(b.hi, q);
@@ -218,14 +218,14 @@ Bounds live_bounds(const Mesh& mesh) {
 
 } // namespace
 
-glm::dvec2 clip_range(const Mesh& mesh, const View& view) {
+glm::dvec2 clip_range(const Mesh &mesh, const View &view) {
     const Bounds b = live_bounds(mesh);
     if (b.empty())
         return {1.0, 2.0};
     return clip_range(b.lo, b.hi, view);
 }
 
-glm::dvec2 clip_range(const glm::dvec3& lo, const glm::dvec3& hi, const View& view) {
+glm::dvec2 clip_range(const glm::dvec3 &lo, const glm::dvec3 &hi, const View &view) {
     double far = 0.0;
     for (int i = 0; i < 8; ++i) {
         const glm::dvec3 corner(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
@@ -259,7 +259,7 @@ MeshPainter::~MeshPainter() {
     glDeleteProgram(program_);
 }
 
-void MeshPainter::upload(const Mesh& mesh, const RenderOptions& options) {
+void MeshPainter::upload(const Mesh &mesh, const RenderOptions &options) {
     const std::size_t nv = mesh.n_vertices();
     const bool by_vertex = options.color == ColorMode::vertex_scalar;
     const bool by_face = options.color == ColorMode::face_scalar;
@@ -288,7 +288,7 @@ void MeshPainter::upload(const Mesh& mesh, const RenderOptions& options) {
         glm::dvec3 p[3];
         int i = 0;
         for (auto v : f.vertices()) {
-            const auto& q = mesh.point(v);
+            const auto &q = mesh.point(v);
             id[i] = static_cast<GLuint>(v.idx());
             p[i++] = glm::dvec3(q[0], q[1], q[2]);
         }
@@ -304,10 +304,10 @@ void MeshPainter::upload(const Mesh& mesh, const RenderOptions& options) {
 
     std::vector<float> vertices(7 * nv);
     for (auto v : mesh.vertices()) {
-        const auto& q = mesh.point(v);
+        const auto &q = mesh.point(v);
         const glm::dvec3 n = glm::length(normals[v.idx()]) > 0.0 ? glm::normalize(normals[v.idx()])
                                                                  : glm::dvec3(0.0, 0.0, 1.0);
-        float* out = &vertices[7 * static_cast<std::size_t>(v.idx())];
+        float *out = &vertices[7 * static_cast<std::size_t>(v.idx())];
         out[0] = float(q[0] - offset_.x);
         out[1] = float(q[1] - offset_.y);
         out[2] = float(q[2] - offset_.z);
@@ -337,10 +337,10 @@ void MeshPainter::upload(const Mesh& mesh, const RenderOptions& options) {
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float), nullptr);
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
-                          reinterpret_cast<const void*>(3 * sizeof(float)));
+                          reinterpret_cast<const void *>(3 * sizeof(float)));
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
-                          reinterpret_cast<const void*>(6 * sizeof(float)));
+                          reinterpret_cast<const void *>(6 * sizeof(float)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer_);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)),
                  indices.data(), GL_STATIC_DRAW);
@@ -357,7 +357,7 @@ void MeshPainter::upload(const Mesh& mesh, const RenderOptions& options) {
     upload_normal_map(options.normal_source);
 }
 
-void MeshPainter::upload_normal_map(const Heightfield* hf) {
+void MeshPainter::upload_normal_map(const Heightfield *hf) {
     normal_map_ = hf != nullptr;
     if (!normal_map_)
         return;
@@ -377,7 +377,7 @@ void MeshPainter::upload_normal_map(const Heightfield* hf) {
             const double gx = (double(hf->at(c1, r)) - hf->at(c0, r)) / ((c1 - c0) * hf->dx);
             const double gy = (double(hf->at(c, r1)) - hf->at(c, r0)) / ((r1 - r0) * hf->dy);
             const glm::dvec3 n = glm::normalize(glm::dvec3(-gx, -gy, 1.0));
-            float* out = &normals[3 * (std::size_t(r) * w + c)];
+            float *out = &normals[3 * (std::size_t(r) * w + c)];
             out[0] = float(n.x);
             out[1] = float(n.y);
             out[2] = float(n.z);
@@ -397,7 +397,7 @@ void MeshPainter::upload_normal_map(const Heightfield* hf) {
     check_gl("uploading the DEM normals");
 }
 
-void MeshPainter::draw(const View& view, glm::dvec2 clip, const RenderOptions& options) const {
+void MeshPainter::draw(const View &view, glm::dvec2 clip, const RenderOptions &options) const {
     const glm::dmat4 mvp = view.projection_matrix(clip.x, clip.y) * view.view_matrix() *
                            glm::translate(glm::dmat4(1.0), offset_);
     const glm::mat4 mvp_f(mvp);
@@ -457,8 +457,8 @@ struct Renderer::Context {
     int width = 0, height = 0;
 
     Context() = default;
-    Context(const Context&) = delete;
-    Context& operator=(const Context&) = delete;
+    Context(const Context &) = delete;
+    Context &operator=(const Context &) = delete;
     // The display stays initialised: other Renderers on this thread share it.
     ~Context() {
         if (context == EGL_NO_CONTEXT)
@@ -472,25 +472,25 @@ struct Renderer::Context {
     }
 };
 
-static std::string egl_error_text(const char* what) {
+static std::string egl_error_text(const char *what) {
     char code[16];
     std::snprintf(code, sizeof code, "0x%04x", eglGetError());
     return std::string(what) + " (EGL error " + code + ")";
 }
 
-static bool has_extension(const char* list, const char* name) {
+static bool has_extension(const char *list, const char *name) {
     if (list == nullptr)
         return false;
     const std::size_t n = std::strlen(name);
-    for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + n, name))
+    for (const char *p = std::strstr(list, name); p != nullptr; p = std::strstr(p + n, name))
         if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
             return true;
     return false;
 }
 
 Renderer::Renderer() : context_(std::make_unique<Context>()) {
-    Context& c = *context_;
-    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    Context &c = *context_;
+    const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
         throw Error("render", "no OpenGL: EGL has no surfaceless platform "
                               "(EGL_MESA_platform_surfaceless; install libegl1-mesa-dev and "
@@ -503,7 +503,7 @@ Renderer::Renderer() : context_(std::make_unique<Context>()) {
     EGLint major = 0, minor = 0;
     if (c.display == EGL_NO_DISPLAY || !eglInitialize(c.display, &major, &minor))
         throw Error("render", egl_error_text("no OpenGL: cannot open the surfaceless EGL display"));
-    const char* extensions = eglQueryString(c.display, EGL_EXTENSIONS);
+    const char *extensions = eglQueryString(c.display, EGL_EXTENSIONS);
     if (!has_extension(extensions, "EGL_KHR_surfaceless_context") ||
         !has_extension(extensions, "EGL_KHR_no_config_context"))
         throw Error("render", "no OpenGL: the EGL display cannot make a context without a surface");
@@ -528,7 +528,7 @@ Renderer::Renderer() : context_(std::make_unique<Context>()) {
 }
 
 Renderer::~Renderer() {
-    const Context& c = *context_;
+    const Context &c = *context_;
     if (eglMakeCurrent(c.display, EGL_NO_SURFACE, EGL_NO_SURFACE, c.context)) {
         painter_.reset();
         glDeleteRenderbuffers(1, &c.depth);
@@ -539,13 +539,13 @@ Renderer::~Renderer() {
 
 std::string Renderer::gl_description() const {
     context_->make_current();
-    return std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) + ", " +
-           reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    return std::string(reinterpret_cast<const char *>(glGetString(GL_RENDERER))) + ", " +
+           reinterpret_cast<const char *>(glGetString(GL_VERSION));
 }
 
-Image Renderer::render(const Mesh& mesh, const View& view, const RenderOptions& options) {
+Image Renderer::render(const Mesh &mesh, const View &view, const RenderOptions &options) {
     validate(view, "render");
-    Context& c = *context_;
+    Context &c = *context_;
     c.make_current();
     if (c.width != view.viewport_w || c.height != view.viewport_h) {
         GLint largest = 0;
@@ -605,13 +605,13 @@ Image Renderer::render(const Mesh& mesh, const View& view, const RenderOptions& 
     return image;
 }
 
-bool render_available(std::string* why) {
+bool render_available(std::string *why) {
     static std::once_flag once;
     static std::string reason;
     std::call_once(once, [] {
         try {
             Renderer probe;
-        } catch (const std::exception& e) {
+        } catch (const std::exception &e) {
             reason = e.what();
             if (reason.empty())
                 reason = "render: no OpenGL context";
@@ -622,9 +622,9 @@ bool render_available(std::string* why) {
     return reason.empty();
 }
 
-static void write_pixels(const std::string& path, int width, int height, int channels,
-                         OIIO::TypeDesc type, const void* pixels) {
-    write_atomically(path, [&](const std::string& tmp) {
+static void write_pixels(const std::string &path, int width, int height, int channels,
+                         OIIO::TypeDesc type, const void *pixels) {
+    write_atomically(path, [&](const std::string &tmp) {
         auto out = OIIO::ImageOutput::create(tmp);
         if (!out)
             throw Error(path, "cannot write this image format (" + OIIO::geterror() + ")");
@@ -638,29 +638,29 @@ static void write_pixels(const std::string& path, int width, int height, int cha
             throw Error(path, "cannot write the image: " + out->geterror());
         if (in_memory) {
             std::ofstream file(tmp, std::ios::binary);
-            file.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+            file.write(reinterpret_cast<const char *>(bytes.data()), std::streamsize(bytes.size()));
             if (!file.flush())
                 throw Error(path, "cannot write the image: " + std::string(std::strerror(errno)));
         }
     });
 }
 
-void write_image(const std::string& path, const Image& image) {
+void write_image(const std::string &path, const Image &image) {
     assert(image.rgba.size() == std::size_t(image.width) * image.height * 4);
     write_pixels(path, image.width, image.height, 4, OIIO::TypeDesc::UINT8, image.rgba.data());
 }
 
-void write_depth(const std::string& path, const Image& image) {
+void write_depth(const std::string &path, const Image &image) {
     if (image.depth.size() != std::size_t(image.width) * image.height)
         throw Error(path, "the image has no depth (render with depth = true)");
     write_pixels(path, image.width, image.height, 1, OIIO::TypeDesc::FLOAT, image.depth.data());
 }
 
-Image read_image(const std::string& path) {
+Image read_image(const std::string &path) {
     auto in = OIIO::ImageInput::open(path);
     if (!in)
         throw Error(path, "cannot read the image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
+    const OIIO::ImageSpec &spec = in->spec();
     const int channels = spec.nchannels;
     if (spec.width <= 0 || spec.height <= 0 || channels <= 0)
         throw Error(path, "empty image");
@@ -672,8 +672,8 @@ Image read_image(const std::string& path) {
     image.height = spec.height;
     image.rgba.resize(std::size_t(spec.width) * spec.height * 4);
     for (std::size_t i = 0, n = std::size_t(spec.width) * spec.height; i < n; ++i) {
-        const std::uint8_t* p = &pixels[i * channels];
-        std::uint8_t* q = &image.rgba[i * 4];
+        const std::uint8_t *p = &pixels[i * channels];
+        std::uint8_t *q = &image.rgba[i * 4];
         q[0] = p[0];
         q[1] = channels >= 3 ? p[1] : p[0];
         q[2] = channels >= 3 ? p[2] : p[0];

@@ -50,8 +50,8 @@ constexpr CrcTables make_crc_tables() {
 }
 constexpr CrcTables k_crc = make_crc_tables();
 
-std::uint32_t crc32(const void* data, std::size_t n) {
-    const auto* p = static_cast<const std::uint8_t*>(data);
+std::uint32_t crc32(const void *data, std::size_t n) {
+    const auto *p = static_cast<const std::uint8_t *>(data);
     std::uint32_t c = 0xFFFFFFFFu;
     for (; n >= 8; n -= 8, p += 8) {
         std::uint32_t lo, hi;
@@ -85,7 +85,7 @@ struct StoreGeometry {
     std::vector<std::uint32_t> level_offset; // per tile, per level below the tile level (bytes)
     int tile_levels = 0;                     // levels stored inside tiles
 
-    static void make_axis(const AxisSplit& s, int tile_level, Axis& a) {
+    static void make_axis(const AxisSplit &s, int tile_level, Axis &a) {
         const int levels = s.levels();
         a.first.assign(levels, {});
         a.count.assign(levels, {});
@@ -110,9 +110,9 @@ struct StoreGeometry {
         }
     }
 
-    explicit StoreGeometry(const QuadLayout& lay) {
+    explicit StoreGeometry(const QuadLayout &lay) {
         levels = lay.levels();
-        auto widest = [](const AxisSplit& s, int d) {
+        auto widest = [](const AxisSplit &s, int d) {
             std::uint32_t m = 0;
             for (std::uint32_t k = 0; k < s.count(d); ++k)
                 m = std::max(m, s.length(d, k));
@@ -132,8 +132,8 @@ struct StoreGeometry {
         for (std::uint32_t tj = 0; tj < tiles_y; ++tj)
             for (std::uint32_t ti = 0; ti < tiles_x; ++ti) {
                 const std::size_t t = std::size_t{tj} * tiles_x + ti;
-                std::uint64_t bytes = 4ull * (lay.x.length(tile_level, ti) + 1) *
-                                      (lay.y.length(tile_level, tj) + 1);
+                std::uint64_t bytes =
+                    4ull * (lay.x.length(tile_level, ti) + 1) * (lay.y.length(tile_level, tj) + 1);
                 for (int d = tile_level + 1; d < levels - 1; ++d) {
                     level_offset[t * tile_levels + (d - tile_level - 1)] =
                         static_cast<std::uint32_t>(bytes);
@@ -144,13 +144,13 @@ struct StoreGeometry {
     }
 
     std::size_t tile_count() const { return tile_bytes.size(); }
-    std::uint64_t top_nodes(const QuadLayout& lay) const {
+    std::uint64_t top_nodes(const QuadLayout &lay) const {
         std::uint64_t n = 0;
         for (int d = 0; d <= std::min(tile_level, levels - 2); ++d)
             n += lay.level_nodes(d);
         return n;
     }
-    std::uint64_t corner_count(const QuadLayout& lay) const {
+    std::uint64_t corner_count(const QuadLayout &lay) const {
         return std::uint64_t{lay.x.count(corner_level) + 1} * (lay.y.count(corner_level) + 1);
     }
 };
@@ -165,16 +165,16 @@ struct Header {
     std::string crs;
 };
 
-template <class T> void put(std::vector<std::uint8_t>& b, std::size_t at, const T& v) {
+template <class T> void put(std::vector<std::uint8_t> &b, std::size_t at, const T &v) {
     std::memcpy(b.data() + at, &v, sizeof(T));
 }
-template <class T> T get(const std::uint8_t* p, std::size_t at) {
+template <class T> T get(const std::uint8_t *p, std::size_t at) {
     T v;
     std::memcpy(&v, p + at, sizeof(T));
     return v;
 }
 
-std::vector<std::uint8_t> encode(const Header& h) {
+std::vector<std::uint8_t> encode(const Header &h) {
     std::vector<std::uint8_t> b(k_fixed_header + h.crs.size() + 4, 0);
     std::memcpy(b.data(), k_magic, 8);
     put(b, 8, k_store_version);
@@ -205,7 +205,7 @@ std::vector<std::uint8_t> encode(const Header& h) {
 
 class File {
   public:
-    File(const std::string& path, const std::string& subject) : subject_(subject) {
+    File(const std::string &path, const std::string &subject) : subject_(subject) {
         f_ = std::fopen(path.c_str(), "wb");
         if (!f_)
             fail();
@@ -214,7 +214,7 @@ class File {
         if (f_)
             std::fclose(f_);
     }
-    void write(const void* p, std::size_t n) {
+    void write(const void *p, std::size_t n) {
         if (n && std::fwrite(p, 1, n, f_) != n)
             fail();
     }
@@ -243,15 +243,15 @@ class File {
     [[noreturn]] void fail() const {
         throw Error(subject_, std::string("cannot write: ") + std::strerror(errno));
     }
-    std::FILE* f_ = nullptr;
+    std::FILE *f_ = nullptr;
     std::string subject_;
 };
 
 } // namespace
 
-void write_store(const QuadTree& tree, const std::string& path, Progress* progress) {
-    const QuadLayout& lay = tree.layout();
-    const GridFrame& fr = tree.frame();
+void write_store(const QuadTree &tree, const std::string &path, Progress *progress) {
+    const QuadLayout &lay = tree.layout();
+    const GridFrame &fr = tree.frame();
     const StoreGeometry g(lay);
     Header h;
     h.width = fr.width;
@@ -277,10 +277,10 @@ void write_store(const QuadTree& tree, const std::string& path, Progress* progre
     corners.reserve(g.corner_count(lay));
     for (std::uint32_t j = 0; j <= lay.y.count(g.corner_level); ++j)
         for (std::uint32_t i = 0; i <= lay.x.count(g.corner_level); ++i) {
-            const std::uint32_t c = i < lay.x.count(g.corner_level) ? lay.x.lo(g.corner_level, i)
-                                                                    : fr.width - 1;
-            const std::uint32_t r = j < lay.y.count(g.corner_level) ? lay.y.lo(g.corner_level, j)
-                                                                    : fr.height - 1;
+            const std::uint32_t c =
+                i < lay.x.count(g.corner_level) ? lay.x.lo(g.corner_level, i) : fr.width - 1;
+            const std::uint32_t r =
+                j < lay.y.count(g.corner_level) ? lay.y.lo(g.corner_level, j) : fr.height - 1;
             corners.push_back(tree.elevation(c, r));
         }
     h.dir_offset = align(encode(h).size(), 8);
@@ -291,7 +291,7 @@ void write_store(const QuadTree& tree, const std::string& path, Progress* progre
     h.top_crc = crc32(top.data(), h.top_bytes);
     h.corner_crc = crc32(corners.data(), h.corner_bytes);
 
-    write_atomically(path, [&](const std::string& tmp) {
+    write_atomically(path, [&](const std::string &tmp) {
         File f(tmp, path);
         f.pad_to(h.top_offset);
         f.write(top.data(), h.top_bytes);
@@ -304,11 +304,14 @@ void write_store(const QuadTree& tree, const std::string& path, Progress* progre
             for (std::uint32_t ti = 0; ti < g.tiles_x; ++ti) {
                 const std::size_t t = std::size_t{tj} * g.tiles_x + ti;
                 tile.assign(g.tile_bytes[t], 0);
-                const std::uint32_t x0 = lay.x.lo(g.tile_level, ti), x1 = lay.x.hi(g.tile_level, ti);
-                const std::uint32_t y0 = lay.y.lo(g.tile_level, tj), y1 = lay.y.hi(g.tile_level, tj);
+                const std::uint32_t x0 = lay.x.lo(g.tile_level, ti),
+                                    x1 = lay.x.hi(g.tile_level, ti);
+                const std::uint32_t y0 = lay.y.lo(g.tile_level, tj),
+                                    y1 = lay.y.hi(g.tile_level, tj);
                 std::size_t at = 0;
                 for (std::uint32_t r = y0; r <= y1; ++r) {
-                    std::memcpy(tile.data() + at, &tree.elevations()[std::size_t{r} * fr.width + x0],
+                    std::memcpy(tile.data() + at,
+                                &tree.elevations()[std::size_t{r} * fr.width + x0],
                                 4 * (x1 - x0 + 1));
                     at += 4 * (x1 - x0 + 1);
                 }
@@ -341,7 +344,7 @@ void write_store(const QuadTree& tree, const std::string& path, Progress* progre
     });
 }
 
-bool is_store_file(const std::string& path) {
+bool is_store_file(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     char magic[8] = {};
     return in.read(magic, 8) && std::memcmp(magic, k_magic, 8) == 0;
@@ -353,7 +356,7 @@ bool is_store_file(const std::string& path) {
 struct TileStore::Impl {
     std::string path;
     int fd = -1;
-    const std::uint8_t* base = nullptr;
+    const std::uint8_t *base = nullptr;
     std::size_t size = 0;
     QuadLayout lay;
     GridFrame frame;
@@ -365,23 +368,23 @@ struct TileStore::Impl {
         bool resident = false;   // verified and kept
     };
     std::vector<Tile> tiles;
-    std::vector<const NodeBound*> top; // per level down to the tile level
-    const float* corners = nullptr;
+    std::vector<const NodeBound *> top; // per level down to the tile level
+    const float *corners = nullptr;
     std::uint32_t retrieval = 0;
     std::uint64_t resident_bytes = 0, cap_bytes = 0;
     std::int64_t resident_count = 0;
     StoreStats last, total;
 
-    [[noreturn]] void bad(const std::string& reason) const { throw Error(path, reason); }
+    [[noreturn]] void bad(const std::string &reason) const { throw Error(path, reason); }
 
     ~Impl() {
         if (base)
-            ::munmap(const_cast<std::uint8_t*>(base), size);
+            ::munmap(const_cast<std::uint8_t *>(base), size);
         if (fd >= 0)
             ::close(fd);
     }
 
-    void open(const std::string& p, const StoreOptions& options) {
+    void open(const std::string &p, const StoreOptions &options) {
         path = p;
         cap_bytes = static_cast<std::uint64_t>(std::max(options.cache_mb, 0.0) * 1024 * 1024);
         fd = ::open(p.c_str(), O_RDONLY);
@@ -393,10 +396,10 @@ struct TileStore::Impl {
         size = static_cast<std::size_t>(sb.st_size);
         if (size < 8)
             bad("not a tinlod quad-tree store (file too short)");
-        void* m = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+        void *m = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
         if (m == MAP_FAILED)
             bad(std::string("cannot map: ") + std::strerror(errno));
-        base = static_cast<const std::uint8_t*>(m);
+        base = static_cast<const std::uint8_t *>(m);
         if (std::memcmp(base, k_magic, 8) != 0)
             bad("not a tinlod quad-tree store (bad magic)");
         if (size < k_fixed_header + 4)
@@ -430,9 +433,8 @@ struct TileStore::Impl {
         h.top_crc = get<std::uint32_t>(base, 112);
         h.corner_crc = get<std::uint32_t>(base, 116);
         h.dir_crc = get<std::uint32_t>(base, 120);
-        h.crs.assign(reinterpret_cast<const char*>(base) + k_fixed_header, crs_len);
-        if (h.width < 2 || h.height < 2 ||
-            std::int64_t{h.width} * h.height > k_max_raster_samples)
+        h.crs.assign(reinterpret_cast<const char *>(base) + k_fixed_header, crs_len);
+        if (h.width < 2 || h.height < 2 || std::int64_t{h.width} * h.height > k_max_raster_samples)
             bad("corrupt store header (grid size " + std::to_string(h.width) + "x" +
                 std::to_string(h.height) + ")");
         if (!(std::isfinite(h.dx) && h.dx > 0 && std::isfinite(h.dy) && h.dy > 0))
@@ -447,9 +449,10 @@ struct TileStore::Impl {
         if (h.levels != std::uint32_t(g->levels) || h.tile_level != std::uint32_t(g->tile_level) ||
             h.corner_level != std::uint32_t(g->corner_level) || h.tile_count != g->tile_count())
             bad("corrupt store header (tree shape does not match the grid size)");
-        auto section = [&](std::uint64_t offset, std::uint64_t bytes, const char* what) {
+        auto section = [&](std::uint64_t offset, std::uint64_t bytes, const char *what) {
             if (offset % 8 != 0 || offset > size || bytes > size - offset)
-                bad(std::string("truncated store: the ") + what + " lies beyond the end of the file");
+                bad(std::string("truncated store: the ") + what +
+                    " lies beyond the end of the file");
         };
         section(h.dir_offset, k_dir_entry * g->tile_count(), "tile directory");
         section(h.top_offset, h.top_bytes, "top tree");
@@ -463,16 +466,16 @@ struct TileStore::Impl {
             bad("corrupt top tree (checksum mismatch)");
         if (crc32(base + h.corner_offset, h.corner_bytes) != h.corner_crc)
             bad("corrupt corner elevations (checksum mismatch)");
-        const auto* top_nodes = reinterpret_cast<const NodeBound*>(base + h.top_offset);
+        const auto *top_nodes = reinterpret_cast<const NodeBound *>(base + h.top_offset);
         for (int d = 0; d <= std::min(g->tile_level, g->levels - 2); ++d) {
             top.push_back(top_nodes);
             top_nodes += lay.level_nodes(d);
         }
-        corners = reinterpret_cast<const float*>(base + h.corner_offset);
+        corners = reinterpret_cast<const float *>(base + h.corner_offset);
         tiles.resize(g->tile_count());
         for (std::size_t t = 0; t < tiles.size(); ++t) {
-            const std::uint8_t* e = base + h.dir_offset + t * k_dir_entry;
-            Tile& tile = tiles[t];
+            const std::uint8_t *e = base + h.dir_offset + t * k_dir_entry;
+            Tile &tile = tiles[t];
             tile.offset = get<std::uint64_t>(e, 0);
             tile.bytes = get<std::uint64_t>(e, 8);
             tile.crc = get<std::uint32_t>(e, 16);
@@ -485,8 +488,8 @@ struct TileStore::Impl {
         }
     }
 
-    const std::uint8_t* tile_data(std::size_t t) {
-        Tile& tile = tiles[t];
+    const std::uint8_t *tile_data(std::size_t t) {
+        Tile &tile = tiles[t];
         if (!tile.resident) {
             if (crc32(base + tile.offset, tile.bytes) != tile.crc)
                 bad("corrupt tile " + std::to_string(t) + " (checksum mismatch)");
@@ -500,8 +503,8 @@ struct TileStore::Impl {
         return base + tile.offset;
     }
 
-    std::size_t tile_of(int d, std::uint32_t i, std::uint32_t j, std::uint32_t& ti,
-                        std::uint32_t& tj) const {
+    std::size_t tile_of(int d, std::uint32_t i, std::uint32_t j, std::uint32_t &ti,
+                        std::uint32_t &tj) const {
         ti = g->ax.tile_of[d][i];
         tj = g->ay.tile_of[d][j];
         return std::size_t{tj} * g->tiles_x + ti;
@@ -512,7 +515,7 @@ struct TileStore::Impl {
             return top[d][std::size_t{j} * lay.x.count(d) + i];
         std::uint32_t ti, tj;
         const std::size_t t = tile_of(d, i, j, ti, tj);
-        const std::uint8_t* data = tile_data(t);
+        const std::uint8_t *data = tile_data(t);
         const std::uint32_t li = i - g->ax.first[d][ti], lj = j - g->ay.first[d][tj];
         NodeBound b;
         std::memcpy(&b,
@@ -530,7 +533,7 @@ struct TileStore::Impl {
         }
         std::uint32_t ti, tj;
         const std::size_t t = tile_of(d, i, j, ti, tj);
-        const std::uint8_t* data = tile_data(t);
+        const std::uint8_t *data = tile_data(t);
         const std::uint32_t x0 = lay.x.lo(g->tile_level, ti), y0 = lay.y.lo(g->tile_level, tj);
         const std::uint32_t w = lay.x.length(g->tile_level, ti) + 1;
         float z;
@@ -539,8 +542,8 @@ struct TileStore::Impl {
     }
 
     // Gives tile's pages back to the kernel: they are read from the file again when touched.
-    void drop_pages(const Tile& tile) const {
-        ::madvise(const_cast<std::uint8_t*>(base) + tile.offset, align(tile.bytes, k_page),
+    void drop_pages(const Tile &tile) const {
+        ::madvise(const_cast<std::uint8_t *>(base) + tile.offset, align(tile.bytes, k_page),
                   MADV_DONTNEED);
     }
 
@@ -559,7 +562,7 @@ struct TileStore::Impl {
         for (std::size_t t : order) {
             if (resident_bytes <= cap_bytes)
                 break;
-            Tile& tile = tiles[t];
+            Tile &tile = tiles[t];
             drop_pages(tile);
             tile.resident = false;
             resident_bytes -= tile.bytes;
@@ -569,16 +572,18 @@ struct TileStore::Impl {
     }
 };
 
-TileStore::TileStore(const std::string& path, const StoreOptions& options)
+TileStore::TileStore(const std::string &path, const StoreOptions &options)
     : impl_(std::make_unique<Impl>()) {
     impl_->open(path, options);
 }
 
 TileStore::~TileStore() = default;
 
-const QuadLayout& TileStore::layout() const { return impl_->lay; }
-const GridFrame& TileStore::frame() const { return impl_->frame; }
-NodeBound TileStore::bound(int d, std::uint32_t i, std::uint32_t j) { return impl_->bound(d, i, j); }
+const QuadLayout &TileStore::layout() const { return impl_->lay; }
+const GridFrame &TileStore::frame() const { return impl_->frame; }
+NodeBound TileStore::bound(int d, std::uint32_t i, std::uint32_t j) {
+    return impl_->bound(d, i, j);
+}
 float TileStore::vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
                           std::uint32_t r) {
     return impl_->vertex_z(d, i, j, c, r);
@@ -597,17 +602,19 @@ void TileStore::end_retrieval() {
 }
 
 int TileStore::tile_level() const { return impl_->g->tile_level; }
-std::int64_t TileStore::tile_count() const { return static_cast<std::int64_t>(impl_->tiles.size()); }
+std::int64_t TileStore::tile_count() const {
+    return static_cast<std::int64_t>(impl_->tiles.size());
+}
 std::int64_t TileStore::resident_tiles() const { return impl_->resident_count; }
 std::int64_t TileStore::resident_bytes() const {
     return static_cast<std::int64_t>(impl_->resident_bytes);
 }
 std::int64_t TileStore::file_bytes() const { return static_cast<std::int64_t>(impl_->size); }
-const StoreStats& TileStore::last_stats() const { return impl_->last; }
-const StoreStats& TileStore::total_stats() const { return impl_->total; }
+const StoreStats &TileStore::last_stats() const { return impl_->last; }
+const StoreStats &TileStore::total_stats() const { return impl_->total; }
 
 Heightfield TileStore::heightfield() const {
-    const Impl& s = *impl_;
+    const Impl &s = *impl_;
     Heightfield hf;
     hf.width = s.frame.width;
     hf.height = s.frame.height;
@@ -621,12 +628,12 @@ Heightfield TileStore::heightfield() const {
     for (std::uint32_t tj = 0; tj < s.g->tiles_y; ++tj)
         for (std::uint32_t ti = 0; ti < s.g->tiles_x; ++ti) {
             const std::size_t t = std::size_t{tj} * s.g->tiles_x + ti;
-            const auto& tile = s.tiles[t];
+            const auto &tile = s.tiles[t];
             if (crc32(s.base + tile.offset, tile.bytes) != tile.crc)
                 s.bad("corrupt tile " + std::to_string(t) + " (checksum mismatch)");
             const std::uint32_t x0 = s.lay.x.lo(tl, ti), x1 = s.lay.x.hi(tl, ti);
             const std::uint32_t y0 = s.lay.y.lo(tl, tj), y1 = s.lay.y.hi(tl, tj);
-            const std::uint8_t* p = s.base + tile.offset;
+            const std::uint8_t *p = s.base + tile.offset;
             for (std::uint32_t r = y0; r <= y1; ++r, p += 4 * (x1 - x0 + 1))
                 std::memcpy(&hf.z[std::size_t{r} * hf.width + x0], p, 4 * (x1 - x0 + 1));
             // Its pages leave memory again unless the cache holds the tile: the heights returned

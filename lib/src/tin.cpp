@@ -10,7 +10,7 @@
 
 namespace tinlod {
 
-OpenMesh::VPropHandleT<std::int64_t> get_origin_property(Mesh& mesh) {
+OpenMesh::VPropHandleT<std::int64_t> get_origin_property(Mesh &mesh) {
     OpenMesh::VPropHandleT<std::int64_t> handle;
     if (!mesh.get_property_handle(handle, k_origin_property)) {
         mesh.add_property(handle, k_origin_property);
@@ -20,13 +20,13 @@ OpenMesh::VPropHandleT<std::int64_t> get_origin_property(Mesh& mesh) {
     return handle;
 }
 
-OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh& mesh) {
+OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh &mesh) {
     OpenMesh::VPropHandleT<std::int64_t> handle;
     mesh.get_property_handle(handle, k_origin_property);
     return handle;
 }
 
-void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
+void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
     using HH = Mesh::HalfedgeHandle;
     if (corners.size() % 3 != 0 || mesh.n_edges() != 0 || mesh.n_faces() != 0)
         throw std::invalid_argument("add_triangles: a mesh with faces, or a partial triangle");
@@ -129,7 +129,7 @@ void add_triangles(Mesh& mesh, std::span<const std::uint32_t> corners) {
     }
 }
 
-Mesh grid_vertices(const Heightfield& hf) {
+Mesh grid_vertices(const Heightfield &hf) {
     assert(hf.width >= 2 && hf.height >= 2);
     Mesh mesh;
     const std::size_t n = static_cast<std::size_t>(hf.size());
@@ -149,7 +149,7 @@ Mesh grid_vertices(const Heightfield& hf) {
     return mesh;
 }
 
-Mesh live_copy(const Mesh& mesh) {
+Mesh live_copy(const Mesh &mesh) {
     Mesh out;
     const auto from = find_origin_property(mesh);
     const auto to = get_origin_property(out);
@@ -168,7 +168,7 @@ Mesh live_copy(const Mesh& mesh) {
     return out;
 }
 
-Mesh grid_tin(const Heightfield& hf) {
+Mesh grid_tin(const Heightfield &hf) {
     Mesh mesh = grid_vertices(hf);
     const std::uint32_t w = std::uint32_t(hf.width);
     std::vector<std::uint32_t> corners;
@@ -186,17 +186,17 @@ Mesh grid_tin(const Heightfield& hf) {
     return mesh;
 }
 
-std::array<glm::dvec3, 3> face_corners(const Mesh& mesh, Mesh::FaceHandle f) {
+std::array<glm::dvec3, 3> face_corners(const Mesh &mesh, Mesh::FaceHandle f) {
     std::array<glm::dvec3, 3> p;
     int i = 0;
     for (auto v : mesh.fv_range(f)) {
-        const auto& q = mesh.point(v);
+        const auto &q = mesh.point(v);
         p[i++] = glm::dvec3(q[0], q[1], q[2]);
     }
     return p;
 }
 
-std::optional<double> grid_surface_height(const Heightfield& hf, double x, double y) {
+std::optional<double> grid_surface_height(const Heightfield &hf, double x, double y) {
     const double u = x / hf.dx, v = y / hf.dy;
     if (!(u >= 0 && v >= 0 && u <= hf.width - 1 && v <= hf.height - 1))
         return std::nullopt;
@@ -209,15 +209,16 @@ std::optional<double> grid_surface_height(const Heightfield& hf, double x, doubl
     return s + t <= 1 ? a + s * (b - a) + t * (d - a) : e + (1 - s) * (d - e) + (1 - t) * (b - e);
 }
 
-void check_eye_above(const Heightfield& hf, const glm::dvec3& eye, const std::string& subject) {
+void check_eye_above(const Heightfield &hf, const glm::dvec3 &eye, const std::string &subject) {
     const auto ground = grid_surface_height(hf, eye.x, eye.y);
     if (ground && eye.z <= *ground)
         throw Error(subject, "the eye (" + std::to_string(eye.x) + ", " + std::to_string(eye.y) +
-                                 ", " + std::to_string(eye.z) + ") is inside the terrain (ground at " +
-                                 std::to_string(*ground) + ")");
+                                 ", " + std::to_string(eye.z) +
+                                 ") is inside the terrain (ground at " + std::to_string(*ground) +
+                                 ")");
 }
 
-Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& triangles) {
+Mesh tin_from_indices(const Heightfield &hf, const std::vector<std::uint32_t> &triangles) {
     assert(triangles.size() % 3 == 0);
     Mesh mesh;
     auto origin = get_origin_property(mesh);
@@ -238,11 +239,12 @@ Mesh tin_from_indices(const Heightfield& hf, const std::vector<std::uint32_t>& t
         corners[i] = std::uint32_t(vertex(triangles[i]).idx());
     try {
         add_triangles(mesh, corners);
-    } catch (const std::invalid_argument&) {
+    } catch (const std::invalid_argument &) {
         // Not an oriented manifold (a peer's output may not be): face by face, as OpenMesh takes
         // them.
         for (std::size_t i = 0; i < corners.size(); i += 3)
-            mesh.add_face(Mesh::VertexHandle(int(corners[i])), Mesh::VertexHandle(int(corners[i + 1])),
+            mesh.add_face(Mesh::VertexHandle(int(corners[i])),
+                          Mesh::VertexHandle(int(corners[i + 1])),
                           Mesh::VertexHandle(int(corners[i + 2])));
     }
     return mesh;

@@ -28,7 +28,7 @@ namespace tinlod {
 namespace fs = std::filesystem;
 
 static volatile std::sig_atomic_t g_interrupt = 0; // the signal that came, 0 for none
-static std::atomic<int> g_deferrals{0};               // the Deferral objects alive
+static std::atomic<int> g_deferrals{0};            // the Deferral objects alive
 
 static_assert(std::atomic<int>::is_always_lock_free, "read in a signal handler");
 
@@ -56,14 +56,14 @@ void check_interrupt() {
 Deferral::Deferral() { ++g_deferrals; }
 Deferral::~Deferral() { --g_deferrals; }
 
-static fs::path folder_of(const fs::path& target) {
+static fs::path folder_of(const fs::path &target) {
     return target.has_parent_path() ? target.parent_path() : fs::path(".");
 }
 
 // Throws Error naming `subject` when `folder` (called `what` in the message) is missing or not
 // writable.
-static void check_folder(const std::string& subject, const fs::path& folder,
-                         const std::string& what) {
+static void check_folder(const std::string &subject, const fs::path &folder,
+                         const std::string &what) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
         throw Error(subject, what + " does not exist");
@@ -71,8 +71,8 @@ static void check_folder(const std::string& subject, const fs::path& folder,
         throw Error(subject, what + " is not writable");
 }
 
-void check_writable(const std::vector<std::string>& paths) {
-    for (const std::string& path : paths) {
+void check_writable(const std::vector<std::string> &paths) {
+    for (const std::string &path : paths) {
         if (path.empty())
             continue;
         const fs::path target(path);
@@ -86,7 +86,7 @@ void check_writable(const std::vector<std::string>& paths) {
 
 // ".<name>.<random>.tmp<extension>", appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a
 // false positive) on the inlined `"." + std::string` of the one-line form.
-static std::string hidden_name(const fs::path& target) {
+static std::string hidden_name(const fs::path &target) {
     std::random_device rd;
     std::string name = ".";
     name += target.filename().string();
@@ -97,7 +97,8 @@ static std::string hidden_name(const fs::path& target) {
     return name;
 }
 
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+void write_atomically(const std::string &path,
+                      const std::function<void(const std::string &)> &write) {
     check_writable({path});
     const fs::path target(path);
     const fs::path tmp = folder_of(target) / hidden_name(target);
@@ -113,7 +114,7 @@ void write_atomically(const std::string& path, const std::function<void(const st
     }
 }
 
-StagedFolder::StagedFolder(const std::string& folder) : folder_(folder) {
+StagedFolder::StagedFolder(const std::string &folder) : folder_(folder) {
     check_folder(folder, folder, "folder");
     std::error_code ec;
     const fs::path staging = fs::path(folder) / hidden_name("staged");
@@ -127,13 +128,13 @@ StagedFolder::~StagedFolder() {
     fs::remove_all(staging_, ec);
 }
 
-void StagedFolder::write(const std::string& name,
-                         const std::function<void(const std::string&)>& write) {
+void StagedFolder::write(const std::string &name,
+                         const std::function<void(const std::string &)> &write) {
     assert(fs::path(name).filename() == name);
     const std::string staged = (fs::path(staging_) / name).string();
     try {
         write(staged);
-    } catch (const Error& e) {
+    } catch (const Error &e) {
         if (e.subject() != staged)
             throw;
         throw Error((fs::path(folder_) / name).string(), e.reason());
@@ -144,10 +145,10 @@ void StagedFolder::write(const std::string& name,
 void StagedFolder::commit() {
     check_interrupt();
     std::error_code ec;
-    for (const std::string& name : names_)
+    for (const std::string &name : names_)
         if (fs::is_directory(fs::path(folder_) / name, ec))
             throw Error((fs::path(folder_) / name).string(), "output path is a folder");
-    for (const std::string& name : names_) {
+    for (const std::string &name : names_) {
         fs::rename(fs::path(staging_) / name, fs::path(folder_) / name, ec);
         if (ec)
             throw Error((fs::path(folder_) / name).string(), "cannot move in: " + ec.message());
@@ -155,8 +156,8 @@ void StagedFolder::commit() {
     names_.clear();
 }
 
-void write_json(const std::string& path, const nlohmann::json& doc) {
-    write_atomically(path, [&](const std::string& tmp) {
+void write_json(const std::string &path, const nlohmann::json &doc) {
+    write_atomically(path, [&](const std::string &tmp) {
         std::ofstream out(tmp);
         out << doc.dump(2) << '\n';
         if (!out.flush())
@@ -173,14 +174,14 @@ double peak_rss_mb() {
     return 0.0;
 }
 
-void advise_huge_pages(const void* data, std::size_t bytes) {
+void advise_huge_pages(const void *data, std::size_t bytes) {
     constexpr std::uintptr_t huge = std::uintptr_t(2) << 20;
     const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
     const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
     if (end <= begin)
         return;
 #ifdef MADV_HUGEPAGE
-    void* start = reinterpret_cast<void*>(begin);
+    void *start = reinterpret_cast<void *>(begin);
     if (madvise(start, end - begin, MADV_HUGEPAGE) != 0)
         return;
     madvise(start, end - begin, MADV_COLLAPSE);

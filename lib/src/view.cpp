@@ -10,13 +10,11 @@
 
 namespace tinlod {
 
-double View::k() const {
-    return viewport_h / (2.0 * std::tan(glm::radians(fov_deg) / 2.0));
-}
+double View::k() const { return viewport_h / (2.0 * std::tan(glm::radians(fov_deg) / 2.0)); }
 
 glm::dvec3 View::axis() const { return glm::normalize(at - eye); }
 
-static glm::dvec3 up_for(const glm::dvec3& axis) {
+static glm::dvec3 up_for(const glm::dvec3 &axis) {
     // Looking straight down (or up) the z-up vector is degenerate: use north as up instead.
     return std::abs(axis.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
 }
@@ -27,7 +25,7 @@ glm::dmat4 View::projection_matrix(double near, double far) const {
     return glm::perspective(glm::radians(fov_deg), double(viewport_w) / viewport_h, near, far);
 }
 
-bool View::in_frustum(const glm::dvec3& p, double margin_px) const {
+bool View::in_frustum(const glm::dvec3 &p, double margin_px) const {
     const glm::dvec3 f = axis();
     const glm::dvec3 r = glm::normalize(glm::cross(f, up_for(f)));
     const glm::dvec3 u = glm::cross(r, f);
@@ -38,16 +36,17 @@ bool View::in_frustum(const glm::dvec3& p, double margin_px) const {
     const double kk = k();
     const double sx = glm::dot(d, r) * kk / depth;
     const double sy = glm::dot(d, u) * kk / depth;
-    return std::abs(sx) <= viewport_w / 2.0 + margin_px && std::abs(sy) <= viewport_h / 2.0 + margin_px;
+    return std::abs(sx) <= viewport_w / 2.0 + margin_px &&
+           std::abs(sy) <= viewport_h / 2.0 + margin_px;
 }
 
-double View::screen_px(double delta, const glm::dvec3& p) const {
+double View::screen_px(double delta, const glm::dvec3 &p) const {
     const double d = glm::length(p - eye);
     return d > 0.0 ? delta * k() / d : INFINITY;
 }
 
-void validate(const View& view, const std::string& subject) {
-    auto finite = [](const glm::dvec3& v) {
+void validate(const View &view, const std::string &subject) {
+    auto finite = [](const glm::dvec3 &v) {
         return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
     };
     if (!finite(view.eye))
@@ -63,7 +62,7 @@ void validate(const View& view, const std::string& subject) {
         throw Error(subject, "viewport must be between 1x1 and 65536x65536 pixels");
 }
 
-glm::dvec3 parse_vec3(const std::string& text, const std::string& option) {
+glm::dvec3 parse_vec3(const std::string &text, const std::string &option) {
     double v[3];
     char tail = 0;
     if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) != 3)
@@ -74,10 +73,10 @@ glm::dvec3 parse_vec3(const std::string& text, const std::string& option) {
     return {v[0], v[1], v[2]};
 }
 
-void parse_viewport(const std::string& text, int& w, int& h) {
+void parse_viewport(const std::string &text, int &w, int &h) {
     char tail = 0;
-    if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0 ||
-        w > 65536 || h > 65536)
+    if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0 || w > 65536 ||
+        h > 65536)
         throw Error("--viewport", "expected WxH in pixels, got '" + text + "'");
 }
 

@@ -30,7 +30,8 @@ class Weigher {
         k_ = view->k();
         half_w_ = view->viewport_w / 2.0 + options.cone_margin_px;
         half_h_ = view->viewport_h / 2.0 + options.cone_margin_px;
-        cone_ = std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
+        cone_ =
+            std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
         cos_cone_ = std::cos(cone_);
         sin_cone_ = std::sin(cone_);
         // The cone through the corners of the frustum widened by the margin: the factor is 1 in
@@ -75,8 +76,9 @@ class Weigher {
         return k_ / glm::length(p - eye_);
     }
     // An upper bound of the weight anywhere in the box [lo, hi]: k over the box's distance to the
-    // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the axis
-    // (1 up to the cone through the margin-widened frustum's corners, whose points all have it).
+    // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the
+    // axis (1 up to the cone through the margin-widened frustum's corners, whose points all have
+    // it).
     double bound(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
         if (unit_)
             return 1.0;

@@ -26,7 +26,7 @@ namespace {
 
 using namespace tinlod;
 
-void check(bool ok, const char* what) {
+void check(bool ok, const char *what) {
     if (!ok) {
         std::fprintf(stderr, "fuzz_erase: invariant broken: %s\n", what);
         std::abort();
@@ -36,7 +36,7 @@ void check(bool ok, const char* what) {
 using Triangle = std::array<int, 3>;
 
 // Live triangles as vertex idx triples rotated to start at the smallest (orientation kept), sorted.
-std::vector<Triangle> triangle_set(const Mesh& mesh) {
+std::vector<Triangle> triangle_set(const Mesh &mesh) {
     std::vector<Triangle> out;
     for (auto f : mesh.faces()) {
         Triangle t;
@@ -50,7 +50,7 @@ std::vector<Triangle> triangle_set(const Mesh& mesh) {
     return out;
 }
 
-double xy_area2(const Mesh& mesh, const Triangle& t) {
+double xy_area2(const Mesh &mesh, const Triangle &t) {
     const auto a = mesh.point(Mesh::VertexHandle(t[0]));
     const auto b = mesh.point(Mesh::VertexHandle(t[1]));
     const auto c = mesh.point(Mesh::VertexHandle(t[2]));
@@ -59,8 +59,8 @@ double xy_area2(const Mesh& mesh, const Triangle& t) {
 }
 
 // The invariants of any state of the eraser's TIN; `input_area` is the xy area of the input.
-void check_tin(const NodeEraser& eraser, double input_area) {
-    const Mesh& mesh = eraser.mesh();
+void check_tin(const NodeEraser &eraser, double input_area) {
+    const Mesh &mesh = eraser.mesh();
     std::int64_t live_nodes = 0;
     for (auto v : mesh.vertices()) {
         ++live_nodes;
@@ -73,7 +73,7 @@ void check_tin(const NodeEraser& eraser, double input_area) {
           "live_triangles() differs from the mesh");
     std::map<std::pair<int, int>, int> directed, undirected;
     double area2 = 0;
-    for (const Triangle& t : faces) {
+    for (const Triangle &t : faces) {
         for (int i : t)
             check(!mesh.status(Mesh::VertexHandle(i)).deleted(), "a live face uses an erased node");
         const double a2 = xy_area2(mesh, t);
@@ -98,7 +98,7 @@ struct Slack {
     double z = 0, px = 0;
 };
 
-Slack slack_of(const Heightfield& hf, const View& view, double max_abs_z) {
+Slack slack_of(const Heightfield &hf, const View &view, double max_abs_z) {
     Slack slack;
     slack.z = 1e-9 * (max_abs_z + 1);
     double nearest = std::numeric_limits<double>::infinity();
@@ -111,8 +111,8 @@ Slack slack_of(const Heightfield& hf, const View& view, double max_abs_z) {
 }
 
 // The bound the erase claims, as the eraser measures it and over every sample of the grid.
-void check_bound(const Heightfield& hf, const NodeEraser& eraser, const View& view, SpModel model,
-                 double tolerance, const Slack& slack) {
+void check_bound(const Heightfield &hf, const NodeEraser &eraser, const View &view, SpModel model,
+                 double tolerance, const Slack &slack) {
     if (std::isinf(tolerance))
         return;
     const bool vertical = model == SpModel::vertical;
@@ -125,10 +125,10 @@ void check_bound(const Heightfield& hf, const NodeEraser& eraser, const View& vi
     check(!((vertical ? e.max_vertical : e.max_screen_px) > limit), "measured error > bound");
 }
 
-void check_recovered(NodeEraser& eraser, const Mesh& input,
-                     const std::vector<Triangle>& input_faces) {
+void check_recovered(NodeEraser &eraser, const Mesh &input,
+                     const std::vector<Triangle> &input_faces) {
     eraser.recover_all();
-    const Mesh& mesh = eraser.mesh();
+    const Mesh &mesh = eraser.mesh();
     check(eraser.live_nodes() == std::int64_t(input.n_vertices()),
           "recover_all() left nodes erased");
     for (auto v : input.vertices())
@@ -137,7 +137,7 @@ void check_recovered(NodeEraser& eraser, const Mesh& input,
     check(triangle_set(mesh) == input_faces, "recover_all() did not restore the triangles");
 }
 
-View take_view(FuzzedDataProvider& in, double extent, double zmid) {
+View take_view(FuzzedDataProvider &in, double extent, double zmid) {
     auto coordinate = [&] { return in.ConsumeIntegralInRange<int>(-64, 64) * extent / 32; };
     View view;
     view.eye = {coordinate(), coordinate(), zmid + coordinate()};
@@ -154,7 +154,7 @@ View take_view(FuzzedDataProvider& in, double extent, double zmid) {
 
 } // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
     FuzzedDataProvider in(data, size);
     Heightfield hf;
     const double zscale = fuzz::take_grid(in, 16, hf);
@@ -178,7 +178,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         validate(view);
         validate(next);
-    } catch (const Error&) {
+    } catch (const Error &) {
         return 0;
     }
     // Heights last: a short input leaves the rest of the grid flat, which is what erases most.

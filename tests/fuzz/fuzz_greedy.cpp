@@ -22,7 +22,7 @@ namespace {
 
 using namespace tinlod;
 
-void check(bool ok, const char* what) {
+void check(bool ok, const char *what) {
     if (!ok) {
         std::fprintf(stderr, "fuzz_greedy: invariant broken: %s\n", what);
         std::abort();
@@ -30,7 +30,7 @@ void check(bool ok, const char* what) {
 }
 
 // The xy area of the TIN, twice, and whether every face is counter-clockwise.
-std::pair<double, bool> area2_and_ccw(const Mesh& mesh) {
+std::pair<double, bool> area2_and_ccw(const Mesh &mesh) {
     double total = 0.0;
     bool ccw = true;
     for (auto f : mesh.faces()) {
@@ -45,15 +45,15 @@ std::pair<double, bool> area2_and_ccw(const Mesh& mesh) {
 }
 
 // Exact on lattice coordinates below 2^10: the determinant's terms stay under 2^53.
-bool delaunay(const Retrieval& tin, std::int64_t width) {
-    const auto& t = tin.triangles;
+bool delaunay(const Retrieval &tin, std::int64_t width) {
+    const auto &t = tin.triangles;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> apex;
     for (std::size_t i = 0; i < t.size(); i += 3)
         for (int k = 0; k < 3; ++k)
             apex[{t[i + k], t[i + (k + 1) % 3]}] = t[i + (k + 2) % 3];
     const auto x = [&](std::uint32_t n) { return std::int64_t(n) % width; };
     const auto y = [&](std::uint32_t n) { return std::int64_t(n) / width; };
-    for (const auto& [edge, c] : apex) {
+    for (const auto &[edge, c] : apex) {
         const auto across = apex.find({edge.second, edge.first});
         if (across == apex.end())
             continue;
@@ -71,7 +71,7 @@ bool delaunay(const Retrieval& tin, std::int64_t width) {
 
 } // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
     FuzzedDataProvider in(data, size);
     Heightfield hf;
     const double zscale = fuzz::take_grid(in, 40, hf);

@@ -14,7 +14,7 @@ namespace tinlod::fuzz {
 
 // A grid of 2 to max_side samples a side, one of a few cell sizes, and a height scale (returned);
 // its heights are not read yet (take_heights).
-inline double take_grid(FuzzedDataProvider& in, int max_side, Heightfield& hf) {
+inline double take_grid(FuzzedDataProvider &in, int max_side, Heightfield &hf) {
     hf.width = in.ConsumeIntegralInRange(2, max_side);
     hf.height = in.ConsumeIntegralInRange(2, max_side);
     static constexpr double k_cell[] = {1, 0.5, 3, 30};
@@ -25,10 +25,10 @@ inline double take_grid(FuzzedDataProvider& in, int max_side, Heightfield& hf) {
 }
 
 // The grid's heights, one signed byte times zscale each; returns the largest |height|.
-inline double take_heights(FuzzedDataProvider& in, double zscale, Heightfield& hf) {
+inline double take_heights(FuzzedDataProvider &in, double zscale, Heightfield &hf) {
     hf.z.resize(std::size_t(hf.width) * hf.height);
     double max_abs_z = 0;
-    for (float& z : hf.z) {
+    for (float &z : hf.z) {
         z = float(in.ConsumeIntegral<std::int8_t>() * zscale);
         max_abs_z = std::max(max_abs_z, double(std::abs(z)));
     }

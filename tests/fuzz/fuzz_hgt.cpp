@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
     std::string stem;
     for (std::size_t i = 0; i < 7; ++i) {
         const unsigned char b = i < size ? data[i] : '0';
@@ -33,7 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string dir = "/tmp/tinlod-fuzz-" + std::to_string(::getpid());
     ::mkdir(dir.c_str(), 0700);
     const std::string path = dir + "/" + stem + ".hgt";
-    if (FILE* f = std::fopen(path.c_str(), "wb")) {
+    if (FILE *f = std::fopen(path.c_str(), "wb")) {
         std::fwrite(tile.data(), 1, tile.size(), f);
         std::fclose(f);
     }
@@ -46,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (float z : hf.z)
             if (!(z >= -32767 && z <= 32767))
                 __builtin_trap(); // a void left unfilled, or a fill outside the valid heights
-    } catch (const tinlod::Error&) {
+    } catch (const tinlod::Error &) {
     }
     std::remove(path.c_str());
     std::remove(dir.c_str());

@@ -10,10 +10,9 @@
 
 namespace tinlod::fuzz {
 
-inline std::string write_input(const std::uint8_t* data, std::size_t size, const char* ext) {
-    const std::string path =
-        "/tmp/tinlod-fuzz-" + std::to_string(::getpid()) + ext;
-    if (FILE* f = std::fopen(path.c_str(), "wb")) {
+inline std::string write_input(const std::uint8_t *data, std::size_t size, const char *ext) {
+    const std::string path = "/tmp/tinlod-fuzz-" + std::to_string(::getpid()) + ext;
+    if (FILE *f = std::fopen(path.c_str(), "wb")) {
         std::fwrite(data, 1, size, f);
         std::fclose(f);
     }

@@ -15,7 +15,7 @@
 #include <cstdio>
 #include <string>
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
+extern "C" int LLVMFuzzerInitialize(int *, char ***) {
     // Only the reader the extension names: the fallback through every other OpenImageIO plugin
     // (DICOM, HEIF, ...) fuzzes OpenImageIO, not our wrapper, at many times the cost per input.
     OIIO::attribute("try_all_readers", 0);
@@ -23,10 +23,10 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     return 0;
 }
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
     if (size < 1)
         return 0;
-    static const char* k_ext[] = {".tif", ".png", ".exr", ".hgt"};
+    static const char *k_ext[] = {".tif", ".png", ".exr", ".hgt"};
     const int pick = data[0] % 7;
     const std::string path = tinlod::fuzz::write_input(data + 1, size - 1, k_ext[pick % 4]);
     tinlod::LoadOptions options;
@@ -41,7 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             __builtin_trap();
         if (!(std::isfinite(hf.dx) && hf.dx > 0 && std::isfinite(hf.dy) && hf.dy > 0))
             __builtin_trap();
-    } catch (const tinlod::Error&) {
+    } catch (const tinlod::Error &) {
     }
     std::remove(path.c_str());
     return 0;

@@ -20,14 +20,14 @@
 
 namespace {
 
-void check(bool ok, const char* what) {
+void check(bool ok, const char *what) {
     if (!ok) {
         std::fprintf(stderr, "fuzz_store: invariant broken: %s\n", what);
         std::abort();
     }
 }
 
-std::uint32_t crc32(const std::uint8_t* p, std::size_t n) {
+std::uint32_t crc32(const std::uint8_t *p, std::size_t n) {
     static const auto table = [] {
         std::array<std::uint32_t, 256> t{};
         for (std::uint32_t i = 0; i < 256; ++i) {
@@ -44,7 +44,7 @@ std::uint32_t crc32(const std::uint8_t* p, std::size_t n) {
     return c ^ 0xFFFFFFFFu;
 }
 
-template <class T> T get(const std::vector<std::uint8_t>& b, std::size_t at) {
+template <class T> T get(const std::vector<std::uint8_t> &b, std::size_t at) {
     T v;
     std::memcpy(&v, b.data() + at, sizeof(T));
     return v;
@@ -52,7 +52,7 @@ template <class T> T get(const std::vector<std::uint8_t>& b, std::size_t at) {
 
 // Recomputes every checksum the layout of store.hpp names, wherever the (mutated) offsets leave
 // the section inside the file: the tiles first, then the directory, top tree, corners, header.
-void reseal(std::vector<std::uint8_t>& b) {
+void reseal(std::vector<std::uint8_t> &b) {
     if (b.size() < 132)
         return;
     auto inside = [&](std::uint64_t offset, std::uint64_t bytes) {
@@ -79,7 +79,7 @@ void reseal(std::vector<std::uint8_t>& b) {
 
 // Every triangle of a retrieval uses nodes of the retrieval and turns counter-clockwise on the
 // grid.
-void check_retrieval(const tinlod::Retrieval& r, const tinlod::GridFrame& frame) {
+void check_retrieval(const tinlod::Retrieval &r, const tinlod::GridFrame &frame) {
     check(r.nodes.size() == r.z.size(), "nodes and z differ in size");
     check(r.triangles.size() % 3 == 0 && !r.triangles.empty(), "no whole triangles");
     const std::uint64_t samples = std::uint64_t(frame.width) * std::uint64_t(frame.height);
@@ -105,7 +105,7 @@ void check_retrieval(const tinlod::Retrieval& r, const tinlod::GridFrame& frame)
 
 } // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
     if (size < 1)
         return 0;
     std::vector<std::uint8_t> bytes(data + 1, data + size);
@@ -117,9 +117,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string path = tinlod::fuzz::write_input(bytes.data(), bytes.size(), ".tlq");
     try {
         auto source = std::make_unique<tinlod::TileStore>(path, options);
-        tinlod::TileStore& store = *source;
+        tinlod::TileStore &store = *source;
         tinlod::QuadTreeLod lod(std::move(source));
-        const tinlod::GridFrame& frame = lod.frame();
+        const tinlod::GridFrame &frame = lod.frame();
         const double w = (frame.width - 1) * frame.dx, h = (frame.height - 1) * frame.dy;
         // The root's box, when the root has one (a one-cell grid is a single leaf).
         const float zmax = lod.layout().levels() > 1 ? store.bound(0, 0, 0).zmax : 0.0f;
@@ -135,7 +135,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         tinlod::validate(above);
         tinlod::RetrieveOptions ro;
         ro.cull = data[0] & 8;
-        for (const tinlod::View* view : {&near, &above, &near}) {
+        for (const tinlod::View *view : {&near, &above, &near}) {
             check_retrieval(lod.retrieve(*view, ro), frame);
             check(double(store.resident_bytes()) <= options.cache_mb * 1024 * 1024,
                   "the cache holds more than its cap after a retrieval");
@@ -147,7 +147,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
         const tinlod::Heightfield hf = store.heightfield();
         check(hf.z.size() == std::size_t(frame.width) * frame.height, "heightfield size");
-    } catch (const tinlod::Error&) {
+    } catch (const tinlod::Error &) {
     }
     std::remove(path.c_str());
     return 0;

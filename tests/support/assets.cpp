@@ -16,9 +16,9 @@ namespace tinlod::test {
 
 namespace fs = std::filesystem;
 
-std::string asset(const std::string& name) { return std::string(TINLOD_MESHES_DIR) + "/" + name; }
+std::string asset(const std::string &name) { return std::string(TINLOD_MESHES_DIR) + "/" + name; }
 
-Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h) {
+Heightfield crop(const Heightfield &hf, int x0, int y0, int w, int h) {
     Heightfield c = hf;
     c.width = w;
     c.height = h;
@@ -35,11 +35,11 @@ struct TempDirs {
     std::vector<fs::path> dirs;
     ~TempDirs() {
         std::error_code ec;
-        for (auto& d : dirs)
+        for (auto &d : dirs)
             fs::remove_all(d, ec);
     }
 };
-TempDirs& temp_dirs() {
+TempDirs &temp_dirs() {
     static TempDirs t;
     return t;
 }
@@ -53,9 +53,9 @@ std::string temp_dir() {
     return p.string();
 }
 
-static std::string slurp(const fs::path& p) {
+static std::string slurp(const fs::path &p) {
     std::string s;
-    if (FILE* f = std::fopen(p.c_str(), "rb")) {
+    if (FILE *f = std::fopen(p.c_str(), "rb")) {
         std::array<char, 4096> buf;
         std::size_t n;
         while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0)
@@ -65,8 +65,8 @@ static std::string slurp(const fs::path& p) {
     return s;
 }
 
-std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>>& georef,
-                          const std::vector<unsigned>& keys) {
+std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>> &georef,
+                          const std::vector<unsigned> &keys) {
     std::string b = "II*";
     b += '\0';
     const auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
@@ -78,7 +78,7 @@ std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<doub
         {273, 4, 1, 0}, {277, 3, 1, 1}, {278, 3, 1, 2},  {279, 4, 1, 8}, {339, 3, 1, 2}};
     const unsigned count = unsigned(entries.size() + georef.size() + 1);
     unsigned at = 8 + 2 + 12 * count + 4;
-    for (const auto& [tag, values] : georef) {
+    for (const auto &[tag, values] : georef) {
         entries.push_back({tag, 12, unsigned(values.size()), at});
         at += unsigned(8 * values.size());
     }
@@ -87,12 +87,12 @@ std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<doub
     entries[5][3] = at; // the strip
     u32(8);
     u16(count);
-    for (const auto& e : entries) {
+    for (const auto &e : entries) {
         u16(e[0]), u16(e[1]), u32(e[2]);
         e[1] == 3 && e[2] == 1 ? (u16(e[3]), u16(0)) : u32(e[3]);
     }
     u32(0);
-    for (const auto& tag : georef)
+    for (const auto &tag : georef)
         for (const double v : tag.second) {
             char raw[8];
             std::memcpy(raw, &v, 8);
@@ -105,17 +105,17 @@ std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<doub
     return b;
 }
 
-RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes) {
+RunResult run_cli(const std::string &args, std::uint64_t max_file_bytes) {
     const fs::path dir = temp_dir();
     // A hang is a failure, not a stuck test run: give up after two minutes (exit status 124),
     // fifteen under the sanitizers, which run the CLI about ten times slower.
 #ifdef TINLOD_SANITIZED
-    const char* limit = "900";
+    const char *limit = "900";
 #else
-    const char* limit = "120";
+    const char *limit = "120";
 #endif
-    const std::string cmd = std::string("timeout ") + limit + " '" + TINLOD_CLI + "' " + args + " >'" +
-                            (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
+    const std::string cmd = std::string("timeout ") + limit + " '" + TINLOD_CLI + "' " + args +
+                            " >'" + (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
     // The limit and the ignored SIGXFSZ (which would kill the writer instead) pass to the child.
     rlimit unlimited{};
     getrlimit(RLIMIT_FSIZE, &unlimited);
@@ -138,10 +138,10 @@ RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes) {
     return r;
 }
 
-pid_t start_cli(const std::vector<std::string>& args, const std::string& err_file) {
-    std::vector<char*> argv{const_cast<char*>(TINLOD_CLI)};
-    for (const std::string& a : args)
-        argv.push_back(const_cast<char*>(a.c_str()));
+pid_t start_cli(const std::vector<std::string> &args, const std::string &err_file) {
+    std::vector<char *> argv{const_cast<char *>(TINLOD_CLI)};
+    for (const std::string &a : args)
+        argv.push_back(const_cast<char *>(a.c_str()));
     argv.push_back(nullptr);
     const pid_t pid = fork();
     if (pid == 0) {
@@ -156,26 +156,26 @@ pid_t start_cli(const std::vector<std::string>& args, const std::string& err_fil
 }
 
 // Twice the signed xy area of face f (positive: counter-clockwise seen from above).
-static double xy_area2(const Mesh& mesh, Mesh::FaceHandle f) {
+static double xy_area2(const Mesh &mesh, Mesh::FaceHandle f) {
     const auto p = face_corners(mesh, f);
     return (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
 }
 
-std::int64_t count_folded_faces(const Mesh& mesh) {
+std::int64_t count_folded_faces(const Mesh &mesh) {
     std::int64_t folded = 0;
     for (auto f : mesh.faces())
         folded += xy_area2(mesh, f) <= 0.0;
     return folded;
 }
 
-double xy_area(const Mesh& mesh) {
+double xy_area(const Mesh &mesh) {
     double sum = 0;
     for (auto f : mesh.faces())
         sum += 0.5 * xy_area2(mesh, f);
     return sum;
 }
 
-bool is_sky(const Image& image, std::size_t pixel, const RenderOptions& options) {
+bool is_sky(const Image &image, std::size_t pixel, const RenderOptions &options) {
     for (int c = 0; c < 3; ++c)
         if (std::abs(int(image.rgba[4 * pixel + std::size_t(c)]) -
                      int(std::lround(options.sky[c] * 255.0f))) > 1)

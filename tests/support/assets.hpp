@@ -15,18 +15,18 @@
 namespace tinlod::test {
 
 // Absolute path of a file in meshes/.
-std::string asset(const std::string& name);
+std::string asset(const std::string &name);
 // The w x h samples of `hf` from column x0, row y0 (a crop of a real DEM for a small test); the
 // void mask is dropped.
-Heightfield crop(const Heightfield& hf, int x0, int y0, int w, int h);
+Heightfield crop(const Heightfield &hf, int x0, int y0, int w, int h);
 // A fresh empty temporary folder for this test (removed at exit).
 std::string temp_dir();
 
 // The bytes of a 2 x 2 int16 GeoTIFF (heights 100, 200 in the north row, 300, 400 in the south):
 // `georef` holds TIFF tags with their doubles, in ascending tag order (33550 pixel scale, 33922
 // tie points, 34264 model transformation), `keys` the GeoKey directory (tag 34735).
-std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>>& georef,
-                          const std::vector<unsigned>& keys);
+std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>> &georef,
+                          const std::vector<unsigned> &keys);
 
 struct RunResult {
     int status = 0;
@@ -36,22 +36,22 @@ struct RunResult {
 // Runs the tinlod CLI with `args` (a shell-quoted string); status 124 when it hung (> 120 s,
 // 900 s in a sanitizer build). `max_file_bytes` > 0: files it writes are limited to that size, a
 // write past it failing (EFBIG) as a write on a full disk does.
-RunResult run_cli(const std::string& args, std::uint64_t max_file_bytes = 0);
+RunResult run_cli(const std::string &args, std::uint64_t max_file_bytes = 0);
 
 // Starts the tinlod CLI with `args` (not through a shell), its stdout to /dev/null and its
 // stderr to `err_file` (/dev/null when empty), with the default action for every interrupt signal.
 // Returns its process id.
-pid_t start_cli(const std::vector<std::string>& args, const std::string& err_file = "");
+pid_t start_cli(const std::vector<std::string> &args, const std::string &err_file = "");
 
 // Invariants of a TIN: every edge manifold (<= 2 faces, OpenMesh guarantees it for a valid mesh),
 // every face counter-clockwise seen from above with positive xy area. Returns the number of faces
 // that violate the orientation (0 for a valid TIN).
-std::int64_t count_folded_faces(const Mesh& mesh);
+std::int64_t count_folded_faces(const Mesh &mesh);
 // Sum of the xy areas of the live faces.
-double xy_area(const Mesh& mesh);
+double xy_area(const Mesh &mesh);
 
 // Whether pixel `pixel` of `image` is the background `options` clear to, up to one level of
 // rounding per channel.
-bool is_sky(const Image& image, std::size_t pixel, const RenderOptions& options = {});
+bool is_sky(const Image &image, std::size_t pixel, const RenderOptions &options = {});
 
 } // namespace tinlod::test

@@ -21,17 +21,17 @@ struct CameraPath {
     double duration() const { return keys.empty() ? 0.0 : keys.back().t - keys.front().t; }
     // Eye and look-at point at time t (linear between keyframes, clamped at the ends); the other
     // View fields come from `base`.
-    View at_time(double t, const View& base) const;
+    View at_time(double t, const View &base) const;
     // `frames` views evenly spaced over the path (frames >= 1; 1 gives the first keyframe).
-    std::vector<View> sample(int frames, const View& base) const;
+    std::vector<View> sample(int frames, const View &base) const;
 };
 
 // Reads a path CSV; throws Error naming the file and line on a wrong header, a malformed or
 // non-finite number, t not increasing, an eye equal to its look-at point, or no keyframe.
-CameraPath read_camera_path(const std::string& path);
+CameraPath read_camera_path(const std::string &path);
 // Parses CSV text (`source` names it in errors).
-CameraPath parse_camera_path(const std::string& text, const std::string& source);
+CameraPath parse_camera_path(const std::string &text, const std::string &source);
 // Writes a path CSV atomically (the header above, 17 significant digits).
-void write_camera_path(const CameraPath& path, const std::string& file);
+void write_camera_path(const CameraPath &path, const std::string &file);
 
 } // namespace tinlod

@@ -111,9 +111,9 @@ struct EraseOptions {
     // Must outlive the eraser.
     const Heightfield *lattice = nullptr;
     // Called now and then by erase() (screen and vertical models) with the share of its work done,
-    // non-decreasing in [0, 1] (for a progress bar). With a budget: the erases made over those it needs; with a bound
-    // alone: the first sweep over the nodes (most of the time) takes 0.9 of it, each next one 0.9
-    // of what is left.
+    // non-decreasing in [0, 1] (for a progress bar). With a budget: the erases made over those it
+    // needs; with a bound alone: the first sweep over the nodes (most of the time) takes 0.9 of it,
+    // each next one 0.9 of what is left.
     std::function<void(double)> progress;
 };
 
@@ -157,9 +157,9 @@ struct UpdateStats {
     std::int64_t evaluations = 0; // erases tried: the candidates, then the ring nodes of the erases
                                   // made (an erase that fails keeps its node)
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
-    double ms_weights = 0.0;      // the new view's weigher (node weights follow on demand)
-    double ms_recover = 0.0;      // the recover pass
-    double ms_erase = 0.0;        // the erase pass
+    double ms_weights = 0.0;        // the new view's weigher (node weights follow on demand)
+    double ms_recover = 0.0;        // the recover pass
+    double ms_erase = 0.0;          // the erase pass
 };
 
 // An update (NodeEraser::update) does not erase a node whose fan covers more input nodes than
@@ -284,13 +284,15 @@ struct DemEraseOptions {
 // What the erase of erase_dem started from.
 enum class FirstStage { grid, quadtree, greedy };
 inline const char *first_stage_name(FirstStage stage) {
-    return stage == FirstStage::grid ? "grid" : stage == FirstStage::quadtree ? "quadtree" : "greedy";
+    return stage == FirstStage::grid       ? "grid"
+           : stage == FirstStage::quadtree ? "quadtree"
+                                           : "greedy";
 }
 
 struct DemEraseStats {
     EraseStats erase;                 // the erase, on the retrieved TIN
     std::int64_t retrieved_nodes = 0; // the retrieval's nodes (the grid's when it was skipped)
-    double retrieve_tol = 0.0; // its tolerance, pixels or (greedy) metres (0: the full grid)
+    double retrieve_tol = 0.0;        // its tolerance, pixels or (greedy) metres (0: the full grid)
     double retrieve_ms = 0.0;         // quad-tree build or greedy insertion, retrieval and mesh
     FirstStage first_stage = FirstStage::grid;
 };

@@ -10,11 +10,11 @@ namespace tinlod {
 class Error : public std::runtime_error {
   public:
     // `subject` is the path or option at fault (may be empty); `reason` says what is wrong.
-    Error(const std::string& subject, const std::string& reason)
-        : std::runtime_error(subject.empty() ? reason : subject + ": " + reason),
-          subject_(subject), reason_(reason) {}
-    const std::string& subject() const { return subject_; }
-    const std::string& reason() const { return reason_; }
+    Error(const std::string &subject, const std::string &reason)
+        : std::runtime_error(subject.empty() ? reason : subject + ": " + reason), subject_(subject),
+          reason_(reason) {}
+    const std::string &subject() const { return subject_; }
+    const std::string &reason() const { return reason_; }
 
   private:
     std::string subject_;

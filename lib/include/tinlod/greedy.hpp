@@ -23,7 +23,7 @@ struct GreedyTin {
 };
 
 struct GreedyOptions {
-    double max_error = 1.0;    // > 0, world units
+    double max_error = 1.0;     // > 0, world units
     std::int64_t max_nodes = 0; // stop at this many nodes (0, or over 357 M: 357 M)
     // Added to a triangle's largest deviation, times the triangle's slope (|grad z|): what a
     // consumer that rounds the TIN's coordinates to float counts on top of the deviation (the

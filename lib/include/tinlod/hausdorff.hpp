@@ -16,7 +16,7 @@ struct HausdorffOptions {
     std::uint64_t seed = 1;        // the same seed gives the same points, so the same result
     // With a view: the screen-space distance too, each sample's distance seen from where it lies
     // (d * k / OD, View::screen_px), over the samples of both directions inside the frustum.
-    const View* view = nullptr;
+    const View *view = nullptr;
 };
 
 struct HausdorffResult {
@@ -27,14 +27,14 @@ struct HausdorffResult {
     double max_b_to_a = 0.0;
     double mean_a_to_b = 0.0;
     double mean_b_to_a = 0.0;
-    std::int64_t samples = 0; // points measured, both directions together
-    double max_screen_px = 0.0; // with a view: the largest screen-space distance, pixels
+    std::int64_t samples = 0;          // points measured, both directions together
+    double max_screen_px = 0.0;        // with a view: the largest screen-space distance, pixels
     double max_screen_px_a_to_b = 0.0; // of a's samples to b's surface
     double max_screen_px_b_to_a = 0.0;
 };
 
 // Faces with the deleted status are ignored. Throws Error("hausdorff", ...) when a mesh has no
 // live face. Uses every hardware thread; the result does not depend on their number.
-HausdorffResult hausdorff(const Mesh& a, const Mesh& b, const HausdorffOptions& options = {});
+HausdorffResult hausdorff(const Mesh &a, const Mesh &b, const HausdorffOptions &options = {});
 
 } // namespace tinlod

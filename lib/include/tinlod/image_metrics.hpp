@@ -23,11 +23,11 @@ struct ImageDifference {
 };
 
 // Compares two images of the same size; throws Error("compare", ...) when the sizes differ.
-ImageDifference compare_images(const Image& a, const Image& b,
-                               const ImageCompareOptions& options = {});
+ImageDifference compare_images(const Image &a, const Image &b,
+                               const ImageCompareOptions &options = {});
 
 // |a - b| per R, G, B channel, multiplied by `gain` (so small differences show) and clamped;
 // opaque. Same size required, as for compare_images.
-Image difference_image(const Image& a, const Image& b, double gain = 8.0);
+Image difference_image(const Image &a, const Image &b, double gain = 8.0);
 
 } // namespace tinlod

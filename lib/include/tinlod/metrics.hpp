@@ -11,25 +11,28 @@
 namespace tinlod {
 
 struct TinError {
-    double max_vertical = 0.0;   // L-infinity of |z_sample - z_tin| over every covered sample, world units
-    double rms_vertical = 0.0;   // RMS of the same
-    double max_screen_px = 0.0;  // max over samples inside the frustum of |dz| * k / distance(eye, sample)
-    std::int64_t samples = 0;    // samples covered by the TIN
-    std::int64_t uncovered = 0;  // samples no triangle covers in xy (0 for a crack-free TIN)
-    std::int64_t worst_sample = -1; // sample id (r * width + c) of max_screen_px (or max_vertical without a view)
+    double max_vertical =
+        0.0; // L-infinity of |z_sample - z_tin| over every covered sample, world units
+    double rms_vertical = 0.0; // RMS of the same
+    double max_screen_px =
+        0.0; // max over samples inside the frustum of |dz| * k / distance(eye, sample)
+    std::int64_t samples = 0;   // samples covered by the TIN
+    std::int64_t uncovered = 0; // samples no triangle covers in xy (0 for a crack-free TIN)
+    std::int64_t worst_sample =
+        -1; // sample id (r * width + c) of max_screen_px (or max_vertical without a view)
 };
 
 struct ErrorOptions {
-    const View* view = nullptr; // without a view, max_screen_px stays 0
+    const View *view = nullptr; // without a view, max_screen_px stays 0
     bool frustum_only = true;   // screen error only over samples inside the view frustum
 };
 
 // Rasterises every live triangle of `tin` (local world frame of `hf`, x = c*dx, y = r*dy) over the
 // grid and compares the interpolated height with every sample it covers. Cost O(samples + faces).
-TinError measure_error(const Heightfield& hf, const Mesh& tin, const ErrorOptions& options = {});
+TinError measure_error(const Heightfield &hf, const Mesh &tin, const ErrorOptions &options = {});
 
 // The same over a compact TIN: `triangles` holds 3 grid sample ids per triangle.
-TinError measure_error(const Heightfield& hf, const std::vector<std::uint32_t>& triangles,
-                       const ErrorOptions& options = {});
+TinError measure_error(const Heightfield &hf, const std::vector<std::uint32_t> &triangles,
+                       const ErrorOptions &options = {});
 
 } // namespace tinlod

@@ -25,9 +25,9 @@ namespace tinlod {
 class Progress;
 
 // One axis of the tree: the sample range [0, samples-1] split at integer midpoints level after
-// level. Level d holds count(d) intervals; interval k spans samples lo(d, k) .. hi(d, k). Every axis
-// of a tree has the same number of levels (the shallower one repeats its one-cell intervals), and
-// the last level holds only one-cell intervals.
+// level. Level d holds count(d) intervals; interval k spans samples lo(d, k) .. hi(d, k). Every
+// axis of a tree has the same number of levels (the shallower one repeats its one-cell intervals),
+// and the last level holds only one-cell intervals.
 class AxisSplit {
   public:
     AxisSplit() = default;
@@ -96,8 +96,8 @@ enum class NodeStatus : std::uint8_t { leaf = 0, subdivide = 1, unread = 2 };
 class NodeSource {
   public:
     virtual ~NodeSource() = default;
-    virtual const QuadLayout& layout() const = 0;
-    virtual const GridFrame& frame() const = 0;
+    virtual const QuadLayout &layout() const = 0;
+    virtual const GridFrame &frame() const = 0;
     // Bound of a node at a level below levels()-1 (one-cell nodes are never asked).
     virtual NodeBound bound(int d, std::uint32_t i, std::uint32_t j) = 0;
     // Elevation of sample (c, r), a vertex of the leaf (d, i, j) just retrieved.
@@ -112,26 +112,26 @@ class NodeSource {
 // level but the last, every node's bound.
 class QuadTree {
   public:
-    // Builds the bounds in O(samples * levels). `progress` (optional) advances by samples per level.
-    // Throws Error when the grid is smaller than 2x2 or larger than 2^31 samples.
-    explicit QuadTree(const Heightfield& hf, Progress* progress = nullptr);
+    // Builds the bounds in O(samples * levels). `progress` (optional) advances by samples per
+    // level. Throws Error when the grid is smaller than 2x2 or larger than 2^31 samples.
+    explicit QuadTree(const Heightfield &hf, Progress *progress = nullptr);
     // The same, taking hf's elevations over instead of copying them (1 GB on a 16385² grid).
-    explicit QuadTree(Heightfield&& hf, Progress* progress = nullptr);
+    explicit QuadTree(Heightfield &&hf, Progress *progress = nullptr);
 
-    const QuadLayout& layout() const { return layout_; }
-    const GridFrame& frame() const { return frame_; }
-    const std::vector<float>& elevations() const { return z_; }
+    const QuadLayout &layout() const { return layout_; }
+    const GridFrame &frame() const { return frame_; }
+    const std::vector<float> &elevations() const { return z_; }
     float elevation(std::uint32_t c, std::uint32_t r) const {
         return z_[std::size_t{r} * frame_.width + c];
     }
     // Node (d, i, j) for d < levels()-1.
-    const NodeBound& bound(int d, std::uint32_t i, std::uint32_t j) const {
+    const NodeBound &bound(int d, std::uint32_t i, std::uint32_t j) const {
         return bounds_[d][std::size_t{j} * layout_.x.count(d) + i];
     }
     std::int64_t node_count() const; // nodes with a stored bound
 
   private:
-    void build(const Heightfield& hf, Progress* progress); // the bounds, once z_ holds hf's
+    void build(const Heightfield &hf, Progress *progress); // the bounds, once z_ holds hf's
 
     QuadLayout layout_;
     GridFrame frame_;
@@ -146,20 +146,20 @@ struct RetrieveOptions {
     // its box (k over the distance, times the peripheral factor; significance.hpp) exceeds
     // tol_px, the weighted error the node erase bounds, which relaxes the screen bound outside the
     // view. Null: the screen bound everywhere.
-    const SignificanceOptions* peripheral = nullptr;
+    const SignificanceOptions *peripheral = nullptr;
 };
 
 // The compact TIN of one view.
 struct Retrieval {
-    std::vector<std::uint32_t> nodes;     // sample ids (r * width + c) of the TIN's nodes, each once
-    std::vector<float> z;                 // elevation of each node, parallel to `nodes`
+    std::vector<std::uint32_t> nodes; // sample ids (r * width + c) of the TIN's nodes, each once
+    std::vector<float> z;             // elevation of each node, parallel to `nodes`
     std::vector<std::uint32_t> triangles; // 3 sample ids per triangle, counter-clockwise from above
-    std::int64_t tree_nodes = 0;  // tree nodes the traversal reached (leaf or subdivided)
-    std::int64_t leaves = 0;      // leaves of the retrieved tree
-    std::int64_t forced = 0;      // splits made only to keep neighbours within one level
-    double bound_px = 0.0;        // the guaranteed screen error: max over unsplit, unculled leaves
-                                  // of bound * k / distance(eye, leaf box), pixels (with
-                                  // RetrieveOptions::peripheral, times the peripheral factor)
+    std::int64_t tree_nodes = 0;          // tree nodes the traversal reached (leaf or subdivided)
+    std::int64_t leaves = 0;              // leaves of the retrieved tree
+    std::int64_t forced = 0;              // splits made only to keep neighbours within one level
+    double bound_px = 0.0; // the guaranteed screen error: max over unsplit, unculled leaves
+                           // of bound * k / distance(eye, leaf box), pixels (with
+                           // RetrieveOptions::peripheral, times the peripheral factor)
 };
 
 // A traversal with its state kept between views: the status of every node of the last view stays
@@ -167,18 +167,18 @@ struct Retrieval {
 // (status is reset only where the last view set it).
 class QuadTreeLod {
   public:
-    explicit QuadTreeLod(const QuadTree& tree);
+    explicit QuadTreeLod(const QuadTree &tree);
     explicit QuadTreeLod(std::unique_ptr<NodeSource> source);
     ~QuadTreeLod();
-    QuadTreeLod(const QuadTreeLod&) = delete;
-    QuadTreeLod& operator=(const QuadTreeLod&) = delete;
+    QuadTreeLod(const QuadTreeLod &) = delete;
+    QuadTreeLod &operator=(const QuadTreeLod &) = delete;
 
     // Retrieves the restricted quad-tree TIN of `view`: a node splits when its bound seen from the
     // nearest point of its box exceeds options.tol_px. The result lives until the next call.
-    const Retrieval& retrieve(const View& view, const RetrieveOptions& options = {});
+    const Retrieval &retrieve(const View &view, const RetrieveOptions &options = {});
 
-    const QuadLayout& layout() const;
-    const GridFrame& frame() const;
+    const QuadLayout &layout() const;
+    const GridFrame &frame() const;
     // Status of node (d, i, j) after the last retrieve().
     NodeStatus status(int d, std::uint32_t i, std::uint32_t j) const;
 
@@ -188,25 +188,25 @@ class QuadTreeLod {
 };
 
 // One-off retrieval from an in-memory tree.
-Retrieval retrieve(const QuadTree& tree, const View& view, const RetrieveOptions& options = {});
+Retrieval retrieve(const QuadTree &tree, const View &view, const RetrieveOptions &options = {});
 
 // The OpenMesh TIN of a retrieval (origin property = sample id, vertices in `nodes` order).
-Mesh to_mesh(const Retrieval& retrieval, const GridFrame& frame);
+Mesh to_mesh(const Retrieval &retrieval, const GridFrame &frame);
 
 // The retrieval's TIN on the whole lattice of `hf`, the grid it was retrieved from: vertex
 // r * width + c for every sample (as grid_tin), the samples the retrieval left out deleted and
 // isolated. A NodeEraser on it bounds every sample of the grid, retrieved or not.
-Mesh to_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf);
+Mesh to_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf);
 // The same TIN with only the retrieval's samples as vertices (origin property = sample id,
 // vertices in sample order, points as grid_vertices has them), for a NodeEraser told the lattice
 // (EraseOptions::lattice): its arrays follow the retrieval's nodes, not the grid's samples.
-Mesh to_sparse_lattice_mesh(const Retrieval& retrieval, const Heightfield& hf);
+Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf);
 
 // ---- The heights a TIN's bound rests on -------------------------------------------------------
 
 // The first level whose nodes span at most `cells` cells on each side (at most levels() - 2, the
 // deepest with bounds).
-int level_for_cells(const QuadLayout& layout, int cells);
+int level_for_cells(const QuadLayout &layout, int cells);
 
 // Which blocks of heights (the nodes of one level) a TIN over the tree's grid needs in memory to
 // show, from a view, that every sample under its faces is within tol_px of them (weighted by the
@@ -225,7 +225,7 @@ struct WorkingSet {
     double share() const { return needed.empty() ? 0.0 : double(count) / double(needed.size()); }
 };
 // `tin`: live faces over the grid in grid_point's frame (deleted elements are skipped).
-WorkingSet height_working_set(const QuadTree& tree, const Mesh& tin, const View& view,
-                              const SignificanceOptions& significance, double tol_px, int level);
+WorkingSet height_working_set(const QuadTree &tree, const Mesh &tin, const View &view,
+                              const SignificanceOptions &significance, double tol_px, int level);
 
 } // namespace tinlod

@@ -9,23 +9,24 @@
 namespace tinlod {
 
 // A regular grid of elevations. Row 0 is the SOUTH edge (files are flipped on load), so sample
-// (c, r) stands at local world coordinates (c * dx, r * dy, z). Node id of a sample = r * width + c.
+// (c, r) stands at local world coordinates (c * dx, r * dy, z). Node id of a sample = r * width +
+// c.
 struct Heightfield {
     int width = 0;
     int height = 0;
-    std::vector<float> z;    // width*height elevations in world units (metres), row-major
-    double dx = 1.0;         // ground spacing east, world units
-    double dy = 1.0;         // ground spacing north, world units
-    double origin_x = 0.0;   // CRS coordinates of sample (0, 0) (the SW sample), for reference
+    std::vector<float> z;  // width*height elevations in world units (metres), row-major
+    double dx = 1.0;       // ground spacing east, world units
+    double dy = 1.0;       // ground spacing north, world units
+    double origin_x = 0.0; // CRS coordinates of sample (0, 0) (the SW sample), for reference
     double origin_y = 0.0;
-    std::string crs;         // description of the CRS of the local frame, e.g. "EPSG:32631 (UTM 31N)"
+    std::string crs; // description of the CRS of the local frame, e.g. "EPSG:32631 (UTM 31N)"
     std::vector<std::uint8_t> void_mask; // empty, or 1 where the sample was a void (now filled)
-    std::int64_t voids = 0;  // void samples in the file (cropped ones included)
-    std::int64_t filled = 0; // number of voids filled from valid neighbours
+    std::int64_t voids = 0;              // void samples in the file (cropped ones included)
+    std::int64_t filled = 0;             // number of voids filled from valid neighbours
     std::int64_t cropped = 0; // samples cut away: whole rows/columns of voids at the edges
 
     float at(int c, int r) const { return z[static_cast<std::size_t>(r) * width + c]; }
-    float& at(int c, int r) { return z[static_cast<std::size_t>(r) * width + c]; }
+    float &at(int c, int r) { return z[static_cast<std::size_t>(r) * width + c]; }
     std::int64_t size() const { return static_cast<std::int64_t>(width) * height; }
     float min_z() const;
     float max_z() const;
@@ -42,7 +43,7 @@ struct LoadOptions {
 
 // Loads a DEM by extension/content: .hgt, or anything OpenImageIO reads. Throws Error naming the
 // file on anything unusable (unreadable, truncated, NaN, all-void, absurd size).
-Heightfield load_heightfield(const std::string& path, const LoadOptions& options = {});
+Heightfield load_heightfield(const std::string &path, const LoadOptions &options = {});
 
 // Largest raster we accept (samples); checked before allocating.
 inline constexpr std::int64_t k_max_raster_samples = std::int64_t{1} << 31;

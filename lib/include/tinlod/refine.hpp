@@ -19,11 +19,11 @@ namespace tinlod {
 class NodeSource;
 
 struct RefineOptions {
-    double tol_px = 1.0;     // tau: screen-space error every frame may show, pixels
+    double tol_px = 1.0;      // tau: screen-space error every frame may show, pixels
     double hysteresis = 0.25; // erase only down to (1 - hysteresis) * tau, recover above tau, so a
                               // node near the threshold does not flicker; in [0, 1)
     SignificanceOptions significance; // SP model (screen or paper) and its parameters
-    int max_valence = 24;    // nodes with more neighbours stay (bounds a hole's size)
+    int max_valence = 24;             // nodes with more neighbours stay (bounds a hole's size)
     // From a Heightfield with the screen model: the first frame retrieves the quad-tree's TIN at
     // retrieve_share times the erase tolerance, (1 - hysteresis) tau, and erases from there. The
     // samples the retrieval left out enter later by local edits, where the observer comes close
@@ -32,24 +32,24 @@ struct RefineOptions {
 };
 
 struct FrameStats {
-    std::int64_t nodes = 0;      // live nodes after the update
-    std::int64_t triangles = 0;  // live triangles after the update
-    std::int64_t erased = 0;     // nodes erased by this update
-    std::int64_t recovered = 0;  // nodes recovered by this update
-    std::int64_t entered = 0;    // of those, samples there for the first time (left out by the
-                                 // first frame's retrieval)
-    std::int64_t fans_kept = 0;  // of the recovered, nodes whose large fan's faces took back what
-                                 // they knew of their samples at the erase (UpdateStats)
-    std::int64_t reerased = 0;   // nodes this update recovered and then erased again
-    std::int64_t candidates = 0; // live nodes re-evaluated for erase
+    std::int64_t nodes = 0;       // live nodes after the update
+    std::int64_t triangles = 0;   // live triangles after the update
+    std::int64_t erased = 0;      // nodes erased by this update
+    std::int64_t recovered = 0;   // nodes recovered by this update
+    std::int64_t entered = 0;     // of those, samples there for the first time (left out by the
+                                  // first frame's retrieval)
+    std::int64_t fans_kept = 0;   // of the recovered, nodes whose large fan's faces took back what
+                                  // they knew of their samples at the erase (UpdateStats)
+    std::int64_t reerased = 0;    // nodes this update recovered and then erased again
+    std::int64_t candidates = 0;  // live nodes re-evaluated for erase
     std::int64_t evaluations = 0; // erases tried (UpdateStats): those that fail keep their node
-    double ms_retrieve = 0.0;    // the first frame: quad-tree build and retrieval
-    double ms_weights = 0.0;     // per-node weights for the new view
+    double ms_retrieve = 0.0;     // the first frame: quad-tree build and retrieval
+    double ms_weights = 0.0;      // per-node weights for the new view
     double ms_recover = 0.0;
     double ms_erase = 0.0;
     double ms_total = 0.0;
-    double bound_px = 0.0;       // the refiner's bound: max weighted deviation of every erased node
-                                 // (pixels inside the frustum, relaxed outside), <= tol_px
+    double bound_px = 0.0; // the refiner's bound: max weighted deviation of every erased node
+                           // (pixels inside the frustum, relaxed outside), <= tol_px
 };
 
 // Holds the current TIN and its erase history between frames.
@@ -58,28 +58,28 @@ class Refiner {
     // Starts from the grid TIN of `hf` seen from `first`: the quad-tree retrieval, then the erase
     // (see RefineOptions::retrieve_share), then one update from `first` that makes the bounds the
     // updates carry over. `hf` must outlive the refiner.
-    Refiner(const Heightfield& hf, const View& first, const RefineOptions& options = {});
+    Refiner(const Heightfield &hf, const View &first, const RefineOptions &options = {});
     // The same, the first retrieval read from `tree`, a quad-tree of hf's grid (a store, whose
     // bounds are on disk already: no quad-tree is built over hf), dropped once it has.
-    Refiner(const Heightfield& hf, std::unique_ptr<NodeSource> tree, const View& first,
-            const RefineOptions& options = {});
+    Refiner(const Heightfield &hf, std::unique_ptr<NodeSource> tree, const View &first,
+            const RefineOptions &options = {});
     // Starts from a mesh (a TIN or a surface mesh).
-    Refiner(Mesh mesh, const View& first, const RefineOptions& options = {});
+    Refiner(Mesh mesh, const View &first, const RefineOptions &options = {});
     ~Refiner();
-    Refiner(const Refiner&) = delete;
-    Refiner& operator=(const Refiner&) = delete;
+    Refiner(const Refiner &) = delete;
+    Refiner &operator=(const Refiner &) = delete;
 
     // The first frame's statistics (the initial erase and its update).
-    const FrameStats& first_frame() const;
+    const FrameStats &first_frame() const;
     // Moves to `view`: recovers where the bound would break, erases where SP fell below
     // (1 - hysteresis) tau. Afterwards every frame-visible deviation is <= tau pixels.
-    FrameStats update(const View& view);
+    FrameStats update(const View &view);
 
     // The current TIN: erased nodes and their faces are marked deleted, not removed. From a mesh,
     // vertex idx = input vertex. From a heightfield, a vertex per live sample (the origin property
     // names each): an erase frees its node's vertex for the next sample that enters or comes back,
     // so the TIN's memory follows its live nodes, not the grid or the samples ever live.
-    const Mesh& mesh() const;
+    const Mesh &mesh() const;
     bool is_erased(Mesh::VertexHandle v) const;
     // Bytes of the whole structure: the mesh's arrays and the erase history.
     std::size_t bytes() const;

@@ -37,7 +37,7 @@ struct RenderOptions {
                                       // <= 0: the largest value given
     float z_min = NAN, z_max = NAN;   // height range of the ramp, world units; NaN: the mesh's
     glm::vec3 sky{0.62f, 0.77f, 0.92f};         // background colour, 0..1
-    const Heightfield* normal_source = nullptr; // when set: shade with this DEM's normals (central
+    const Heightfield *normal_source = nullptr; // when set: shade with this DEM's normals (central
                                                 // differences, bilinear at each pixel's xy in the
                                                 // DEM's local frame) instead of the mesh's vertex
                                                 // normals, so a TIN's render differs from the full
@@ -58,9 +58,9 @@ struct Image {
 // Near and far clipping distances (world units) that enclose every point of `mesh` seen from
 // `view`: far just beyond the farthest bounding-box corner, near at the distance to the box (or a
 // small fraction of far when the eye is inside it).
-glm::dvec2 clip_range(const Mesh& mesh, const View& view);
+glm::dvec2 clip_range(const Mesh &mesh, const View &view);
 // The same for the box [lo, hi] (world units).
-glm::dvec2 clip_range(const glm::dvec3& lo, const glm::dvec3& hi, const View& view);
+glm::dvec2 clip_range(const glm::dvec3 &lo, const glm::dvec3 &hi, const View &view);
 
 // Draws meshes into the GL 3.3 core context current on this thread (GL objects live in it).
 // Construct, use and destroy it only while that context is current.
@@ -68,18 +68,18 @@ class MeshPainter {
   public:
     MeshPainter(); // compiles the shaders; throws Error("render", ...) when they do not build
     ~MeshPainter();
-    MeshPainter(const MeshPainter&) = delete;
-    MeshPainter& operator=(const MeshPainter&) = delete;
+    MeshPainter(const MeshPainter &) = delete;
+    MeshPainter &operator=(const MeshPainter &) = delete;
 
     // Uploads the live faces of `mesh` with the scalars `options` asks for (checked against the
     // mesh: throws Error("render", ...) when a scalar array has the wrong length).
-    void upload(const Mesh& mesh, const RenderOptions& options);
+    void upload(const Mesh &mesh, const RenderOptions &options);
     // Clears the bound framebuffer to the sky and draws the uploaded mesh for `view` into a
     // viewport of view.viewport_w x view.viewport_h pixels, with clipping planes `clip`.
-    void draw(const View& view, glm::dvec2 clip, const RenderOptions& options) const;
+    void draw(const View &view, glm::dvec2 clip, const RenderOptions &options) const;
 
   private:
-    void upload_normal_map(const Heightfield* hf);
+    void upload_normal_map(const Heightfield *hf);
 
     unsigned program_ = 0, vao_ = 0, vertex_buffer_ = 0, index_buffer_ = 0;
     unsigned face_buffer_ = 0, face_texture_ = 0, normal_texture_ = 0;
@@ -98,12 +98,12 @@ class Renderer {
     // Throws Error("render", reason) when no OpenGL 3.3 core context can be made.
     Renderer();
     ~Renderer();
-    Renderer(const Renderer&) = delete;
-    Renderer& operator=(const Renderer&) = delete;
+    Renderer(const Renderer &) = delete;
+    Renderer &operator=(const Renderer &) = delete;
 
     // Renders `mesh` (faces with the deleted status are skipped) as seen from `view`, at the
     // view's viewport size. Deterministic: the same input gives the same bytes.
-    Image render(const Mesh& mesh, const View& view, const RenderOptions& options = {});
+    Image render(const Mesh &mesh, const View &view, const RenderOptions &options = {});
     // "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6", for reports.
     std::string gl_description() const;
 
@@ -114,14 +114,14 @@ class Renderer {
 };
 
 // True when a Renderer can be made here; otherwise `why` (optional) receives the reason.
-bool render_available(std::string* why = nullptr);
+bool render_available(std::string *why = nullptr);
 
 // Writes the colour of `image` to `path` (format by extension: .png, .tif, .exr, ...), atomically.
 // Throws Error naming the file when it cannot be written.
-void write_image(const std::string& path, const Image& image);
+void write_image(const std::string &path, const Image &image);
 // Writes the depth of `image` as a one-channel float image (use .exr or .tif), atomically.
-void write_depth(const std::string& path, const Image& image);
+void write_depth(const std::string &path, const Image &image);
 // Reads an image file into RGBA8 (grey or RGB get opaque alpha); throws Error naming the file.
-Image read_image(const std::string& path);
+Image read_image(const std::string &path);
 
 } // namespace tinlod

@@ -26,10 +26,10 @@ inline constexpr int k_store_tile_cells = 64; // tiles are the first level whose
 
 // Writes `tree` as a store at `path` through write_atomically. Throws Error naming the path when it
 // cannot be written. `progress` (optional) advances by samples written, out of width * height.
-void write_store(const QuadTree& tree, const std::string& path, Progress* progress = nullptr);
+void write_store(const QuadTree &tree, const std::string &path, Progress *progress = nullptr);
 
 // True when the file starts with the store magic (it may still be corrupt).
-bool is_store_file(const std::string& path);
+bool is_store_file(const std::string &path);
 
 struct StoreOptions {
     double cache_mb = 256.0; // tiles kept resident between retrievals, MiB; the tiles of the view
@@ -47,13 +47,13 @@ struct StoreStats {
 // its checksum when it is first read, and a mismatch throws Error naming the tile.
 class TileStore final : public NodeSource {
   public:
-    explicit TileStore(const std::string& path, const StoreOptions& options = {});
+    explicit TileStore(const std::string &path, const StoreOptions &options = {});
     ~TileStore() override;
-    TileStore(const TileStore&) = delete;
-    TileStore& operator=(const TileStore&) = delete;
+    TileStore(const TileStore &) = delete;
+    TileStore &operator=(const TileStore &) = delete;
 
-    const QuadLayout& layout() const override;
-    const GridFrame& frame() const override;
+    const QuadLayout &layout() const override;
+    const GridFrame &frame() const override;
     NodeBound bound(int d, std::uint32_t i, std::uint32_t j) override;
     float vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
                    std::uint32_t r) override;
@@ -65,8 +65,8 @@ class TileStore final : public NodeSource {
     std::int64_t resident_tiles() const;
     std::int64_t resident_bytes() const; // bytes of the resident tiles
     std::int64_t file_bytes() const;
-    const StoreStats& last_stats() const;  // of the last retrieval
-    const StoreStats& total_stats() const; // since opening
+    const StoreStats &last_stats() const;  // of the last retrieval
+    const StoreStats &total_stats() const; // since opening
     // Every sample, each tile verified (for exhaustive checks); does not touch the cache or stats.
     Heightfield heightfield() const;
 

@@ -29,9 +29,9 @@ class Interrupted : public std::runtime_error {
 // From here on SIGINT, SIGTERM and SIGHUP (those not ignored when the process started, as nohup
 // and a shell's background jobs do) end the process at once, as by default, except while
 // a Deferral lives: then they only set a flag, which check_interrupt() turns into Interrupted where
-// unwinding is safe, so that a command stopped by Ctrl-C leaves no partial output. A Progress (until
-// finish()), a StagedFolder and write_atomically defer them and check. A second signal ends the
-// process at once.
+// unwinding is safe, so that a command stopped by Ctrl-C leaves no partial output. A Progress
+// (until finish()), a StagedFolder and write_atomically defer them and check. A second signal ends
+// the process at once.
 void install_interrupt_handlers();
 
 // Throws Interrupted when a signal came while a Deferral lived.
@@ -42,19 +42,20 @@ class Deferral {
   public:
     Deferral();
     ~Deferral();
-    Deferral(const Deferral&) = delete;
-    Deferral& operator=(const Deferral&) = delete;
+    Deferral(const Deferral &) = delete;
+    Deferral &operator=(const Deferral &) = delete;
 };
 
 // Writes `path` by calling write(tmp) on a temporary in the same folder, then renaming it over
 // `path`. On any exception the temporary is removed and the exception rethrown; `path` is never
 // left half-written. Throws Error when the folder is missing or not writable.
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+void write_atomically(const std::string &path,
+                      const std::function<void(const std::string &)> &write);
 
 // Throws Error naming the first of `paths` whose folder is missing or not writable, or that is a
 // folder itself (empty paths are skipped): the checks write_atomically makes, for a command to make
 // them on all its outputs before its work rather than on each after it.
-void check_writable(const std::vector<std::string>& paths);
+void check_writable(const std::vector<std::string> &paths);
 
 // Files written into an existing folder all together or not at all, as a flight's frames: each is
 // written into a hidden staging folder inside it, and commit() moves them in. Destroyed before
@@ -63,14 +64,14 @@ void check_writable(const std::vector<std::string>& paths);
 class StagedFolder {
   public:
     // Throws Error naming `folder` when it is missing or not writable.
-    explicit StagedFolder(const std::string& folder);
+    explicit StagedFolder(const std::string &folder);
     ~StagedFolder();
-    StagedFolder(const StagedFolder&) = delete;
-    StagedFolder& operator=(const StagedFolder&) = delete;
+    StagedFolder(const StagedFolder &) = delete;
+    StagedFolder &operator=(const StagedFolder &) = delete;
     // Writes the file `name` (a bare file name) by calling write(path) with the path to write it
     // to; it enters the folder at commit(). An Error that names that path names the file's place
     // in the folder instead.
-    void write(const std::string& name, const std::function<void(const std::string&)>& write);
+    void write(const std::string &name, const std::function<void(const std::string &)> &write);
     // Moves the staged files in, over files of the same names. Throws Error, having moved none,
     // when a name is taken by a folder.
     void commit();
@@ -82,7 +83,7 @@ class StagedFolder {
 };
 
 // Writes a JSON document atomically (pretty-printed).
-void write_json(const std::string& path, const nlohmann::json& doc);
+void write_json(const std::string &path, const nlohmann::json &doc);
 
 // Peak resident set size of this process, MiB (VmHWM).
 double peak_rss_mb();
@@ -90,7 +91,7 @@ double peak_rss_mb();
 // Asks the kernel to back the 2 MiB pages inside [data, data + bytes) with huge pages, now (Linux:
 // MADV_HUGEPAGE, then MADV_COLLAPSE; nothing where either is refused). For large arrays read at
 // random for a long time, where 4 KiB pages cost a TLB miss per read.
-void advise_huge_pages(const void* data, std::size_t bytes);
+void advise_huge_pages(const void *data, std::size_t bytes);
 
 // Threads the library may run at once: its own workers (the quad-tree build, Hausdorff distances)
 // and OpenImageIO's and OpenEXR's pools. `threads` >= 1; the default is the hardware concurrency.

@@ -25,18 +25,18 @@ struct View {
     // Perspective projection for the viewport aspect; near/far in world units.
     glm::dmat4 projection_matrix(double near, double far) const;
     // True when p lies inside the (infinite-depth) view pyramid, with `margin_px` pixels of slack.
-    bool in_frustum(const glm::dvec3& p, double margin_px = 0.0) const;
+    bool in_frustum(const glm::dvec3 &p, double margin_px = 0.0) const;
     // Screen-space size in pixels of a world deviation `delta` seen at point p (distance to eye).
-    double screen_px(double delta, const glm::dvec3& p) const;
+    double screen_px(double delta, const glm::dvec3 &p) const;
 };
 
 // Checks the view for NaN, a zero-length axis, fov outside (0, 180), empty viewport; throws Error
 // naming `subject` (e.g. "--eye") when it is unusable.
-void validate(const View& view, const std::string& subject = "view");
+void validate(const View &view, const std::string &subject = "view");
 
 // Parses "X,Y,Z" (throws Error naming `option` on bad text).
-glm::dvec3 parse_vec3(const std::string& text, const std::string& option);
+glm::dvec3 parse_vec3(const std::string &text, const std::string &option);
 // Parses "WxH".
-void parse_viewport(const std::string& text, int& w, int& h);
+void parse_viewport(const std::string &text, int &w, int &h);
 
 } // namespace tinlod
