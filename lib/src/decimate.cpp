@@ -320,7 +320,7 @@ struct LiveNode {
     float star_dev;
     // Bounds on the fan's swallowed nodes: each lies within `reach` of the node (3-D) and deviates
     // at most `fan_dev` from its face. Raised as the fan changes, tightened when an update walks
-    // it.
+    // the fan.
     float reach;
     float fan_dev;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
@@ -519,8 +519,8 @@ struct NodeEraser::Impl {
     double area_per_node = 0.0; // xy: the input's bounding-box area over its nodes
     int grid_nx = 1, grid_ny = 1;
     std::vector<std::uint8_t> flags; // per vertex: k_locked, k_dirty, k_recovered, k_unread
-    std::vector<std::uint8_t>
-        stamp; // per vertex: the sweep pass (mod 256) that last changed its ring
+    // Per vertex: the sweep pass (mod 256) that last changed its ring.
+    std::vector<std::uint8_t> stamp;
     // Set by compact(): the live nodes' keys and stamps are in their LiveNode, and the per-vertex
     // ones (heap, stamp) are freed, as only an update's sweeps, over live nodes, read them; 5
     // bytes per input node, and a stamp reset that visits the live nodes, not the terrain. The
@@ -2428,8 +2428,8 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
 // live nodes of a 4097² flight) those passes cost as much as the walks over the nodes. At 30 frames
 // per second with the camera 8 times slower than the flight benchmark's paths, a frame's median
 // took 19-24 % less with 64 live nodes per cell than with 1024 input nodes (scratch runs on the
-// fly-over: 20 to 1,400 live nodes per cell were within 13 % of each other, 80 to 1,400 within 5
-// %).
+// fly-over: 20 to 1,400 live nodes per cell were within 13 % of each other, 80 to 1,400 within
+// 5 %).
 constexpr double k_live_per_cell = 64.0;
 // The grid is sized again once the live nodes are this many times more, or fewer, than it was for.
 constexpr std::int64_t k_regrid_ratio = 4;

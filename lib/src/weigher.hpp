@@ -77,8 +77,8 @@ class Weigher {
     }
     // An upper bound of the weight anywhere in the box [lo, hi]: k over the box's distance to the
     // eye, times the peripheral factor of the smallest angle its bounding sphere makes with the
-    // axis (1 up to the cone through the margin-widened frustum's corners, whose points all have
-    // it).
+    // axis (1 up to the cone through the margin-widened frustum's corners, all of whose points
+    // have that factor).
     double bound(const glm::dvec3 &lo, const glm::dvec3 &hi) const {
         if (unit_)
             return 1.0;

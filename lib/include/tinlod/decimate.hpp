@@ -75,8 +75,8 @@ inline constexpr int k_max_ring = 48;
 enum class Projection { automatic, xy, mean_plane };
 
 struct EraseOptions {
-    double tolerance =
-        1.0; // tau: pixels (screen, paper models) or world units (vertical); may be +inf
+    // tau: pixels (screen, paper models) or world units (vertical); may be +inf
+    double tolerance = 1.0;
     std::int64_t max_nodes = 0;       // stop once this many live nodes remain (0: no budget)
     SignificanceOptions significance; // SP model and its parameters
     Projection projection = Projection::automatic; // automatic: xy when every face is CCW in xy
@@ -124,10 +124,10 @@ struct EraseStats {
     std::int64_t output_triangles = 0;
     std::int64_t erased = 0;      // erases made by this call
     std::int64_t evaluations = 0; // hole re-triangulations tried (erase cost)
-    double max_weighted =
-        0.0; // the bound reached: max over swallowed nodes of deviation * weight (tolerance units)
-    double max_screen_px =
-        0.0; // max over swallowed nodes inside the frustum of deviation * k / OD (0 without a view)
+    // the bound reached: max over swallowed nodes of deviation * weight (tolerance units)
+    double max_weighted = 0.0;
+    // max over swallowed nodes inside the frustum of deviation * k / OD (0 without a view)
+    double max_screen_px = 0.0;
     double max_vertical = 0.0; // max deviation over all swallowed nodes, world units: vertical in
                                // a TIN, the distance to the covering triangle on a surface mesh
     double ms = 0.0;           // wall time of the erase

@@ -11,15 +11,15 @@
 namespace tinlod {
 
 struct TinError {
-    double max_vertical =
-        0.0; // L-infinity of |z_sample - z_tin| over every covered sample, world units
+    // L-infinity of |z_sample - z_tin| over every covered sample, world units
+    double max_vertical = 0.0;
     double rms_vertical = 0.0; // RMS of the same
-    double max_screen_px =
-        0.0; // max over samples inside the frustum of |dz| * k / distance(eye, sample)
+    // max over samples inside the frustum of |dz| * k / distance(eye, sample)
+    double max_screen_px = 0.0;
     std::int64_t samples = 0;   // samples covered by the TIN
     std::int64_t uncovered = 0; // samples no triangle covers in xy (0 for a crack-free TIN)
-    std::int64_t worst_sample =
-        -1; // sample id (r * width + c) of max_screen_px (or max_vertical without a view)
+    // sample id (r * width + c) of max_screen_px (or max_vertical without a view)
+    std::int64_t worst_sample = -1;
 };
 
 struct ErrorOptions {

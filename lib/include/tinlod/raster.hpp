@@ -9,8 +9,8 @@
 namespace tinlod {
 
 // A regular grid of elevations. Row 0 is the SOUTH edge (files are flipped on load), so sample
-// (c, r) stands at local world coordinates (c * dx, r * dy, z). Node id of a sample = r * width +
-// c.
+// (c, r) stands at local world coordinates (c * dx, r * dy, z). Node id of a sample:
+// r * width + c.
 struct Heightfield {
     int width = 0;
     int height = 0;

@@ -39,8 +39,8 @@ enum class SpModel { screen, paper, vertical };
 struct SignificanceOptions {
     SpModel model = SpModel::screen;
     double cone_margin_px = 2.0; // pixels of slack around the frustum still counted as inside
-    double falloff_deg =
-        15.0; // outside the view cone the peripheral factor e-folds every this many degrees
+    // outside the view cone the peripheral factor e-folds every this many degrees
+    double falloff_deg = 15.0;
     double floor = 0.02;     // smallest peripheral factor (far behind the observer)
     double w_distance = 1.0; // paper model: exponent of D_f / OD
     double w_angle = 1.0;    // paper model: exponent of cos(OA / 2)

@@ -17,8 +17,8 @@
 namespace tinlod {
 
 struct TinTraits : public OpenMesh::DefaultTraits {
-    using Point =
-        OpenMesh::Vec3f; // local world frame (see Heightfield), so floats keep mm precision
+    // local world frame (see Heightfield), so floats keep mm precision
+    using Point = OpenMesh::Vec3f;
     using Normal = OpenMesh::Vec3f;
     VertexAttributes(OpenMesh::Attributes::Status);
     FaceAttributes(OpenMesh::Attributes::Status);
@@ -28,8 +28,8 @@ struct TinTraits : public OpenMesh::DefaultTraits {
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<TinTraits>;
 
 // Provenance of each node: the grid sample id (r * width + c) or input vertex index it came from.
-// Stored as the mesh vertex property named k_origin_property; get_origin_property adds it if
-// absent.
+// Stored as the mesh vertex property named k_origin_property; get_origin_property adds it when
+// the mesh has none.
 inline constexpr const char *k_origin_property = "tinlod:origin";
 OpenMesh::VPropHandleT<std::int64_t> get_origin_property(Mesh &mesh);
 // Returns an invalid handle when the mesh has no provenance.
