@@ -94,3 +94,57 @@ TEST(StoreKill, InterruptedBuildLeavesNoTemporary) {
     }
     EXPECT_GT(stopped, 0) << "no build was stopped midway: the test proved nothing";
 }
+
+// The temporaries in a folder whose name starts with `prefix`.
+static std::vector<std::string> temporaries(const std::string &dir, const std::string &prefix) {
+    std::vector<std::string> names;
+    for (const auto &e : std::filesystem::directory_iterator(dir))
+        if (e.path().filename().string().rfind(prefix, 0) == 0)
+            names.push_back(e.path().filename().string());
+    return names;
+}
+
+// A build killed while it writes leaves its temporary (SIGKILL cannot be caught); the next write
+// into that folder removes it, but not the temporary of a writer that still runs (here stopped
+// with SIGSTOP midway), until that one has been killed too.
+TEST(StoreKill, TheNextWriteRemovesAKilledWritersTemporary) {
+    const std::string dir = tinlod::test::temp_dir();
+    const std::string store = dir + "/terrain.tlq", other = dir + "/other.tlq";
+    const std::string prefix = ".terrain.tlq.tinlod-";
+    // Stops a build of the large tile once its temporary is there: its pid, or 0 when it finished
+    // first.
+    const auto stop_while_writing = [&]() -> pid_t {
+        const pid_t pid =
+            tinlod::test::start_cli({"build", tinlod::test::asset("N42E001.hgt"), "-o", store});
+        for (int i = 0; i < 20000; ++i) {
+            if (!temporaries(dir, prefix).empty()) {
+                kill(pid, SIGSTOP);
+                return pid;
+            }
+            int status = 0;
+            if (waitpid(pid, &status, WNOHANG) == pid)
+                return 0;
+            usleep(500);
+        }
+        return 0;
+    };
+    const auto build_other = [&] {
+        ASSERT_EQ(tinlod::test::run_cli("build " + tinlod::test::asset("dem_squared.tif") + " -o " +
+                                        other)
+                      .status,
+                  0);
+    };
+    pid_t pid = 0;
+    for (int attempt = 0; attempt < 5 && pid == 0; ++attempt)
+        pid = stop_while_writing();
+    ASSERT_GT(pid, 0) << "no build was caught writing";
+    build_other();
+    EXPECT_EQ(temporaries(dir, prefix).size(), 1u) << "a running writer's temporary was removed";
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_EQ(temporaries(dir, prefix).size(), 1u) << "SIGKILL left no temporary";
+    build_other();
+    EXPECT_TRUE(temporaries(dir, prefix).empty()) << "the killed writer's temporary is still there";
+    EXPECT_TRUE(temporaries(dir, ".other.tlq.").empty());
+}

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <sys/mman.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #ifndef MADV_COLLAPSE
@@ -16,11 +17,14 @@
 #include <cassert>
 #include <cerrno>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <regex>
 #include <thread>
 
 namespace tinlod {
@@ -84,23 +88,60 @@ void check_writable(const std::vector<std::string> &paths) {
     }
 }
 
-// ".<name>.<random>.tmp<extension>", appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a
-// false positive) on the inlined `"." + std::string` of the one-line form.
+// This host's mark in the temporaries' names: its name's FNV-1a hash, in hex.
+static std::string host_mark() {
+    char host[256] = {};
+    ::gethostname(host, sizeof host - 1);
+    std::uint32_t h = 2166136261u;
+    for (const char *c = host; *c; ++c)
+        h = (h ^ std::uint8_t(*c)) * 16777619u;
+    char text[16];
+    std::snprintf(text, sizeof text, "%08x", h);
+    return text;
+}
+
+// ".<name>.tinlod-<host>-<pid>-<random>.tmp<extension>": the host and the process that write it,
+// so that a later process can tell one whose writer was killed (remove_stale_temporaries).
+// Appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a false positive) on the inlined
+// `"." + std::string` of the one-line form.
 static std::string hidden_name(const fs::path &target) {
     std::random_device rd;
     std::string name = ".";
     name += target.filename().string();
-    name += '.';
+    name += ".tinlod-";
+    name += host_mark();
+    name += '-';
+    name += std::to_string(::getpid());
+    name += '-';
     name += std::to_string(rd());
     name += ".tmp";
     name += target.extension().string();
     return name;
 }
 
+// Removes from `folder` the temporaries (files, or a StagedFolder's staging folders) that a tinlod
+// process of this host left when it was killed (SIGKILL, a crash, a power cut) before it could
+// remove them: those whose process no longer runs. Another host's, and a running process's, stay.
+static void remove_stale_temporaries(const fs::path &folder) {
+    static const std::regex ours(R"(^\..+\.tinlod-([0-9a-f]{8})-([0-9]+)-[0-9]+\.tmp.*$)");
+    const std::string host = host_mark();
+    std::error_code ec;
+    for (const fs::directory_entry &e : fs::directory_iterator(folder, ec)) {
+        const std::string name = e.path().filename().string();
+        std::smatch m;
+        if (name[0] != '.' || !std::regex_match(name, m, ours) || m[1] != host)
+            continue;
+        const long pid = std::strtol(m[2].str().c_str(), nullptr, 10);
+        if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH)
+            fs::remove_all(e.path(), ec);
+    }
+}
+
 void write_atomically(const std::string &path,
                       const std::function<void(const std::string &)> &write) {
     check_writable({path});
     const fs::path target(path);
+    remove_stale_temporaries(folder_of(target));
     const fs::path tmp = folder_of(target) / hidden_name(target);
     std::error_code ec;
     const Deferral deferral;
@@ -116,6 +157,7 @@ void write_atomically(const std::string &path,
 
 StagedFolder::StagedFolder(const std::string &folder) : folder_(folder) {
     check_folder(folder, folder, "folder");
+    remove_stale_temporaries(folder);
     std::error_code ec;
     const fs::path staging = fs::path(folder) / hidden_name("staged");
     if (!fs::create_directory(staging, ec))

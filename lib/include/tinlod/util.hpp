@@ -48,7 +48,9 @@ class Deferral {
 
 // Writes `path` by calling write(tmp) on a temporary in the same folder, then renaming it over
 // `path`. On any exception the temporary is removed and the exception rethrown; `path` is never
-// left half-written. Throws Error when the folder is missing or not writable.
+// left half-written. Throws Error when the folder is missing or not writable. A temporary that a
+// killed tinlod process of this host left in the folder (its name holds the host and the process)
+// is removed first, as is a StagedFolder's staging folder.
 void write_atomically(const std::string &path,
                       const std::function<void(const std::string &)> &write);
 
