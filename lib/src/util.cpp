@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
@@ -24,7 +25,6 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <regex>
 #include <thread>
 
 namespace tinlod {
@@ -123,15 +123,27 @@ static std::string hidden_name(const fs::path &target) {
 // process of this host left when it was killed (SIGKILL, a crash, a power cut) before it could
 // remove them: those whose process no longer runs. Another host's, and a running process's, stay.
 static void remove_stale_temporaries(const fs::path &folder) {
-    static const std::regex ours(R"(^\..+\.tinlod-([0-9a-f]{8})-([0-9]+)-[0-9]+\.tmp.*$)");
-    const std::string host = host_mark();
+    const std::string mark = ".tinlod-" + host_mark() + "-";
     std::error_code ec;
     for (const fs::directory_entry &e : fs::directory_iterator(folder, ec)) {
         const std::string name = e.path().filename().string();
-        std::smatch m;
-        if (name[0] != '.' || !std::regex_match(name, m, ours) || m[1] != host)
+        const std::size_t at = name.rfind(mark);
+        if (name[0] != '.' || at == std::string::npos || at == 0)
             continue;
-        const long pid = std::strtol(m[2].str().c_str(), nullptr, 10);
+        // <pid>-<random>.tmp after the mark
+        const auto digit = [](const char *c) {
+            return std::isdigit(static_cast<unsigned char>(*c));
+        };
+        const char *p = name.c_str() + at + mark.size();
+        char *end = nullptr;
+        if (!digit(p))
+            continue;
+        const long pid = std::strtol(p, &end, 10);
+        if (*end != '-' || !digit(end + 1))
+            continue;
+        std::strtoul(end + 1, &end, 10);
+        if (std::strncmp(end, ".tmp", 4) != 0)
+            continue;
         if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH)
             fs::remove_all(e.path(), ec);
     }
