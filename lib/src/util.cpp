@@ -88,16 +88,19 @@ void check_writable(const std::vector<std::string> &paths) {
     }
 }
 
-// This host's mark in the temporaries' names: its name's FNV-1a hash, in hex.
-static std::string host_mark() {
-    char host[256] = {};
-    ::gethostname(host, sizeof host - 1);
-    std::uint32_t h = 2166136261u;
-    for (const char *c = host; *c; ++c)
-        h = (h ^ std::uint8_t(*c)) * 16777619u;
-    char text[16];
-    std::snprintf(text, sizeof text, "%08x", h);
-    return text;
+// This host's mark in the temporaries' names: its name's FNV-1a hash, in hex, found once.
+static const std::string &host_mark() {
+    static const std::string mark = [] {
+        char host[256] = {};
+        ::gethostname(host, sizeof host - 1);
+        std::uint32_t h = 2166136261u;
+        for (const char *c = host; *c; ++c)
+            h = (h ^ std::uint8_t(*c)) * 16777619u;
+        char text[16];
+        std::snprintf(text, sizeof text, "%08x", h);
+        return std::string(text);
+    }();
+    return mark;
 }
 
 // ".<name>.tinlod-<host>-<pid>-<random>.tmp<extension>": the host and the process that write it,
