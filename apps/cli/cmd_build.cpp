@@ -39,23 +39,25 @@ static Register build("build", 20, [](CLI::App &cmd) {
         Progress bounds_bar("bounds", hf.size() * std::max(levels - 1, 1));
         // The tree takes the elevations over: the raster is not held twice.
         const QuadTree tree(std::move(hf), &bounds_bar);
+        const GridFrame &grid = tree.frame(); // hf gave its elevations away
+        const std::int64_t samples = std::int64_t(grid.width) * grid.height;
         bounds_bar.finish();
         const double ms_bounds = clock.ms();
         clock.reset();
-        Progress write_bar("write ", std::int64_t(hf.width - 1) * (hf.height - 1));
+        Progress write_bar("write ", std::int64_t(grid.width - 1) * (grid.height - 1));
         write_store(tree, args->output, &write_bar);
         write_bar.finish();
         const double ms_write = clock.ms();
         const TileStore store(args->output);
-        const double samples_per_s = hf.size() / ((ms_bounds + ms_write) / 1000.0);
+        const double samples_per_s = double(samples) / ((ms_bounds + ms_write) / 1000.0);
         if (!args->stats.empty())
             write_json(
                 args->stats,
                 {{"input",
                   {{"file", args->input},
-                   {"nodes", hf.size()},
-                   {"width", hf.width},
-                   {"height", hf.height}}},
+                   {"nodes", samples},
+                   {"width", grid.width},
+                   {"height", grid.height}}},
                  {"output",
                   {{"file", args->output},
                    {"bytes", store.file_bytes()},
@@ -69,7 +71,7 @@ static Register build("build", 20, [](CLI::App &cmd) {
                  {"peak_rss_mb", peak_rss_mb()}});
         std::printf(
             "%s: %dx%d samples, %d levels, %lld tiles, %.1f MB in %.0f ms (%.1f M samples/s)\n",
-            args->output.c_str(), hf.width, hf.height, levels,
+            args->output.c_str(), grid.width, grid.height, levels,
             static_cast<long long>(store.tile_count()), store.file_bytes() / 1e6,
             ms_bounds + ms_write, samples_per_s / 1e6);
     };
