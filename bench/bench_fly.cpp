@@ -398,6 +398,13 @@ double pearson(const std::vector<double> &x, const std::vector<double> &y) {
     return m.sxx > 0 && m.syy > 0 ? m.sxy / std::sqrt(m.sxx * m.syy) : 0.0;
 }
 
+// The partial correlation of x and y with z held fixed, from the three Pearson r: how closely x
+// follows y once what z explains of both is taken out (0 when z explains either whole).
+double partial(double r_xy, double r_xz, double r_yz) {
+    const double d = (1.0 - r_xz * r_xz) * (1.0 - r_yz * r_yz);
+    return d > 0 ? (r_xy - r_xz * r_yz) / std::sqrt(d) : 0.0;
+}
+
 // Least-squares line y = intercept + slope * x.
 struct Line {
     double intercept = 0.0, slope = 0.0;
@@ -413,6 +420,9 @@ struct Summary {
     double p50 = 0, p99 = 0, max = 0, wall_p50 = 0, wall_p99 = 0;
     double changed_median = 0, changed_max = 0, nodes_min = 0, nodes_max = 0;
     double r_changed = 0, r_nodes = 0;
+    // The same with the other held fixed: a path whose TIN grows as its changes do (the fly-over)
+    // shows both raw r high.
+    double pr_changed = 0, pr_nodes = 0;
     double fixed_ms = 0, us_per_changed = 0; // update CPU ms = fixed + us/1000 * changed (fit)
     double bytes_per_node = 0;               // the largest over the frames
     int rebuilds = 0;
@@ -462,6 +472,9 @@ Summary summarise(const std::vector<FrameRow> &rows) {
     s.nodes_max = percentile(nodes, 1.0);
     s.r_changed = pearson(cpu, changed);
     s.r_nodes = pearson(cpu, nodes);
+    const double r_both = pearson(changed, nodes);
+    s.pr_changed = partial(s.r_changed, s.r_nodes, r_both);
+    s.pr_nodes = partial(s.r_nodes, s.r_changed, r_both);
     const Line line = fit(changed, cpu);
     s.fixed_ms = line.intercept;
     s.us_per_changed = line.slope * 1e3;
@@ -663,30 +676,42 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
              ? "ahead by " + fmt("%.2f×", 100 / most)
              : "behind: " + fmt("%.0f", most) + " B = " + fmt("%.2f×", most / 100) + " the goal"});
 
-    // Time follows the change when it correlates with it more than with the TIN size, and the
-    // part no change explains (the fit's time at zero nodes changed) is at most half the median.
+    // Time follows the change when, with the TIN size held fixed, it correlates with the change
+    // more than with the TIN size with the change held fixed (partial r: the raw r of a path whose
+    // TIN grows with its changes credits each with the other's share), on every path at both
+    // rates; and the part no change explains (the fit's time at zero nodes changed) is at most
+    // half the median.
     text.clear();
-    bool correlates = pooled.r_changed > pooled.r_nodes;
-    for (std::size_t i = 0; i < results.size(); ++i) {
-        text += (i ? "; " : "") + results[i].name + " " + fmt("%.2f", sums[i].r_changed) + " vs " +
-                fmt("%.2f", sums[i].r_nodes);
-        correlates = correlates && sums[i].r_changed > sums[i].r_nodes;
-    }
-    text += "; all frames " + fmt("%.2f", pooled.r_changed) + " vs " + fmt("%.2f", pooled.r_nodes) +
-            "; fit over all frames: " + fmt("%.0f", pooled.fixed_ms) + " ms per frame + " +
+    std::string against;
+    const auto rates = [&](const char *rate, const std::vector<PathResult> &paths,
+                           const std::vector<Summary> &ss) {
+        text += std::string(text.empty() ? "" : "; ") + rate + ":";
+        for (std::size_t i = 0; i < paths.size(); ++i) {
+            text += (i ? "; " : " ") + paths[i].name + " " + fmt("%.2f", ss[i].pr_changed) +
+                    " vs " + fmt("%.2f", ss[i].pr_nodes) + " (raw " + fmt("%.2f", ss[i].r_changed) +
+                    " vs " + fmt("%.2f", ss[i].r_nodes) + ")";
+            if (!(ss[i].pr_changed > ss[i].pr_nodes))
+                against += (against.empty() ? "" : ", ") + paths[i].name + " at " + rate;
+        }
+    };
+    rates((fmt("%.0f", k_fps) + " fps").c_str(), results, sums);
+    rates((fmt("%.0f", k_fps_interactive) + " fps").c_str(), flight.interactive, isums);
+    text += "; fit over all " + fmt("%.0f", k_fps) +
+            " fps frames: " + fmt("%.0f", pooled.fixed_ms) + " ms per frame + " +
             fmt("%.2f", pooled.us_per_changed) + " µs per node changed (p50 " +
             fmt("%.0f", pooled.p50) + " ms)";
     const double fixed_share = pooled.fixed_ms / std::max(1e-9, pooled.p50);
-    out.push_back({"flight time follows the nodes changed, not the TIN size (Pearson r of update "
-                   "time with nodes changed vs with TIN nodes; the time the fit gives at zero "
-                   "nodes changed ≤ half the p50)",
-                   text,
-                   !correlates ? "behind: on some path the TIN size correlates more"
-                   : fixed_share > 0.5
-                       ? "behind: correlates with the change on every path, but " +
-                             fmt("%.0f%%", 100 * fixed_share) +
-                             " of the p50 is a fixed cost per frame that no change explains"
-                       : "holds on every path"});
+    out.push_back(
+        {"flight time follows the nodes changed, not the TIN size (partial r of update "
+         "time with nodes changed, TIN nodes held fixed, vs with TIN nodes, nodes "
+         "changed held fixed; the time the fit gives at zero nodes changed ≤ half the "
+         "p50)",
+         text,
+         !against.empty()    ? "behind on " + against + ": there the TIN size correlates more"
+         : fixed_share > 0.5 ? "behind: correlates with the change on every path, but " +
+                                   fmt("%.0f%%", 100 * fixed_share) +
+                                   " of the p50 is a fixed cost per frame that no change explains"
+                             : "holds on every path"});
     return out;
 }
 
@@ -711,7 +736,8 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
         "time of the one thread inside `Refiner::update` "
         "(wall p50/p99 beside it: the machine is shared); changed = erased + recovered nodes; r = "
         "Pearson correlation of the update time with the nodes changed and with the TIN's live "
-        "nodes over the frames; fixed ms + µs per changed node = the least-squares line of the "
+        "nodes over the frames, and in brackets the partial r, with the other held fixed; fixed ms "
+        "+ µs per changed node = the least-squares line of the "
         "update time against the nodes changed. Bytes per node = `Refiner::bytes()` / input "
         "nodes, the largest over the path's frames; right after the constructor bytes() counted " +
         fmt("%.0f", flight.built_bytes_mb) + " MB and the resident memory grew by " +
@@ -739,15 +765,17 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               " / " + fmt("%.2f", s.wall_p99) + " | " + fmt("%.0f", s.changed_median) + " (" +
               fmt("%.0f", s.changed_max) + ") | " + std::to_string(entered(p)) + " | " +
               fmt("%.0f", s.nodes_min) + "–" + fmt("%.0f", s.nodes_max) + " | " +
-              fmt("%.2f", s.r_changed) + " | " + fmt("%.2f", s.r_nodes) + " | " +
+              fmt("%.2f", s.r_changed) + " (" + fmt("%.2f", s.pr_changed) + ") | " +
+              fmt("%.2f", s.r_nodes) + " (" + fmt("%.2f", s.pr_nodes) + ") | " +
               fmt("%.0f", s.fixed_ms) + " + " + fmt("%.2f", s.us_per_changed) + " | " +
               fmt("%.0f", s.bytes_per_node) + " | " + fmt("%.0f", p.bytes_mb) + " |\n";
     }
     md += "| all | | | " + fmt("%.2f", pooled.p50) + " / " + fmt("%.2f", pooled.p99) + " / " +
           fmt("%.2f", pooled.max) + " | " + fmt("%.2f", pooled.wall_p50) + " / " +
           fmt("%.2f", pooled.wall_p99) + " | " + fmt("%.0f", pooled.changed_median) + " (" +
-          fmt("%.0f", pooled.changed_max) + ") | | | " + fmt("%.2f", pooled.r_changed) + " | " +
-          fmt("%.2f", pooled.r_nodes) + " | " + fmt("%.0f", pooled.fixed_ms) + " + " +
+          fmt("%.0f", pooled.changed_max) + ") | | | " + fmt("%.2f", pooled.r_changed) + " (" +
+          fmt("%.2f", pooled.pr_changed) + ") | " + fmt("%.2f", pooled.r_nodes) + " (" +
+          fmt("%.2f", pooled.pr_nodes) + ") | " + fmt("%.0f", pooled.fixed_ms) + " + " +
           fmt("%.2f", pooled.us_per_changed) + " | | |\n";
     md +=
         "\nAgainst the paper's way on every " + std::to_string(k_rebuild_every) +
@@ -805,8 +833,9 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
           std::to_string(k_check_every + 1) +
           ", ...).\n\n"
           "| path | updates | update CPU ms p50 / p99 / max | changed per frame median (max) | "
-          "fixed ms + µs per changed node | frames measured | max px |\n"
-          "|---|---|---|---|---|---|---|\n";
+          "fixed ms + µs per changed node | r(time, changed) | r(time, nodes) | frames measured | "
+          "max px |\n"
+          "|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < flight.interactive.size(); ++i) {
         const Summary &s = isums[i];
         const PathResult &p = flight.interactive[i];
@@ -814,7 +843,9 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
               std::to_string(p.planned) + " | " + fmt("%.2f", s.p50) + " / " + fmt("%.2f", s.p99) +
               " / " + fmt("%.2f", s.max) + " | " + fmt("%.0f", s.changed_median) + " (" +
               fmt("%.0f", s.changed_max) + ") | " + fmt("%.1f", s.fixed_ms) + " + " +
-              fmt("%.2f", s.us_per_changed) + " | " + std::to_string(s.checks) + " | " +
+              fmt("%.2f", s.us_per_changed) + " | " + fmt("%.2f", s.r_changed) + " (" +
+              fmt("%.2f", s.pr_changed) + ") | " + fmt("%.2f", s.r_nodes) + " (" +
+              fmt("%.2f", s.pr_nodes) + ") | " + std::to_string(s.checks) + " | " +
               fmt("%.3f", s.max_px) + " |\n";
     }
     md += "\nEach path flown a second time, right after its first flight, by the refiner that "
