@@ -7,8 +7,9 @@
 // run:
 //   - the per-frame update time (Refiner::update), p50 and p99, as CPU time of the one thread;
 //   - the nodes each frame changed (erased + recovered), and how closely the time follows them
-//     against how closely it follows the TIN size (Pearson r over the frames), with the
-//     least-squares line of time against nodes changed (its time at zero change: a fixed cost);
+//     against how closely it follows the TIN size (Pearson r over the frames, and the partial r
+//     with the other held fixed), with the least-squares line of time against nodes changed (its
+//     time at zero change: a fixed cost);
 //   - the bytes per input node of the whole structure (Refiner::bytes(): TIN + erase history);
 //   - on every 20th frame (the 1st, 21st, ...) the paper's way from the same view, the TIN rebuilt
 //     from scratch by retrieval at share * tau and node erase to tau over every sample (erase_dem,
