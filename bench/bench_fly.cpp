@@ -684,9 +684,10 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
     // half the median.
     text.clear();
     std::string against;
-    const auto rates = [&](const char *rate, const std::vector<PathResult> &paths,
+    const auto rates = [&](double fps, const std::vector<PathResult> &paths,
                            const std::vector<Summary> &ss) {
-        text += std::string(text.empty() ? "" : "; ") + rate + ":";
+        const std::string rate = fmt("%.0f", fps) + " fps";
+        text += (text.empty() ? "" : "; ") + rate + ":";
         for (std::size_t i = 0; i < paths.size(); ++i) {
             text += (i ? "; " : " ") + paths[i].name + " " + fmt("%.2f", ss[i].pr_changed) +
                     " vs " + fmt("%.2f", ss[i].pr_nodes) + " (raw " + fmt("%.2f", ss[i].r_changed) +
@@ -695,8 +696,8 @@ std::vector<Claim> claims(const Flight &flight, const std::vector<Summary> &sums
                 against += (against.empty() ? "" : ", ") + paths[i].name + " at " + rate;
         }
     };
-    rates((fmt("%.0f", k_fps) + " fps").c_str(), results, sums);
-    rates((fmt("%.0f", k_fps_interactive) + " fps").c_str(), flight.interactive, isums);
+    rates(k_fps, results, sums);
+    rates(k_fps_interactive, flight.interactive, isums);
     text += "; fit over all " + fmt("%.0f", k_fps) +
             " fps frames: " + fmt("%.0f", pooled.fixed_ms) + " ms per frame + " +
             fmt("%.2f", pooled.us_per_changed) + " µs per node changed (p50 " +
