@@ -4,6 +4,7 @@
 #include "tinlod/error.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/util.hpp"
+#include "tinlod/version.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -80,7 +81,7 @@ int main(int argc, char **argv) {
         "tinlod: view-dependent triangulated irregular networks from elevation rasters and "
         "meshes"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "tinlod 0.1.0");
+    app.set_version_flag("--version", tinlod::version_line("tinlod"));
     std::string threads;
     const CLI::Option *threads_option =
         app.add_option("--threads", threads,

@@ -4,6 +4,7 @@
 #include "viewer.hpp"
 
 #include "tinlod/error.hpp"
+#include "tinlod/version.hpp"
 #include "tinlod/view.hpp"
 
 #include <CLI/CLI.hpp>
@@ -17,6 +18,7 @@ int main(int argc, char **argv) {
     using namespace tinlod;
     using namespace tinlod::viewer;
     CLI::App app{"tinlod-view: fly over a terrain and watch its level of detail follow you"};
+    app.set_version_flag("--version", version_line("tinlod-view"));
     ViewerOptions options;
     std::string size = "1280x720", color = "height";
     bool erase = false, refine = false, no_cull = false;

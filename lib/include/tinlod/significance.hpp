@@ -12,7 +12,7 @@
 //
 // Models:
 //   screen (default)  SP = delta * k / OD * peripheral(OA)     [pixels]
-//       k = viewport_h / (2 tan(fov/2)) (DESIGN.md): the pixels by which erasing P shifts the
+//       k = viewport_h / (2 tan(fov/2)) (docs/method.md): the pixels by which erasing P shifts the
 //       picture. peripheral(OA) = 1 inside the view frustum (with cone_margin_px of slack) and
 //       inside the cone around the axis that circumscribes the frustum; beyond that cone, whose
 //       half-angle is A = atan(half viewport diagonal / k), it decays as

@@ -1,4 +1,4 @@
-// The camera: eye, a point it looks toward, vertical field of view and viewport (DESIGN.md).
+// The camera: eye, a point it looks toward, vertical field of view and viewport (docs/method.md).
 // All world coordinates are the local frame of the terrain: x east, y north, z up, metres.
 #pragma once
 
