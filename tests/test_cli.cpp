@@ -268,10 +268,10 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
          "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
              " --frames-eye 1,1,900 --frames-at 9,9,0 --stats {out}/f.csv",
          "give --frames DIR"},
-        {"missing meshes folder",
+        {"meshes folder under a file",
          "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
-             " --meshes " + (in / "none").string() + " --stats {out}/f.csv",
-         "meshes folder does not exist"},
+             " --meshes " + asset("dem_squared.tif") + "/none --stats {out}/f.csv",
+         "dem_squared.tif' is not a folder"},
         {"bad cell", "info --cell -1 " + asset("crater_u16.png"), "--cell"},
     };
     for (const auto &c : cases) {

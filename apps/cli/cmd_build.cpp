@@ -1,5 +1,6 @@
 // `tinlod build DEM -o STORE`: the quad-tree store on disk (lib/store), with a progress bar.
 #include "commands.hpp"
+#include "outputs.hpp"
 
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
@@ -26,10 +27,12 @@ static Register build("build", 20, [](CLI::App &cmd) {
     cmd.add_option("-o,--output", args->output, "store file to write (.tlq)")->required();
     cmd.add_option("--stats", args->stats, "write statistics as JSON");
     args->raster.add(cmd);
+    declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}});
     return [args] {
         if (is_mesh_path(args->output))
             throw Error(args->output, "a store is not a mesh file; name it .tlq");
-        check_writable({args->output, args->stats});
+        check_store_writable(args->output);
+        check_writable({args->stats});
         Stopwatch clock;
         const LoadOptions lo = args->raster.load_options();
         Heightfield hf = load_heightfield(args->input, lo);

@@ -3,6 +3,7 @@
 // the symmetric Hausdorff distance against a mesh) and as seen (the two renders from one camera,
 // compared by OpenImageIO).
 #include "commands.hpp"
+#include "outputs.hpp"
 
 #include "tinlod/error.hpp"
 #include "tinlod/hausdorff.hpp"
@@ -39,6 +40,7 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
     cmd.add_option("REFERENCE", args->reference, "the DEM (full grid TIN) or mesh it approximates")
         ->required();
     cmd.add_option("--diff", args->diff, "write |render - reference render| x8 as an image");
+    declare_outputs(cmd, {{"--diff", &args->diff}});
     cmd.add_flag("--json", args->json, "print JSON instead of text");
     cmd.add_option("--threshold", args->threshold,
                    "grey levels (0..255) by which a pixel must differ to count as differing")

@@ -2,6 +2,7 @@
 // [--frames-eye X,Y,Z --frames-at X,Y,Z]] [--meshes DIR] [--stats FRAMES.csv]`: one TIN follows the
 // observer along a camera path, frame after frame (lib/refine).
 #include "commands.hpp"
+#include "outputs.hpp"
 
 #include "tinlod/camera_path.hpp"
 #include "tinlod/error.hpp"
@@ -18,15 +19,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <sstream>
 
 namespace tinlod::cli {
-
-namespace fs = std::filesystem;
 
 // tiles_read: a store's tiles, all on the first frame (fly reads a store whole), 0 for a DEM.
 // entered: recovered samples there for the first time (the first frame's retrieval left them out).
@@ -75,15 +73,19 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
     cmd.add_flag("--check", args->check,
                  "measure every frame's screen-space error exhaustively against every DEM sample");
     cmd.add_option("--frames", args->frames_dir,
-                   "write one rendered PNG per frame into this folder");
+                   "write one rendered PNG per frame into this folder (created when missing)");
     cmd.add_option("--frames-eye", args->frames_eye,
                    "draw the frames from this fixed camera X,Y,Z instead of the observer's, to see "
                    "the TIN follow the observer from outside");
     cmd.add_option("--frames-at", args->frames_at,
                    "the point the camera of --frames-eye looks toward X,Y,Z");
-    cmd.add_option("--meshes", args->meshes_dir,
-                   "write each frame's TIN into this folder (frame_NNNNN.ply)");
+    cmd.add_option(
+        "--meshes", args->meshes_dir,
+        "write each frame's TIN into this folder (frame_NNNNN.ply; created when missing)");
     cmd.add_option("--stats", args->stats, "write one line of statistics per frame (CSV)");
+    declare_outputs(cmd, {{"--stats", &args->stats}},
+                    "The folders of --frames and --meshes are created when missing; their files "
+                    "enter them together once the flight is through.");
     cmd.add_option("--fov", args->fov, "vertical field of view, degrees")->capture_default_str();
     cmd.add_option("--viewport", args->viewport, "viewport WxH, pixels")->capture_default_str();
     args->raster.add(cmd);
@@ -96,16 +98,15 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             throw Error("--hysteresis", "must be in [0, 1)");
         if (!(args->retrieve_share >= 0.0 && args->retrieve_share <= 1.0))
             throw Error("--retrieve-share", "must be in [0, 1]");
-        if (!args->frames_dir.empty() && !fs::is_directory(args->frames_dir))
-            throw Error(args->frames_dir, "frames folder does not exist");
-        if (!args->meshes_dir.empty() && !fs::is_directory(args->meshes_dir))
-            throw Error(args->meshes_dir, "meshes folder does not exist");
         if (args->frames_eye.empty() != args->frames_at.empty())
             throw Error(args->frames_eye.empty() ? "--frames-at" : "--frames-eye",
                         "give both --frames-eye and --frames-at");
         if (!args->frames_eye.empty() && args->frames_dir.empty())
             throw Error("--frames-eye", "draws the frames of --frames: give --frames DIR");
         check_writable({args->stats});
+        for (const std::string *folder : {&args->frames_dir, &args->meshes_dir})
+            if (!folder->empty())
+                check_writable_folder(*folder);
         const CameraPath path = read_camera_path(args->path);
         View base;
         base.fov_deg = args->fov;

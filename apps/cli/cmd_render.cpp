@@ -9,6 +9,7 @@
 //          the whole grid, log2(size - 1) = the finest samples);
 //   error  per face, the largest vertical distance between the face and the DEM samples under it.
 #include "commands.hpp"
+#include "outputs.hpp"
 
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
@@ -137,6 +138,7 @@ static Register render("render", 60, [](CLI::App &cmd) {
         ->capture_default_str();
     cmd.add_flag("--wire", args->wire, "overlay the triangle edges");
     cmd.add_option("--depth", args->depth, "also write depth along the view axis (.exr)");
+    declare_outputs(cmd, {{"--output", &args->output}, {"--depth", &args->depth}});
     cmd.add_option("--reference", args->reference,
                    "the DEM the mesh was made from (for --color error and level)");
     cmd.add_flag("--dem-normals", args->dem_normals,

@@ -3,6 +3,7 @@
 // (lib/quadtree), from a DEM in memory or partially from a store (lib/store), or the
 // full-resolution grid.
 #include "commands.hpp"
+#include "outputs.hpp"
 
 #include "tinlod/error.hpp"
 #include "tinlod/mesh_io.hpp"
@@ -65,6 +66,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
         ->required();
     cmd.add_option("-o,--output", args->output, "output mesh (.ply .obj .off .stl)")->required();
     cmd.add_option("--stats", args->stats, "write statistics as JSON");
+    declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}});
     cmd.add_flag("--full", args->full, "the full-resolution grid TIN (no level of detail)");
     cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
         ->capture_default_str();

@@ -1,6 +1,7 @@
 // `tinlod simplify MESH|DEM (--eye ... --at ... [--tol] [--model] | --max-error M) [--max-nodes N]
 // -o OUT [--stats J]`: distance decay by node erase (lib/decimate), or its view-independent mode.
 #include "commands.hpp"
+#include "outputs.hpp"
 
 #include "tinlod/decimate.hpp"
 #include "tinlod/error.hpp"
@@ -35,6 +36,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         ->required();
     cmd.add_option("-o,--output", args->output, "output mesh (.ply .obj .off .stl)")->required();
     cmd.add_option("--stats", args->stats, "write statistics as JSON");
+    declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}});
     auto *tol = cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
                     ->capture_default_str();
     cmd.add_option("--model", args->model, "significance model: screen or paper")

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -76,6 +77,9 @@ LoadOptions RasterOptions::load_options() const {
 } // namespace tinlod::cli
 
 int main(int argc, char **argv) {
+    // Past a file-size limit (ulimit -f) a write then fails with EFBIG ("File too large"), reported
+    // as any failed write, its temporary removed, instead of SIGXFSZ killing the process silently.
+    std::signal(SIGXFSZ, SIG_IGN);
     using namespace tinlod::cli;
     CLI::App app{
         "tinlod: view-dependent triangulated irregular networks from elevation rasters and "

@@ -10,11 +10,15 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <map>
 
 int main(int argc, char **argv) {
+    // Past a file-size limit (ulimit -f) a write then fails with EFBIG ("File too large"), reported
+    // as any failed write, its temporary removed, instead of SIGXFSZ killing the process silently.
+    std::signal(SIGXFSZ, SIG_IGN);
     using namespace tinlod;
     using namespace tinlod::viewer;
     CLI::App app{"tinlod-view: fly over a terrain and watch its level of detail follow you"};

@@ -249,7 +249,14 @@ class File {
 
 } // namespace
 
+void check_store_writable(const std::string &path) {
+    if (is_stream(path))
+        throw Error(path, "a store is written with seeks: give a file, not a device or FIFO");
+    check_writable({path});
+}
+
 void write_store(const QuadTree &tree, const std::string &path, Progress *progress) {
+    check_store_writable(path);
     const QuadLayout &lay = tree.layout();
     const GridFrame &fr = tree.frame();
     const StoreGeometry g(lay);

@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/types.h>
 #include <unistd.h>
@@ -75,17 +76,129 @@ static void check_folder(const std::string &subject, const fs::path &folder,
         throw Error(subject, what + " is not writable");
 }
 
+// Whether `folder` is a process's folder of open file descriptors, /proc/PID/fd (/dev/fd and
+// /proc/self/fd lead there): its entries are links to whatever each descriptor is open on.
+static bool is_descriptor_folder(const fs::path &folder) {
+    std::error_code ec;
+    const fs::path real = fs::canonical(folder, ec);
+    return !ec && real.filename() == "fd" && real.parent_path().parent_path() == "/proc";
+}
+
+// What an output path leads to: the file to replace (its symbolic links followed), or a stream to
+// write directly.
+struct Target {
+    fs::path file;
+    bool stream = false;
+};
+
+// What `-` names: the standard output, or the descriptor divert_standard_output() kept it on.
+static std::string g_standard_output = "/dev/stdout";
+
+void divert_standard_output() {
+    std::fflush(stdout);
+    const int fd = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);
+    if (fd < 0)
+        return;
+    if (::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+        ::close(fd);
+        return;
+    }
+    g_standard_output = "/dev/fd/" + std::to_string(fd);
+}
+
+static Target resolve_output(const std::string &path) {
+    if (path == "-")
+        return {g_standard_output, true};
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::is_character_file(status) || fs::is_fifo(status))
+        return {path, true};
+    if (fs::is_block_file(status))
+        throw Error(path, "output path is a block device");
+    if (fs::is_socket(status))
+        throw Error(path, "output path is a socket");
+    // Followed link by link, not by fs::canonical: a dangling link names the file to create.
+    fs::path file(path);
+    for (int links = 0; fs::is_symlink(fs::symlink_status(file, ec)); ++links) {
+        if (links == 40) // the kernel's own limit (ELOOP)
+            throw Error(path, "too many levels of symbolic links");
+        if (is_descriptor_folder(folder_of(file)))
+            return {path, true}; // /dev/stdout redirected to a file: write where it points
+        const fs::path link = fs::read_symlink(file, ec);
+        if (ec)
+            throw Error(path, "cannot read the symbolic link: " + ec.message());
+        file = link.is_absolute() ? link : folder_of(file) / link;
+    }
+    return {file, false};
+}
+
+bool is_stream(const std::string &path) { return resolve_output(path).stream; }
+
+bool same_output(const std::string &a, const std::string &b) {
+    if (a.empty() || b.empty())
+        return false;
+    Target ta, tb;
+    try {
+        ta = resolve_output(a);
+        tb = resolve_output(b);
+    } catch (const Error &) {
+        return false; // not an output at all, as check_writable will say
+    }
+    std::error_code ec;
+    if (fs::exists(ta.file, ec) && fs::exists(tb.file, ec))
+        return fs::equivalent(ta.file, tb.file, ec) && !fs::is_character_file(ta.file, ec);
+    const auto normal = [](const fs::path &p) {
+        std::error_code ec;
+        const fs::path absolute = fs::absolute(p, ec);
+        const fs::path real = fs::weakly_canonical(absolute, ec);
+        return ec ? absolute.lexically_normal() : real;
+    };
+    return normal(ta.file) == normal(tb.file);
+}
+
+static void remove_stale_temporaries(const fs::path &folder);
+
+// The checks of write_atomically on `path`; returns what it leads to.
+static Target check_output(const std::string &path) {
+    const Target target = resolve_output(path);
+    if (target.stream) {
+        if (::access(target.file.c_str(), W_OK) != 0)
+            throw Error(path, std::string("cannot write: ") + std::strerror(errno));
+        return target;
+    }
+    const fs::path folder = folder_of(target.file);
+    check_folder(path, folder, "output folder '" + folder.string() + "'");
+    std::error_code ec;
+    if (fs::is_directory(target.file, ec))
+        throw Error(path, "output path is a folder");
+    return target;
+}
+
 void check_writable(const std::vector<std::string> &paths) {
     for (const std::string &path : paths) {
         if (path.empty())
             continue;
-        const fs::path target(path);
-        const fs::path folder = folder_of(target);
-        check_folder(path, folder, "output folder '" + folder.string() + "'");
-        std::error_code ec;
-        if (fs::is_directory(target, ec))
-            throw Error(path, "output path is a folder");
+        const Target target = check_output(path);
+        if (!target.stream)
+            remove_stale_temporaries(folder_of(target.file));
     }
+}
+
+void check_writable_folder(const std::string &folder) {
+    std::error_code ec;
+    fs::path existing(folder);
+    while (!fs::exists(existing, ec) && existing.has_relative_path() && existing.has_parent_path())
+        existing = existing.parent_path();
+    if (!fs::exists(existing, ec))
+        existing = ".";
+    if (!fs::is_directory(existing, ec))
+        throw Error(folder, existing.string() == folder
+                                ? "output folder is not a folder"
+                                : "'" + existing.string() + "' is not a folder");
+    if (::access(existing.c_str(), W_OK) != 0)
+        throw Error(folder, "folder '" + existing.string() + "' is not writable");
+    if (existing == fs::path(folder))
+        remove_stale_temporaries(existing);
 }
 
 // This host's mark in the temporaries' names: its name's FNV-1a hash, in hex, found once.
@@ -154,16 +267,20 @@ static void remove_stale_temporaries(const fs::path &folder) {
 
 void write_atomically(const std::string &path,
                       const std::function<void(const std::string &)> &write) {
-    check_writable({path});
-    const fs::path target(path);
-    remove_stale_temporaries(folder_of(target));
-    const fs::path tmp = folder_of(target) / hidden_name(target);
+    const Target target = check_output(path);
+    if (target.stream) {
+        write(target.file.string());
+        return;
+    }
+    const fs::path folder = folder_of(target.file);
+    remove_stale_temporaries(folder);
+    const fs::path tmp = folder / hidden_name(target.file);
     std::error_code ec;
     const Deferral deferral;
     try {
         write(tmp.string());
         check_interrupt();
-        fs::rename(tmp, target);
+        fs::rename(tmp, target.file);
     } catch (...) {
         fs::remove(tmp, ec);
         throw;
@@ -171,9 +288,16 @@ void write_atomically(const std::string &path,
 }
 
 StagedFolder::StagedFolder(const std::string &folder) : folder_(folder) {
+    std::error_code ec;
+    for (fs::path p(folder); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
+        created_.push_back(p);
+    if (!created_.empty()) {
+        check_writable_folder(folder);
+        if (!fs::create_directories(folder, ec))
+            throw Error(folder, "cannot create the folder: " + ec.message());
+    }
     check_folder(folder, folder, "folder");
     remove_stale_temporaries(folder);
-    std::error_code ec;
     const fs::path staging = fs::path(folder) / hidden_name("staged");
     if (!fs::create_directory(staging, ec))
         throw Error(folder, "cannot create a staging folder in it: " + ec.message());
@@ -183,6 +307,9 @@ StagedFolder::StagedFolder(const std::string &folder) : folder_(folder) {
 StagedFolder::~StagedFolder() {
     std::error_code ec;
     fs::remove_all(staging_, ec);
+    // The folders created for nothing, from the innermost, unless something else entered them.
+    for (const fs::path &p : created_)
+        fs::remove(p, ec);
 }
 
 void StagedFolder::write(const std::string &name,
@@ -211,6 +338,7 @@ void StagedFolder::commit() {
             throw Error((fs::path(folder_) / name).string(), "cannot move in: " + ec.message());
     }
     names_.clear();
+    created_.clear();
 }
 
 void write_json(const std::string &path, const nlohmann::json &doc) {

@@ -116,21 +116,18 @@ RunResult run_cli(const std::string &args, std::uint64_t max_file_bytes) {
 #endif
     const std::string cmd = std::string("timeout ") + limit + " '" + TINLOD_CLI + "' " + args +
                             " >'" + (dir / "out").string() + "' 2>'" + (dir / "err").string() + "'";
-    // The limit and the ignored SIGXFSZ (which would kill the writer instead) pass to the child.
+    // The limit passes to the child; tinlod ignores SIGXFSZ itself, so that a write past the
+    // limit fails with EFBIG instead of killing it.
     rlimit unlimited{};
     getrlimit(RLIMIT_FSIZE, &unlimited);
-    void (*on_xfsz)(int) = SIG_DFL;
     if (max_file_bytes > 0) {
         rlimit limited = unlimited;
         limited.rlim_cur = rlim_t(max_file_bytes);
-        on_xfsz = std::signal(SIGXFSZ, SIG_IGN);
         setrlimit(RLIMIT_FSIZE, &limited);
     }
     const int raw = std::system(cmd.c_str());
-    if (max_file_bytes > 0) {
+    if (max_file_bytes > 0)
         setrlimit(RLIMIT_FSIZE, &unlimited);
-        std::signal(SIGXFSZ, on_xfsz);
-    }
     RunResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     r.out = slurp(dir / "out");

@@ -28,6 +28,10 @@ inline constexpr int k_store_tile_cells = 64; // tiles are the first level whose
 // cannot be written. `progress` (optional) advances by samples written, out of width * height.
 void write_store(const QuadTree &tree, const std::string &path, Progress *progress = nullptr);
 
+// Throws Error when `path` cannot take a store: check_writable's checks, and a store is written
+// with seeks, so not to a stream (is_stream: a device, a FIFO, the standard output).
+void check_store_writable(const std::string &path);
+
 // True when the file starts with the store magic (it may still be corrupt).
 bool is_store_file(const std::string &path);
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -48,24 +49,51 @@ class Deferral {
 
 // Writes `path` by calling write(tmp) on a temporary in the same folder, then renaming it over
 // `path`. On any exception the temporary is removed and the exception rethrown; `path` is never
-// left half-written. Throws Error when the folder is missing or not writable. A temporary that a
-// killed tinlod process of this host left in the folder (its name holds the host and the process)
-// is removed first, as is a StagedFolder's staging folder.
+// left half-written. A symbolic link is followed: the file it names (or would name, when dangling,
+// as a shell's `>` does) is replaced in its own folder, and the link stays. A stream (is_stream) is
+// written to directly: write(path), with no temporary. Throws Error when the folder is missing or
+// not writable, or `path` is a folder, a block device or a socket. The temporaries that killed
+// tinlod processes left in the folder are removed first (see check_writable).
 void write_atomically(const std::string &path,
                       const std::function<void(const std::string &)> &write);
 
-// Throws Error naming the first of `paths` whose folder is missing or not writable, or that is a
-// folder itself (empty paths are skipped): the checks write_atomically makes, for a command to make
-// them on all its outputs before its work rather than on each after it.
+// Whether write_atomically writes `path` directly: when it is `-` (the standard output), or names,
+// through its symbolic links, a character device (/dev/null, a terminal), a FIFO, or an open file
+// descriptor (/dev/stdout, /dev/fd/N), whatever that descriptor is open on.
+bool is_stream(const std::string &path);
+
+// Makes `-` name what the standard output is open on now, and points the standard output (file
+// descriptor 1) at the standard error: a command that writes an output to `-` keeps its own
+// messages out of it. Where that cannot be done (no file descriptor left), nothing changes.
+void divert_standard_output();
+
+// Whether output paths `a` and `b` name the same file: through symbolic links and other spellings
+// of its folder (`./x`, `dir/../x`), existing or not. Two names of one character device do not
+// count (writing both to /dev/null or a terminal loses nothing). Empty paths, and those that cannot
+// be outputs (check_writable tells why), name no file.
+bool same_output(const std::string &a, const std::string &b);
+
+// Throws Error naming the first of `paths` that write_atomically would refuse (empty paths are
+// skipped), for a command to make those checks on all its outputs before its work rather than on
+// each after it. It also removes, from the folders of these paths, the temporaries (files and
+// StagedFolder staging folders) that tinlod processes of this host killed by SIGKILL or a crash
+// left behind (those whose process no longer runs).
 void check_writable(const std::vector<std::string> &paths);
 
-// Files written into an existing folder all together or not at all, as a flight's frames: each is
-// written into a hidden staging folder inside it, and commit() moves them in. Destroyed before
-// commit() (an error midway), it removes what it staged and leaves the folder as it was. It defers
-// interrupt signals (see install_interrupt_handlers), and commit() first checks for one.
+// Throws Error when `folder` cannot hold a StagedFolder: it exists and is not a writable folder, or
+// it is missing and the nearest folder above it that exists is not writable. Removes the
+// temporaries of killed processes in it, as check_writable does for files.
+void check_writable_folder(const std::string &folder);
+
+// Files written into a folder all together or not at all, as a flight's frames: each is written
+// into a hidden staging folder inside it, and commit() moves them in. Destroyed before commit() (an
+// error midway), it removes what it staged and leaves the folder as it was: a folder it created is
+// removed again. It defers interrupt signals (see install_interrupt_handlers), and commit() first
+// checks for one.
 class StagedFolder {
   public:
-    // Throws Error naming `folder` when it is missing or not writable.
+    // Creates `folder` (and the folders above it) when missing. Throws Error naming `folder` when
+    // it is not a writable folder or cannot be created.
     explicit StagedFolder(const std::string &folder);
     ~StagedFolder();
     StagedFolder(const StagedFolder &) = delete;
@@ -81,6 +109,7 @@ class StagedFolder {
   private:
     Deferral deferral_;
     std::string folder_, staging_;
+    std::vector<std::filesystem::path> created_; // folders the constructor made, innermost first
     std::vector<std::string> names_;
 };
 
