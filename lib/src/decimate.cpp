@@ -443,12 +443,12 @@ struct NodeEraser::Impl {
     std::vector<float> weight;
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
+    std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
     // Per vertex, with the lists: the face whose list holds it. A re-insert takes its node out of
     // that list, wherever it is: on a surface mesh a recovery files a swallowed node by its
     // projection on the recovered node's mean plane, which may put it under a face outside its own
     // ring (see reinsert).
     std::vector<std::int32_t> swallowed_by;
-    std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
     // A grid TIN (see grid_width): the lattice's width. Its faces' swallowed nodes are the samples
     // inside them, scanned row by row: no lists (next_swallowed stays empty), and face_head holds
     // each face's worst sample.
@@ -2290,8 +2290,7 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
     // erase's list).
     if (s.grid_w == 0) {
         const std::int32_t by = s.swallowed_by[x];
-        if (std::none_of(face.begin(), face.begin() + n_faces,
-                         [&](FH f) { return f.idx() == by; }))
+        if (std::none_of(face.begin(), face.begin() + n_faces, [&](FH f) { return f.idx() == by; }))
             unlink_swallowed(s, by, x);
     }
 
@@ -3703,7 +3702,6 @@ static std::size_t block_bytes(const NodeEraser::Impl &s) {
 std::size_t NodeEraser::history_bytes() const {
     const Impl &s = *impl_;
     return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 +
-           s.swallowed_by.capacity() * 4 +
            s.face_head.capacity() * 4 + s.face_blocked.capacity() + s.block_scratch.capacity() * 4 +
            block_bytes(s) + s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() +
            s.heap.bytes() + s.weight.capacity() * sizeof(float) +
@@ -3713,7 +3711,8 @@ std::size_t NodeEraser::history_bytes() const {
            s.free_faces.capacity() * sizeof(FH) + s.free_vertices.capacity() * sizeof(VH) +
            s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
            s.sample_of.capacity() * sizeof(std::uint32_t) +
-           (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float);
+           (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float) +
+           s.swallowed_by.capacity() * 4;
 }
 
 EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options) {
