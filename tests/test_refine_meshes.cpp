@@ -64,12 +64,17 @@ std::pair<glm::dvec3, double> bounds(const Mesh &mesh) {
     return {(lo + hi) / 2.0, glm::length(hi - lo) / 2.0};
 }
 
+// What a flight did: the first and last frame's live nodes, and the nodes its updates recovered
+// and erased.
+struct Flight {
+    std::int64_t first_nodes = 0, last_nodes = 0;
+    std::int64_t recovered = 0, erased = 0;
+};
+
 // Flies the refiner from distances.front() to distances.back() (in bounding radii from the centre,
 // on +z, looking at it, as issue #45's path: 250 to 150 units is 2.2 to 1.3 of the armadillo's
-// radii) and checks every frame. Returns the first and last frame's live nodes.
-std::pair<std::int64_t, std::int64_t> fly_and_check(const Mesh &input,
-                                                    const std::vector<double> &distances,
-                                                    std::int64_t &recovered, std::int64_t &erased) {
+// radii) and checks every frame.
+Flight fly_and_check(const Mesh &input, const std::vector<double> &distances) {
     const auto [centre, radius] = bounds(input);
     const auto view_at = [&, centre = centre, radius = radius](double d) {
         View v;
@@ -80,14 +85,14 @@ std::pair<std::int64_t, std::int64_t> fly_and_check(const Mesh &input,
     const Topology before = topology(input);
     RefineOptions options; // tau 1 px, as `tinlod fly`
     Refiner refiner(input, view_at(distances.front()), options);
-    std::int64_t first = 0, last = 0;
+    Flight flight;
     for (std::size_t i = 0; i < distances.size(); ++i) {
         SCOPED_TRACE("frame " + std::to_string(i) + " at " + std::to_string(distances[i]));
         const View view = view_at(distances[i]);
         const FrameStats f = i == 0 ? refiner.first_frame() : refiner.update(view);
         if (i > 0) {
-            recovered += f.recovered;
-            erased += f.erased;
+            flight.recovered += f.recovered;
+            flight.erased += f.erased;
         }
         Mesh out = refiner.mesh();
         out.garbage_collection();
@@ -103,30 +108,26 @@ std::pair<std::int64_t, std::int64_t> fly_and_check(const Mesh &input,
         every_vertex.view = &view;
         EXPECT_LE(hausdorff(input, out, every_vertex).max_screen_px_a_to_b,
                   options.tol_px * (1.0 + 1e-9));
-        (i == 0 ? first : last) = f.nodes;
+        (i == 0 ? flight.first_nodes : flight.last_nodes) = f.nodes;
     }
-    return {first, last};
+    return flight;
 }
 
 class RefineMeshes : public testing::TestWithParam<const char *> {};
 
 TEST_P(RefineMeshes, FlightTowardKeepsEveryFrameValidAndWithinTau) {
     const Mesh input = read_mesh(asset(GetParam()));
-    std::int64_t recovered = 0, erased = 0;
-    const auto [far, near] =
-        fly_and_check(input, {2.2, 1.975, 1.75, 1.525, 1.3}, recovered, erased);
-    EXPECT_LT(far, std::int64_t(input.n_vertices())) << "the far frame erased";
-    EXPECT_GT(near, far) << "approaching brings nodes back";
-    EXPECT_GT(recovered, 0);
+    const Flight f = fly_and_check(input, {2.2, 1.975, 1.75, 1.525, 1.3});
+    EXPECT_LT(f.first_nodes, std::int64_t(input.n_vertices())) << "the far frame erased";
+    EXPECT_GT(f.last_nodes, f.first_nodes) << "approaching brings nodes back";
+    EXPECT_GT(f.recovered, 0);
 }
 
 TEST_P(RefineMeshes, FlightAwayKeepsEveryFrameValidAndWithinTau) {
     const Mesh input = read_mesh(asset(GetParam()));
-    std::int64_t recovered = 0, erased = 0;
-    const auto [near, far] =
-        fly_and_check(input, {1.3, 1.525, 1.75, 1.975, 2.2}, recovered, erased);
-    EXPECT_LT(far, near) << "receding erases";
-    EXPECT_GT(erased, 0);
+    const Flight f = fly_and_check(input, {1.3, 1.525, 1.75, 1.975, 2.2});
+    EXPECT_LT(f.last_nodes, f.first_nodes) << "receding erases";
+    EXPECT_GT(f.erased, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scans, RefineMeshes,
