@@ -444,6 +444,11 @@ struct NodeEraser::Impl {
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
+    // Per vertex, with the lists: the face whose list holds it. A re-insert takes its node out of
+    // that list, wherever it is: on a surface mesh a recovery files a swallowed node by its
+    // projection on the recovered node's mean plane, which may put it under a face outside its own
+    // ring (see reinsert).
+    std::vector<std::int32_t> swallowed_by;
     // A grid TIN (see grid_width): the lattice's width. Its faces' swallowed nodes are the samples
     // inside them, scanned row by row: no lists (next_swallowed stays empty), and face_head holds
     // each face's worst sample.
@@ -791,6 +796,7 @@ static void widen_fans(NodeEraser::Impl &s, const glm::dvec3 *p, const std::uint
 // the lists.
 static void push_swallowed(NodeEraser::Impl &s, int f, std::uint32_t u, float dev) {
     const std::int32_t head = s.face_head[f];
+    s.swallowed_by[u] = f;
     if (head < 0 || dev > s.face_maxdev[f]) {
         s.next_swallowed[u] = head;
         s.face_head[f] = std::int32_t(u);
@@ -799,6 +805,15 @@ static void push_swallowed(NodeEraser::Impl &s, int f, std::uint32_t u, float de
         s.next_swallowed[u] = s.next_swallowed[head];
         s.next_swallowed[head] = std::int32_t(u);
     }
+}
+
+// Takes node u out of face f's list (the face keeps its deviation bound, now perhaps loose).
+static void unlink_swallowed(NodeEraser::Impl &s, std::int32_t f, std::uint32_t u) {
+    std::int32_t *link = &s.face_head[std::size_t(f)];
+    while (*link != std::int32_t(u))
+        link = &s.next_swallowed[std::size_t(*link)];
+    *link = s.next_swallowed[u];
+    face_changed(s, FH(f)); // its blocks are runs of the list
 }
 
 // ---- Geometry of a hole ------------------------------------------------------------------------
@@ -2270,6 +2285,14 @@ static void reinsert(NodeEraser::Impl &s, std::uint32_t x) {
         }
     }
     assert(n_faces == n - 2);
+    // x is under a face outside its ring when a recovery filed it there (see Impl::swallowed_by):
+    // left in that list, the live node would be taken for an erased one (its recovery, its next
+    // erase's list).
+    if (s.grid_w == 0) {
+        const std::int32_t by = s.swallowed_by[x];
+        if (std::none_of(face.begin(), face.begin() + n_faces, [&](FH f) { return f.idx() == by; }))
+            unlink_swallowed(s, by, x);
+    }
 
     std::vector<std::uint32_t> &swallowed = s.swallowed_scratch;
     const std::size_t swallowed_begin = swallowed.size();
@@ -2584,8 +2607,10 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     if (absent > 0 && s.grid_w == 0)
         throw std::invalid_argument(
             "NodeEraser: deleted vertices in a mesh that is not a grid TIN");
-    if (s.grid_w == 0)
+    if (s.grid_w == 0) {
         s.next_swallowed.assign(s.nodes, -1);
+        s.swallowed_by.assign(s.nodes, -1);
+    }
     s.face_head.assign(s.mesh->n_faces(), -1);
     s.face_blocked.assign(s.mesh->n_faces(), 0);
     s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
@@ -2802,6 +2827,9 @@ void NodeEraser::compact() {
     }
     s.face_maxdev = std::move(m.property(maxdev).data_vector());
     s.face_head = std::move(m.property(head).data_vector());
+    for (std::size_t f = 0; f < s.face_head.size() && s.grid_w == 0; ++f)
+        for (std::int32_t u = s.face_head[f]; u >= 0; u = s.next_swallowed[std::size_t(u)])
+            s.swallowed_by[std::size_t(u)] = std::int32_t(f); // the faces moved
     m.remove_property(maxdev);
     m.remove_property(head);
     s.face_maxdev.shrink_to_fit();
@@ -3683,7 +3711,8 @@ std::size_t NodeEraser::history_bytes() const {
            s.free_faces.capacity() * sizeof(FH) + s.free_vertices.capacity() * sizeof(VH) +
            s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
            s.sample_of.capacity() * sizeof(std::uint32_t) +
-           (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float);
+           (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float) +
+           s.swallowed_by.capacity() * 4;
 }
 
 EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options) {
