@@ -1,17 +1,29 @@
 // tinlod::om::ModDistanceDecayT: the paper's distance decay as a module of OpenMesh's own
-// decimation framework (DecimaterT, McDecimaterT, MixedDecimaterT). A half-edge collapse v0 -> v1
-// is scored by the significance of the vertex it removes (significance.hpp, screen model):
+// decimation framework (DecimaterT, McDecimaterT, MixedDecimaterT), with the screen-space bound
+// kept over every removed vertex as OpenMesh's ModHausdorffT keeps its world-space one.
 //
-//   SP = delta * k / OD * peripheral(OA),
-//   delta = distance from p0 to the nearest triangle of the surface after the collapse (v0's fan
-//           with v0 moved onto v1), OD = |p0 - eye|, OA = angle to the observation axis.
+// The bound. Every point a collapse v0 -> v1 removes (p0, and the points already attached to v0's
+// faces) is attached to the nearest of the faces that cover v0's fan afterwards (v0's faces less
+// the two the collapse removes, with v0 moved onto v1). A collapse is legal only when every such
+// point stays within tolerance of those faces in screen pixels:
 //
-// Non-binary (the default): the priority is SP, and collapses with SP >= tolerance are illegal.
-// Binary (set_binary(true)): a veto beside a priority module such as ModQuadricT: LEGAL_COLLAPSE
-// while SP < tolerance, ILLEGAL_COLLAPSE otherwise. It composes with ModNormalFlippingT and
-// ModAspectRatioT like any stock module. The module owns no mesh property.
+//   distance(point, surface) * screen_weight(point)    (k / OD * peripheral(OA), significance.hpp)
+//
+// so the output holds every input vertex within tolerance pixels of its surface inside the view
+// frustum, relaxed by 1 / peripheral outside it (DESIGN.md). The faces whose points change are all
+// in the collapsed vertex's one-ring, which DecimaterT re-scores after each collapse, so no stale
+// priority can let a collapse break the bound.
+//
+// Priority: non-binary (the default) orders by the SP of the vertex the collapse removes,
+//   SP = delta * k / OD * peripheral(OA), delta = distance from p0 to the faces that cover it;
+// binary (set_binary(true)) is a veto beside a priority module such as ModQuadricT. Both keep the
+// bound. Composes with ModNormalFlippingT and ModAspectRatioT like any stock module.
+//
+// The module owns one face property (the attached points) for exactly its lifetime. The view is
+// the one set before initialize(): the points' weights are taken then and as points are attached.
 #pragma once
 
+#include "tinlod/closest_point.hpp"
 #include "tinlod/significance.hpp"
 #include "tinlod/view.hpp"
 
@@ -21,98 +33,163 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace tinlod::om {
-
-namespace detail {
-
-template <class Point> glm::dvec3 to_glm(const Point &p) { return {p[0], p[1], p[2]}; }
-
-// Distance from p to the triangle abc (closest point by regions, Ericson, Real-Time Collision
-// Detection, 5.1.5).
-inline double point_triangle_distance(const glm::dvec3 &p, const glm::dvec3 &a, const glm::dvec3 &b,
-                                      const glm::dvec3 &c) {
-    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0)
-        return glm::length(p - a);
-    const glm::dvec3 bp = p - b;
-    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3)
-        return glm::length(p - b);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-        return glm::length(p - (a + ab * (d1 / (d1 - d3))));
-    const glm::dvec3 cp = p - c;
-    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6)
-        return glm::length(p - c);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-        return glm::length(p - (a + ac * (d2 / (d2 - d6))));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-        return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
-    const double denom = 1.0 / (va + vb + vc);
-    return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
-}
-
-} // namespace detail
 
 template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   public:
     DECIMATING_MODULE(ModDistanceDecayT, MeshT, DistanceDecay);
 
-    explicit ModDistanceDecayT(MeshT &mesh) : Base(mesh, false) {}
+    explicit ModDistanceDecayT(MeshT &mesh) : Base(mesh, false) {
+        mesh.add_property(attached_, "tinlod:distance_decay:attached");
+    }
+    ~ModDistanceDecayT() override { Base::mesh().remove_property(attached_); }
+    ModDistanceDecayT(const ModDistanceDecayT &) = delete;
+    ModDistanceDecayT &operator=(const ModDistanceDecayT &) = delete;
 
     // The observer; without one every collapse is illegal.
     void set_view(const tinlod::View &view) {
         view_ = view;
         has_view_ = true;
     }
-    // tau, pixels: collapses whose SP reaches it are illegal.
+    // tau, pixels: a collapse that leaves a removed point farther than this is illegal.
     void set_tolerance(double px) { tolerance_ = px; }
     double tolerance() const { return tolerance_; }
     // Peripheral-factor parameters (the model is always screen).
     void set_significance(const tinlod::SignificanceOptions &options) { options_ = options; }
 
-    // SP of removing v0 by the collapse: see the file comment.
+    // A fresh start: no face holds a removed point.
+    void initialize() override {
+        Mesh &m = Base::mesh();
+        for (auto fh : m.faces())
+            m.property(attached_, fh).clear();
+    }
+
+    float collapse_priority(const CollapseInfo &ci) override {
+        if (!has_view_ || !(collapse_error(ci) <= tolerance_))
+            return float(Base::ILLEGAL_COLLAPSE);
+        return Base::is_binary() ? float(Base::LEGAL_COLLAPSE) : float(significance(ci));
+    }
+
+    // Takes the points of v0's faces (the two that go included) before the collapse.
+    void preprocess_collapse(const CollapseInfo &ci) override {
+        Mesh &m = Base::mesh();
+        moving_.clear();
+        covering_.clear();
+        for (auto fh : m.vf_range(ci.v0)) {
+            auto &points = m.property(attached_, fh);
+            moving_.insert(moving_.end(), points.begin(), points.end());
+            points.clear();
+            if (fh != ci.fl && fh != ci.fr)
+                covering_.push_back(fh);
+        }
+        moving_.push_back(sample(ci.p0));
+    }
+
+    // Attaches each taken point to the nearest face that now covers v0's fan.
+    void postprocess_collapse(const CollapseInfo &) override {
+        Mesh &m = Base::mesh();
+        for (const Attached &a : moving_) {
+            typename Mesh::FaceHandle best;
+            double best_d = INFINITY;
+            for (auto fh : covering_) {
+                const double d = face_distance(a.p, fh, typename Mesh::VertexHandle(), {});
+                if (d < best_d) {
+                    best_d = d;
+                    best = fh;
+                }
+            }
+            if (best.is_valid())
+                m.property(attached_, best).push_back(a);
+        }
+    }
+
+    // Scales the tolerance for MixedDecimaterT, as the stock modules do.
+    void set_error_tolerance_factor(double factor) override {
+        if (factor >= 0.0 && factor <= 1.0) {
+            tolerance_ *= factor / this->error_tolerance_factor_;
+            this->error_tolerance_factor_ = factor;
+        }
+    }
+
+    // The bound's figure for the collapse: the largest weighted distance (pixels) of the points it
+    // removes to the faces that would cover them; +inf when it is over the tolerance (the scan
+    // stops there), without a view or when no face would cover them.
+    double collapse_error(const CollapseInfo &ci) {
+        if (!has_view_)
+            return INFINITY;
+        Mesh &m = Base::mesh();
+        faces_.clear();
+        points_.clear();
+        for (auto fh : m.vf_range(ci.v0)) {
+            const auto &points = m.property(attached_, fh);
+            points_.insert(points_.end(), points.begin(), points.end());
+            if (fh != ci.fl && fh != ci.fr)
+                faces_.push_back(fh);
+        }
+        points_.push_back(sample(ci.p0));
+        const glm::dvec3 p1 = to_glm(ci.p1);
+        double worst = 0.0;
+        for (const Attached &a : points_) {
+            double d = INFINITY;
+            for (auto fh : faces_)
+                d = std::min(d, face_distance(a.p, fh, ci.v0, p1));
+            const double px = d * a.weight;
+            if (!(px <= tolerance_))
+                return INFINITY;
+            worst = std::max(worst, px);
+        }
+        return worst;
+    }
+
+    // SP of removing v0 by the collapse: see the file comment (+inf without a view).
     double significance(const CollapseInfo &ci) {
         if (!has_view_)
             return INFINITY;
         Mesh &m = Base::mesh();
-        const glm::dvec3 p0 = detail::to_glm(ci.p0), p1 = detail::to_glm(ci.p1);
+        const glm::dvec3 p0 = to_glm(ci.p0), p1 = to_glm(ci.p1);
         double delta = INFINITY;
-        for (auto fh : m.vf_range(ci.v0)) {
-            glm::dvec3 corner[3];
-            int i = 0;
-            bool touches_v1 = false;
-            for (auto vh : m.fv_range(fh)) {
-                touches_v1 |= vh == ci.v1;
-                corner[i++] = vh == ci.v0 ? p1 : detail::to_glm(m.point(vh));
-            }
-            if (touches_v1)
-                continue; // collapses away with the edge
-            delta = std::min(delta,
-                             detail::point_triangle_distance(p0, corner[0], corner[1], corner[2]));
-        }
+        for (auto fh : m.vf_range(ci.v0))
+            if (fh != ci.fl && fh != ci.fr)
+                delta = std::min(delta, face_distance(p0, fh, ci.v0, p1));
         if (!std::isfinite(delta))
             delta = glm::length(p1 - p0); // every face touches v1: the move itself
         return delta * tinlod::screen_weight(view_, p0, options_);
     }
 
-    float collapse_priority(const CollapseInfo &ci) override {
-        const double sp = significance(ci);
-        if (!(sp < tolerance_))
-            return float(Base::ILLEGAL_COLLAPSE);
-        return Base::is_binary() ? float(Base::LEGAL_COLLAPSE) : float(sp);
+  private:
+    struct Attached {
+        glm::dvec3 p;
+        double weight; // screen_weight at p, pixels per world unit
+    };
+
+    template <class Point> static glm::dvec3 to_glm(const Point &p) { return {p[0], p[1], p[2]}; }
+
+    Attached sample(const typename Mesh::Point &p) const {
+        const glm::dvec3 q = to_glm(p);
+        return {q, tinlod::screen_weight(view_, q, options_)};
     }
 
-  private:
+    // Distance from p to face fh, with vertex `moved` (when valid) standing at `to`.
+    double face_distance(const glm::dvec3 &p, typename Mesh::FaceHandle fh,
+                         typename Mesh::VertexHandle moved, const glm::dvec3 &to) {
+        const Mesh &m = Base::mesh();
+        glm::dvec3 c[3];
+        int i = 0;
+        for (auto vh : m.fv_range(fh))
+            if (i < 3) // DecimaterT works on triangle meshes
+                c[i++] = vh == moved ? to : to_glm(m.point(vh));
+        return i == 3 ? tinlod::triangle_distance(p, c[0], c[1], c[2]) : INFINITY;
+    }
+
+    OpenMesh::FPropHandleT<std::vector<Attached>> attached_;
     tinlod::View view_;
     bool has_view_ = false;
     double tolerance_ = 1.0;
     tinlod::SignificanceOptions options_;
+    std::vector<typename Mesh::FaceHandle> faces_, covering_;
+    std::vector<Attached> points_, moving_;
 };
 
 } // namespace tinlod::om
