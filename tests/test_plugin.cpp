@@ -6,6 +6,7 @@
 
 #include "tinlod/hausdorff.hpp"
 #include "tinlod/mesh_io.hpp"
+#include "tinlod/metrics.hpp"
 #include "tinlod/om/ModDistanceDecayT.hh"
 #include "tinlod/om/NodeEraseDecimaterT.hh"
 
@@ -91,6 +92,26 @@ template <class M> std::int64_t folded(const M &mesh) {
     return n;
 }
 
+// The live faces of `mesh` as separate triangles (the Hausdorff measure needs no connectivity,
+// and a soup takes any face OpenMesh holds).
+template <class M> Mesh soup(const M &mesh) {
+    Mesh out;
+    for (auto f : mesh.faces()) {
+        if (mesh.has_face_status() && mesh.status(f).deleted())
+            continue;
+        std::vector<Mesh::VertexHandle> corners;
+        for (auto v : mesh.fv_range(f)) {
+            const auto &p = mesh.point(v);
+            corners.push_back(out.add_vertex(Mesh::Point(float(p[0]), float(p[1]), float(p[2]))));
+        }
+        out.add_face(corners);
+    }
+    return out;
+}
+
+// Float points measured in doubles: the bound up to rounding.
+constexpr double k_px_slack = 1e-4;
+
 template <class M> bool has_face_property(const M &mesh, const std::string &name) {
     for (auto it = mesh.fprops_begin(); it != mesh.fprops_end(); ++it)
         if (*it && (*it)->name() == name)
@@ -117,6 +138,11 @@ TEST(Plugin, StockDecimaterWithDistanceDecayKeepsNearNodes) {
     }
     EXPECT_FALSE(has_face_property(mesh, "tinlod:distance_decay:attached"))
         << "a module owns its property for exactly its lifetime";
+    HausdorffOptions measure;
+    measure.samples = 0; // the input's nodes: the bound is over them
+    measure.view = &s.view;
+    EXPECT_LE(hausdorff(grid_tin(s.hf), soup(mesh), measure).max_screen_px_a_to_b,
+              1.0 + k_px_slack);
     mesh.garbage_collection();
     const auto after = near_far(mesh, s);
     EXPECT_LT(after.first + after.second, before.first + before.second);
@@ -177,6 +203,11 @@ TEST(Plugin, NodeEraseDecimaterOnStockMesh) {
         EXPECT_GT(removed, 0u);
         EXPECT_EQ(decimater.n_live_vertices(), mesh.n_vertices() - removed);
     }
+    ErrorOptions measure;
+    measure.view = &s.view;
+    const TinError error = measure_error(s.hf, soup(mesh), measure);
+    EXPECT_LE(error.max_screen_px, 1.0 + k_px_slack);
+    EXPECT_EQ(error.uncovered, 0);
     mesh.garbage_collection();
     const auto after = near_far(mesh, s);
     EXPECT_GT(double(after.first) / before.first, double(after.second) / before.second);
@@ -237,23 +268,6 @@ PlainMesh read_plain(const std::string &file) {
     return mesh;
 }
 
-// The live faces of `mesh` as separate triangles (the Hausdorff measure needs no connectivity,
-// and a soup takes any face OpenMesh holds).
-template <class M> Mesh soup(const M &mesh) {
-    Mesh out;
-    for (auto f : mesh.faces()) {
-        if (mesh.has_face_status() && mesh.status(f).deleted())
-            continue;
-        std::vector<Mesh::VertexHandle> corners;
-        for (auto v : mesh.fv_range(f)) {
-            const auto &p = mesh.point(v);
-            corners.push_back(out.add_vertex(Mesh::Point(float(p[0]), float(p[1]), float(p[2]))));
-        }
-        out.add_face(corners);
-    }
-    return out;
-}
-
 // The bound as the Hausdorff code measures it: the largest screen-space distance (pixels) from a
 // vertex of the input to the output's surface, over the vertices inside the view frustum.
 template <class M> double measured_px(const std::string &file, const M &output, const View &view) {
@@ -262,9 +276,6 @@ template <class M> double measured_px(const std::string &file, const M &output, 
     options.view = &view;
     return hausdorff(read_mesh(test::asset(file)), soup(output), options).max_screen_px_a_to_b;
 }
-
-// Float points measured in doubles: the bound up to rounding.
-constexpr double k_px_slack = 1e-4;
 
 template <class M> std::size_t live_vertices(const M &mesh) {
     std::size_t n = 0;

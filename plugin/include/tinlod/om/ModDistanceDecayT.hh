@@ -74,17 +74,7 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
 
     // Takes the points of v0's faces (the two that go included) before the collapse.
     void preprocess_collapse(const CollapseInfo &ci) override {
-        Mesh &m = Base::mesh();
-        moving_.clear();
-        covering_.clear();
-        for (auto fh : m.vf_range(ci.v0)) {
-            auto &points = m.property(attached_, fh);
-            moving_.insert(moving_.end(), points.begin(), points.end());
-            points.clear();
-            if (fh != ci.fl && fh != ci.fr)
-                covering_.push_back(fh);
-        }
-        moving_.push_back(sample(ci.p0));
+        gather(ci, covering_, moving_, true);
     }
 
     // Attaches each taken point to the nearest face that now covers v0's fan.
@@ -119,16 +109,8 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
     double collapse_error(const CollapseInfo &ci) {
         if (!has_view_)
             return INFINITY;
-        Mesh &m = Base::mesh();
-        faces_.clear();
-        points_.clear();
-        for (auto fh : m.vf_range(ci.v0)) {
-            const auto &points = m.property(attached_, fh);
-            points_.insert(points_.end(), points.begin(), points.end());
-            if (fh != ci.fl && fh != ci.fr)
-                faces_.push_back(fh);
-        }
-        points_.push_back(sample(ci.p0));
+        if (!gather(ci, faces_, points_, false))
+            return INFINITY;
         const glm::dvec3 p1 = to_glm(ci.p1);
         double worst = 0.0;
         for (const Attached &a : points_) {
@@ -150,8 +132,9 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
         Mesh &m = Base::mesh();
         const glm::dvec3 p0 = to_glm(ci.p0), p1 = to_glm(ci.p1);
         double delta = INFINITY;
+        std::size_t n = 0;
         for (auto fh : m.vf_range(ci.v0))
-            if (fh != ci.fl && fh != ci.fr)
+            if (fh != ci.fl && fh != ci.fr && ++n <= k_max_fan)
                 delta = std::min(delta, face_distance(p0, fh, ci.v0, p1));
         if (!std::isfinite(delta))
             delta = glm::length(p1 - p0); // every face touches v1: the move itself
@@ -163,6 +146,33 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
         glm::dvec3 p;
         double weight; // screen_weight at p, pixels per world unit
     };
+
+    // Faces a circulation visits at most: no manifold mesh has such a fan, so one that does is a
+    // broken one and is cut there rather than followed for ever.
+    static constexpr std::size_t k_max_fan = 4096;
+
+    // v0's faces that stay (less fl and fr) into `covering`, and the points attached to all of
+    // v0's faces into `points` (taken off them when `take`), p0's last. False when the fan passes
+    // k_max_fan faces.
+    bool gather(const CollapseInfo &ci, std::vector<typename Mesh::FaceHandle> &covering,
+                std::vector<Attached> &points, bool take) {
+        Mesh &m = Base::mesh();
+        covering.clear();
+        points.clear();
+        std::size_t n = 0;
+        for (auto fh : m.vf_range(ci.v0)) {
+            if (++n > k_max_fan)
+                return false;
+            auto &attached = m.property(attached_, fh);
+            points.insert(points.end(), attached.begin(), attached.end());
+            if (take)
+                attached.clear();
+            if (fh != ci.fl && fh != ci.fr)
+                covering.push_back(fh);
+        }
+        points.push_back(sample(ci.p0));
+        return true;
+    }
 
     template <class Point> static glm::dvec3 to_glm(const Point &p) { return {p[0], p[1], p[2]}; }
 

@@ -120,11 +120,12 @@ template <class MeshT> class NodeEraseDecimaterT {
     }
 
     // The error the last decimate() reached over every erased node (EraseStats: max_screen_px
-    // inside the frustum, max_weighted in tolerance units), and its counts.
+    // inside the frustum, max_weighted in tolerance units), and its counts (before any erase the
+    // write-back had to undo, see failed_faces).
     const tinlod::EraseStats &stats() const { return stats_; }
 
-    // Faces the last write-back could not add to the mesh (OpenMesh refusing them): 0 unless the
-    // mesh lost its manifold structure.
+    // Triangles the last write-back could not add to the mesh, OpenMesh refusing them even after
+    // the erases under them were undone: 0 unless the mesh lost its manifold structure.
     std::size_t failed_faces() const { return failed_faces_; }
 
     // Vertices not deleted.
@@ -148,9 +149,10 @@ template <class MeshT> class NodeEraseDecimaterT {
             eraser_ = std::make_unique<tinlod::NodeEraser>(*work_, view, options);
         else
             eraser_->set_view(view, options);
+        const std::size_t before = n_live_vertices();
         stats_ = eraser_->erase();
         write_back();
-        return std::size_t(stats_.erased);
+        return before - n_live_vertices();
     }
 
     // The face of the library's mesh with these corners, in this order, is live.
@@ -174,10 +176,23 @@ template <class MeshT> class NodeEraseDecimaterT {
                mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)) == c;
     }
 
-    // Makes the user's mesh show the library's: faces gone are deleted, erased vertices marked
-    // deleted (recovered ones live again), new triangles added, those next to a present face
-    // first (so OpenMesh never has to join two separate fans at a vertex where it can be helped).
+    // Makes the user's mesh show the library's. A triangle OpenMesh refuses (it never did on the
+    // meshes we test; it would take a vertex OpenMesh cannot join two fans at) is not left as a
+    // hole: the erases whose ring holds it are undone in the library and the write-back runs again,
+    // so those nodes stay and their fans come back. Each round brings nodes back, so it ends.
     void write_back() {
+        for (;;) {
+            const std::vector<std::array<VertexHandle, 3>> refused = write_back_once();
+            failed_faces_ = refused.size();
+            if (refused.empty() || !undo_erases_under(refused))
+                return;
+        }
+    }
+
+    // Faces gone are deleted, erased vertices marked deleted (recovered ones live again), new
+    // triangles added, those next to a present face first (so OpenMesh need not join separate fans
+    // at a vertex where that can be helped). Returns the triangles OpenMesh refused.
+    std::vector<std::array<VertexHandle, 3>> write_back_once() {
         for (auto fh : mesh_.faces()) {
             std::array<int, 3> w{};
             int i = 0;
@@ -191,7 +206,7 @@ template <class MeshT> class NodeEraseDecimaterT {
             const bool erased = work_->status(tinlod::Mesh::VertexHandle(int(i))).deleted();
             mesh_.status(user_vertex_[i]).set_deleted(erased);
         }
-        std::vector<std::array<VertexHandle, 3>> pending;
+        std::vector<std::array<VertexHandle, 3>> pending, refused;
         for (auto fh : work_->faces()) {
             std::array<VertexHandle, 3> u;
             int i = 0;
@@ -200,18 +215,13 @@ template <class MeshT> class NodeEraseDecimaterT {
             if (!user_has_face(u[0], u[1], u[2]))
                 pending.push_back(u);
         }
-        failed_faces_ = 0;
         while (!pending.empty()) {
             // A pass adds the faces that share an edge with the mesh; when none does, the first
-            // one goes anyway. Each pass adds at least one face or drops it as failed.
+            // one goes anyway. Each pass adds a face or gives one up.
             std::size_t kept = 0;
             bool added = false;
             for (const auto &u : pending) {
-                if (!touches_mesh(u)) {
-                    pending[kept++] = u;
-                    continue;
-                }
-                if (mesh_.add_face(u[0], u[1], u[2]).is_valid())
+                if (touches_mesh(u) && mesh_.add_face(u[0], u[1], u[2]).is_valid())
                     added = true;
                 else
                     pending[kept++] = u; // maybe once its neighbours are in
@@ -220,9 +230,36 @@ template <class MeshT> class NodeEraseDecimaterT {
             if (!added && !pending.empty()) {
                 const auto u = pending.front();
                 pending.erase(pending.begin());
-                failed_faces_ += !mesh_.add_face(u[0], u[1], u[2]).is_valid();
+                if (!mesh_.add_face(u[0], u[1], u[2]).is_valid())
+                    refused.push_back(u);
             }
         }
+        return refused;
+    }
+
+    // Undoes, in the library, every erase whose ring holds all corners of a refused triangle (the
+    // one that made it among them). False when there is none.
+    bool undo_erases_under(const std::vector<std::array<VertexHandle, 3>> &refused) {
+        std::vector<tinlod::Mesh::VertexHandle> undo;
+        for (std::size_t i = 0; i < user_vertex_.size(); ++i) {
+            const tinlod::Mesh::VertexHandle x{int(i)};
+            if (!eraser_->is_erased(x))
+                continue;
+            const tinlod::ErasedNodeRing ring = eraser_->ring(x);
+            auto holds = [&](VertexHandle u) {
+                const auto w = std::uint32_t(work_vertex_[std::size_t(u.idx())]);
+                return std::find(ring.nodes.begin(), ring.nodes.end(), w) != ring.nodes.end();
+            };
+            for (const auto &t : refused)
+                if (holds(t[0]) && holds(t[1]) && holds(t[2])) {
+                    undo.push_back(x);
+                    break;
+                }
+        }
+        std::int64_t recovered = 0;
+        for (auto x : undo)
+            recovered += eraser_->recover(x);
+        return recovered > 0;
     }
 
     // One of the face's sides is already a boundary half-edge of the user's mesh.
