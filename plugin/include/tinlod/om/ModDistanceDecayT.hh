@@ -10,17 +10,17 @@
 //   distance(point, surface) * screen_weight(point)    (k / OD * peripheral(OA), significance.hpp)
 //
 // so the output holds every input vertex within tolerance pixels of its surface inside the view
-// frustum, relaxed by 1 / peripheral outside it (DESIGN.md). The faces whose points change are all
-// in the collapsed vertex's one-ring, which DecimaterT re-scores after each collapse, so no stale
-// priority can let a collapse break the bound.
+// frustum, relaxed by 1 / peripheral outside it (DESIGN.md). A collapse changes the corners and
+// the points of v0's faces alone, whose corners are v0's one-ring, the vertices DecimaterT
+// re-scores after it: no stale priority can let a later collapse break the bound.
 //
 // Priority: non-binary (the default) orders by the SP of the vertex the collapse removes,
 //   SP = delta * k / OD * peripheral(OA), delta = distance from p0 to the faces that cover it;
 // binary (set_binary(true)) is a veto beside a priority module such as ModQuadricT. Both keep the
 // bound. Composes with ModNormalFlippingT and ModAspectRatioT like any stock module.
 //
-// The module owns one face property (the attached points) for exactly its lifetime. The view is
-// the one set before initialize(): the points' weights are taken then and as points are attached.
+// The module owns one face property (the attached points) for exactly its lifetime. A removed
+// point keeps the weight of the view set when it went: set the view before initialize().
 #pragma once
 
 #include "tinlod/closest_point.hpp"
@@ -67,7 +67,7 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
     }
 
     float collapse_priority(const CollapseInfo &ci) override {
-        if (!has_view_ || !(collapse_error(ci) <= tolerance_))
+        if (!within_bound(ci))
             return float(Base::ILLEGAL_COLLAPSE);
         return Base::is_binary() ? float(Base::LEGAL_COLLAPSE) : float(significance(ci));
     }
@@ -103,26 +103,23 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
         }
     }
 
-    // The bound's figure for the collapse: the largest weighted distance (pixels) of the points it
-    // removes to the faces that would cover them; +inf when it is over the tolerance (the scan
-    // stops there), without a view or when no face would cover them.
-    double collapse_error(const CollapseInfo &ci) {
-        if (!has_view_)
-            return INFINITY;
-        if (!gather(ci, faces_, points_, false))
-            return INFINITY;
+    // Whether every point the collapse removes stays within the tolerance (pixels) of a face that
+    // would cover it; false without a view or when no face would.
+    bool within_bound(const CollapseInfo &ci) {
+        if (!has_view_ || !gather(ci, faces_, points_, false))
+            return false;
         const glm::dvec3 p1 = to_glm(ci.p1);
-        double worst = 0.0;
         for (const Attached &a : points_) {
-            double d = INFINITY;
+            bool covered = false;
             for (auto fh : faces_)
-                d = std::min(d, face_distance(a.p, fh, ci.v0, p1));
-            const double px = d * a.weight;
-            if (!(px <= tolerance_))
-                return INFINITY;
-            worst = std::max(worst, px);
+                if (face_distance(a.p, fh, ci.v0, p1) * a.weight <= tolerance_) {
+                    covered = true;
+                    break;
+                }
+            if (!covered)
+                return false;
         }
-        return worst;
+        return true;
     }
 
     // SP of removing v0 by the collapse: see the file comment (+inf without a view).
