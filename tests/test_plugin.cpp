@@ -234,7 +234,9 @@ TEST(Plugin, NodeEraseDecimateToReachesTheCount) {
 // ---- The bound, the library's nodes and recover() on every scanned mesh -------------------------
 
 // A scanned mesh of meshes/ and the camera it is seen from: on the +z side of its box, looking at
-// its centre, `distance` away (the armadillo run: 350 units).
+// its centre; the armadillo run 350 units away, the larger bunny close enough that part of
+// it lies outside the frustum (where the peripheral factor relaxes the bound), the smaller one
+// whole in view.
 struct Scan {
     std::string file;
     View view;
@@ -252,11 +254,19 @@ std::vector<Scan> scans() {
             hi = glm::max(hi, glm::dvec3(p[0], p[1], p[2]));
         }
         const glm::dvec3 centre = 0.5 * (lo + hi);
-        const double distance =
-            std::string(file) == "armadillo.off" ? 350.0 : 1.5 * glm::length(hi - lo);
+        const std::string name = file;
+        const double distance = name == "armadillo.off"         ? 350.0
+                                : name == "bun_zipper_res2.ply" ? 0.6 * glm::length(hi - lo)
+                                                                : 1.5 * glm::length(hi - lo);
         Scan s{file, {}};
         s.view.at = centre;
         s.view.eye = centre + distance * glm::normalize(glm::dvec3(0.2, 0.3, 1.0));
+        std::int64_t outside = 0;
+        for (auto v : mesh.vertices()) {
+            const auto &p = mesh.point(v);
+            outside += !s.view.in_frustum(glm::dvec3(p[0], p[1], p[2]));
+        }
+        EXPECT_EQ(outside > 0, name == "bun_zipper_res2.ply") << file;
         out.push_back(s);
     }
     return out;
@@ -408,6 +418,30 @@ TEST(PluginScans, DistanceDecayKeepsTheBound) {
             EXPECT_LT(seconds, 20.0);
         }
     }
+}
+
+// decimate(n) stops after n erases; recover(v) brings one erased node back with the erases it
+// depends on, and the mesh stays the library's (its recovered node live, no face refused).
+TEST(PluginScans, NodeEraseByCountAndOneRecover) {
+    const Scan scan = scans()[1];
+    PlainMesh mesh = read_plain(scan.file);
+    const std::size_t input_vertices = mesh.n_vertices();
+    om::NodeEraseDecimaterT<PlainMesh> decimater(mesh);
+    decimater.set_view(scan.view);
+    EXPECT_EQ(decimater.decimate(100), 100u);
+    EXPECT_EQ(live_vertices(mesh), input_vertices - 100);
+    PlainMesh::VertexHandle erased;
+    for (auto v : mesh.all_vertices())
+        if (mesh.status(v).deleted())
+            erased = v;
+    ASSERT_TRUE(erased.is_valid());
+    const std::size_t back = decimater.recover(erased);
+    EXPECT_GE(back, 1u);
+    EXPECT_FALSE(mesh.status(erased).deleted());
+    EXPECT_FALSE(mesh.is_isolated(erased));
+    EXPECT_EQ(decimater.failed_faces(), 0u);
+    EXPECT_EQ(live_vertices(mesh), input_vertices - 100 + back);
+    EXPECT_LE(measured_px(scan.file, mesh, scan.view), 1.0 + k_px_slack);
 }
 
 } // namespace
