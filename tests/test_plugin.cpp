@@ -444,5 +444,59 @@ TEST(PluginScans, NodeEraseByCountAndOneRecover) {
     EXPECT_LE(measured_px(scan.file, mesh, scan.view), 1.0 + k_px_slack);
 }
 
+// A mesh whose add_face, once `refusing`, refuses the first triangle it is given every time it is
+// given it, as OpenMesh refuses one it cannot join to a vertex's fans.
+struct RefusingMesh : PlainMesh {
+    using PlainMesh::add_face;
+    bool refusing = false;
+    std::array<int, 3> refused{-1, -1, -1};
+    int refusals = 0;
+    FaceHandle add_face(VertexHandle a, VertexHandle b, VertexHandle c) {
+        std::array<int, 3> corners{a.idx(), b.idx(), c.idx()};
+        std::sort(corners.begin(), corners.end());
+        if (refusing && refused[0] < 0)
+            refused = corners;
+        if (refusing && corners == refused) {
+            ++refusals;
+            return FaceHandle();
+        }
+        return PlainMesh::add_face(a, b, c);
+    }
+};
+
+template <class M> std::int64_t boundary_edges(const M &mesh) {
+    std::int64_t n = 0;
+    for (auto e : mesh.edges())
+        n += mesh.is_boundary(e);
+    return n;
+}
+
+// A triangle the write-back cannot add leaves no hole: the erases under it are undone, their nodes
+// stay, and the output is a superset of the library's nodes with the bound kept.
+TEST(PluginScans, NodeEraseUndoesTheErasesUnderARefusedTriangle) {
+    const Scan scan = scans()[1];
+    RefusingMesh mesh;
+    ASSERT_TRUE(OpenMesh::IO::read_mesh(mesh, test::asset(scan.file)));
+    const std::int64_t outline = boundary_edges(mesh);
+    Mesh library = read_mesh(test::asset(scan.file));
+    const EraseStats erased = erase_nodes(library, &scan.view, EraseOptions{});
+
+    om::NodeEraseDecimaterT<RefusingMesh> decimater(mesh);
+    decimater.set_view(scan.view);
+    mesh.refusing = true;
+    const std::size_t removed = decimater.decimate();
+    EXPECT_GT(mesh.refusals, 0);
+    EXPECT_EQ(decimater.failed_faces(), 0u);
+    EXPECT_GT(removed, 0u);
+    EXPECT_LT(std::int64_t(removed), erased.erased);
+    for (auto v : mesh.vertices()) {
+        if (mesh.status(v).deleted()) {
+            EXPECT_TRUE(mesh.is_isolated(v));
+        }
+    }
+    EXPECT_EQ(boundary_edges(mesh), outline); // no hole: a surface mesh's outline never moves
+    EXPECT_LE(measured_px(scan.file, mesh, scan.view), 1.0 + k_px_slack);
+}
+
 } // namespace
 } // namespace tinlod
