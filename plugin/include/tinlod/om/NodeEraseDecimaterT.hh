@@ -60,9 +60,10 @@ template <class MeshT> class NodeEraseDecimaterT {
     // the significance are taken from it too. max_nodes is set by each call.
     void set_erase_options(const tinlod::EraseOptions &options) { options_ = options; }
 
-    // Copies the mesh into the library's type (decimate() calls it when nobody did). False on a
-    // mesh that is not all triangles or whose connectivity OpenMesh refuses to copy. The mesh must
-    // not change but through this decimater until it is gone.
+    // Copies the mesh's live part into the library's type (decimate() calls it when nobody did) and
+    // starts a new history: recover() goes back to the mesh as it is now. False on a mesh that is
+    // not all triangles or whose connectivity OpenMesh refuses to copy. The mesh must not change
+    // but through this decimater until it is gone.
     bool initialize() {
         eraser_.reset();
         work_ = std::make_unique<tinlod::Mesh>();
