@@ -12,9 +12,9 @@
 // re-used by recover, so no library-side OpenMesh call (and no garbage collection) runs per erase.
 #include "tinlod/decimate.hpp"
 
-#include "closest_point.hpp"
 #include "lattice_rings.hpp"
 #include "lattice_triangle.hpp"
+#include "tinlod/closest_point.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/greedy.hpp"
 #include "tinlod/quadtree.hpp"

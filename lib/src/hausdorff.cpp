@@ -2,9 +2,9 @@
 // Rocchini and Scopigno, "Metro: measuring error on simplified surfaces" (1998): area-weighted
 // samples on one surface, exact point-to-surface distance to the other. The nearest triangle is
 // found in a bounding-volume hierarchy (median split on the longest axis, best-first descent);
-// the point-triangle distance is Ericson's (closest_point.hpp).
+// the point-triangle distance is Ericson's (tinlod/closest_point.hpp).
 #include "tinlod/hausdorff.hpp"
-#include "closest_point.hpp"
+#include "tinlod/closest_point.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
 

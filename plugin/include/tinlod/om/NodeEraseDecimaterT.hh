@@ -1,33 +1,30 @@
-// tinlod::om::NodeEraseDecimaterT: the paper's node-erase decimater (vertex removal with local
-// hole re-triangulation, steps 3-5) in OpenMesh's decimater conventions, for any OpenMesh triangle
-// mesh type: initialize(), decimate(n), decimate_to(nv), mesh properties owned for exactly the
-// decimater's lifetime, no garbage collection (call mesh.garbage_collection() yourself).
+// tinlod::om::NodeEraseDecimaterT: the library's node erase (tinlod::NodeEraser, decimate.hpp; the
+// paper's steps 3-5 with the whole-output bound and the erase history) on any OpenMesh triangle
+// mesh type, in OpenMesh's decimater conventions: initialize(), decimate(n), decimate_to(nv),
+// deleted flags and no garbage collection (call mesh.garbage_collection() yourself, once the
+// decimater is gone), status attributes requested for exactly the decimater's lifetime.
 //
-// Each vertex's SP is its screen-space significance (significance.hpp): delta = its deviation from
-// the re-triangulated hole (vertically for a TIN, from the new triangle's plane otherwise) times
-// k / OD * peripheral(OA). The least significant vertex is removed while SP < tolerance; its ring
-// is ear-clipped with tinlod::triangulate_ring in the projection plane (xy when every face is
-// counter-clockwise in xy, else the fan's mean plane), so there is never a fold-over in that plane
-// and never a non-manifold edge; boundary vertices are kept. Ring neighbours are re-scored after
-// every removal. Unlike tinlod::NodeEraser (lib/decimate) this scores each removal by the removed
-// vertex alone: it carries no whole-output bound and no erase history.
-//
-// Status attributes: requested in the constructor and released in the destructor (OpenMesh counts
-// requests, so a mesh that had them keeps them). Removal uses delete_vertex + add_face.
+// It runs tinlod::NodeEraser on a copy of the mesh in the library's type (the same vertices, in
+// order, and the same faces added in the same order, so the same half-edge structure) and writes
+// each result back: the faces the erase removed are deleted, the erased vertices marked deleted,
+// the new triangles added. So it gives the nodes `tinlod simplify MESH` gives for the same input
+// and view, with its guarantees: every input vertex within tolerance pixels of the output surface
+// inside the view frustum (relaxed by the peripheral factor outside it, as documented in
+// decimate.hpp), its erase order and hole re-triangulation, and recover() back to the input.
+// Points are taken as floats, the library's precision.
 #pragma once
 
 #include "tinlod/decimate.hpp"
 #include "tinlod/significance.hpp"
+#include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
 
-#include <OpenMesh/Core/Utils/Property.hh>
-
-#include <glm/glm.hpp>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
-#include <queue>
+#include <memory>
+#include <optional>
 #include <vector>
 
 namespace tinlod::om {
@@ -41,12 +38,8 @@ template <class MeshT> class NodeEraseDecimaterT {
         mesh_.request_vertex_status();
         mesh_.request_edge_status();
         mesh_.request_face_status();
-        mesh_.add_property(sp_, "tinlod:node_erase:sp");
-        mesh_.add_property(version_, "tinlod:node_erase:version");
     }
     ~NodeEraseDecimaterT() {
-        mesh_.remove_property(sp_);
-        mesh_.remove_property(version_);
         mesh_.release_face_status();
         mesh_.release_edge_status();
         mesh_.release_vertex_status();
@@ -54,42 +47,87 @@ template <class MeshT> class NodeEraseDecimaterT {
     NodeEraseDecimaterT(const NodeEraseDecimaterT &) = delete;
     NodeEraseDecimaterT &operator=(const NodeEraseDecimaterT &) = delete;
 
-    void set_view(const tinlod::View &view) {
-        view_ = view;
-        has_view_ = true;
+    // The observer; the next decimate() erases for it.
+    void set_view(const tinlod::View &view) { view_ = view; }
+    // tau, pixels: the output keeps every input vertex within it. +inf: only decimate_to's count
+    // limits.
+    void set_tolerance(double px) { options_.tolerance = px; }
+    // The SP model and its parameters (screen by default, as `tinlod simplify`).
+    void set_significance(const tinlod::SignificanceOptions &options) {
+        options_.significance = options;
     }
-    // tau, pixels: vertices whose SP reaches it stay. +inf: only decimate_to's count limits.
-    void set_tolerance(double px) { tolerance_ = px; }
-    void set_significance(const tinlod::SignificanceOptions &options) { options_ = options; }
+    // Every other erase option (projection, max_valence, erase_boundary, ...); the tolerance and
+    // the significance are taken from it too. max_nodes is set by each call.
+    void set_erase_options(const tinlod::EraseOptions &options) { options_ = options; }
 
-    // Scores every vertex; false without a view.
+    // Copies the mesh's live part into the library's type (decimate() calls it when nobody did) and
+    // starts a new history: recover() goes back to the mesh as it is now. False on a mesh that is
+    // not all triangles or whose connectivity OpenMesh refuses to copy. The mesh must not change
+    // but through this decimater until it is gone.
     bool initialize() {
-        if (!has_view_)
-            return false;
-        xy_ = true;
-        for (auto fh : mesh_.faces()) {
-            glm::dvec3 c[3];
-            int i = 0;
-            for (auto vh : mesh_.fv_range(fh))
-                c[i++] = point(vh);
-            xy_ &=
-                (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[2].x - c[0].x) * (c[1].y - c[0].y) > 0.0;
-        }
-        queue_ = {};
+        eraser_.reset();
+        work_ = std::make_unique<tinlod::Mesh>();
+        user_vertex_.clear();
+        work_vertex_.assign(mesh_.n_vertices(), -1);
         for (auto vh : mesh_.vertices()) {
-            mesh_.property(version_, vh) = 0;
-            rescore(vh);
+            const auto &p = mesh_.point(vh);
+            work_vertex_[std::size_t(vh.idx())] =
+                work_->add_vertex({float(p[0]), float(p[1]), float(p[2])}).idx();
+            user_vertex_.push_back(vh);
         }
-        initialized_ = true;
+        for (auto fh : mesh_.faces()) {
+            std::vector<tinlod::Mesh::VertexHandle> corners;
+            for (auto vh : mesh_.fv_range(fh))
+                corners.emplace_back(work_vertex_[std::size_t(vh.idx())]);
+            if (corners.size() != 3 || !work_->add_face(corners).is_valid()) {
+                work_.reset();
+                return false;
+            }
+        }
         return true;
     }
 
-    // Removes up to n vertices (0: every vertex within the tolerance); returns how many.
-    std::size_t decimate(std::size_t n = 0) { return run(n == 0 ? SIZE_MAX : n, 0); }
+    // Erases nodes for the view until none can go within the tolerance, or after n erases (0: no
+    // limit). Returns how many nodes it erased.
+    std::size_t decimate(std::size_t n = 0) {
+        const std::size_t live = n_live_vertices();
+        return run(n == 0 || n >= live ? 0 : std::int64_t(live - n));
+    }
 
-    // Removes vertices until nv live vertices remain (or none is within the tolerance); live =
-    // not deleted, so the count is right before garbage_collection(). Returns how many.
-    std::size_t decimate_to(std::size_t nv) { return run(SIZE_MAX, nv); }
+    // Erases nodes until nv live vertices remain or none can go within the tolerance (nv = 0: no
+    // count). Returns how many nodes it erased.
+    std::size_t decimate_to(std::size_t nv) { return run(std::int64_t(nv)); }
+
+    // Brings every erased node back: the mesh then has the input's vertices and triangles (the
+    // triangles as new faces, the old ones marked deleted). Returns how many came back.
+    std::size_t recover() {
+        if (!eraser_)
+            return 0;
+        const std::int64_t n = eraser_->recover_all();
+        write_back();
+        return std::size_t(n);
+    }
+
+    // Brings erased vertex vh back, with the erased nodes it depends on. Returns how many came
+    // back (0 when vh is live).
+    std::size_t recover(VertexHandle vh) {
+        if (!eraser_ || !vh.is_valid() || std::size_t(vh.idx()) >= work_vertex_.size() ||
+            work_vertex_[std::size_t(vh.idx())] < 0)
+            return 0;
+        const std::int64_t n =
+            eraser_->recover(tinlod::Mesh::VertexHandle(work_vertex_[std::size_t(vh.idx())]));
+        write_back();
+        return std::size_t(n);
+    }
+
+    // The error the last decimate() reached over every erased node (EraseStats: max_screen_px
+    // inside the frustum, max_weighted in tolerance units), and its counts (before any erase the
+    // write-back had to undo, see failed_faces).
+    const tinlod::EraseStats &stats() const { return stats_; }
+
+    // Triangles the last write-back could not add to the mesh, OpenMesh refusing them even after
+    // the erases under them were undone: 0 unless the mesh lost its manifold structure.
+    std::size_t failed_faces() const { return failed_faces_; }
 
     // Vertices not deleted.
     std::size_t n_live_vertices() const {
@@ -100,140 +138,150 @@ template <class MeshT> class NodeEraseDecimaterT {
     }
 
   private:
-    struct Hole {
-        std::vector<VertexHandle> ring;
-        std::vector<tinlod::RingTriangle> triangles;
-        double sp = INFINITY;
-    };
-    struct Entry {
-        float sp;
-        int vertex;
-        std::uint32_t version;
-        bool operator>(const Entry &o) const { return sp > o.sp; }
-    };
-
-    glm::dvec3 point(VertexHandle vh) const {
-        const auto &p = mesh_.point(vh);
-        return {p[0], p[1], p[2]};
-    }
-
-    // Re-triangulates vh's hole; false when it cannot go (boundary, fold-over, non-manifold).
-    bool evaluate(VertexHandle vh, Hole &hole) {
-        hole.ring.clear();
-        hole.triangles.clear();
-        if (mesh_.status(vh).deleted() || mesh_.is_boundary(vh) || !mesh_.is_manifold(vh))
-            return false;
-        const glm::dvec3 pv = point(vh);
-        glm::dvec3 normal(0.0);
-        for (auto fh : mesh_.vf_range(vh)) {
-            glm::dvec3 c[3];
-            int i = 0;
-            for (auto u : mesh_.fv_range(fh))
-                c[i++] = point(u);
-            normal += glm::cross(c[1] - c[0], c[2] - c[0]);
-        }
-        if (xy_)
-            normal = {0.0, 0.0, 1.0};
-        const double len = glm::length(normal);
-        if (!(len > 0.0))
-            return false;
-        const glm::dvec3 ez = normal / len;
-        const glm::dvec3 helper = std::abs(ez.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-        const glm::dvec3 ex = xy_ ? glm::dvec3(1, 0, 0) : glm::normalize(glm::cross(helper, ez));
-        const glm::dvec3 ey = glm::cross(ez, ex);
-        std::vector<glm::dvec2> q;
-        for (auto u : mesh_.vv_range(vh)) {
-            hole.ring.push_back(u);
-            const glm::dvec3 d = point(u) - pv;
-            q.emplace_back(glm::dot(d, ex), glm::dot(d, ey));
-        }
-        if (hole.ring.size() < 3 || int(hole.ring.size()) > tinlod::k_max_ring)
-            return false;
-        if (tinlod::ring_orientation(q) == tinlod::RingOrientation::cw) {
-            std::reverse(hole.ring.begin(), hole.ring.end());
-            std::reverse(q.begin(), q.end());
-        }
-        const std::size_t n = q.size();
-        for (std::size_t i = 0; i < n; ++i) {
-            const glm::dvec2 &a = q[i], &b = q[(i + 1) % n];
-            if (a.x * b.y - b.x * a.y <= 0.0)
-                return false; // the fan is not star-shaped in the projection plane
-        }
-        hole.triangles = tinlod::triangulate_ring(q);
-        if (hole.triangles.empty())
-            return false;
-        for (const auto &t : hole.triangles)
-            for (auto [a, b] : {std::pair{t.a, t.b}, std::pair{t.b, t.c}, std::pair{t.c, t.a}})
-                if (std::size_t(b) != (std::size_t(a) + 1) % n &&
-                    mesh_.find_halfedge(hole.ring[a], hole.ring[b]).is_valid())
-                    return false; // the diagonal exists outside the hole
-        // The node's deviation from the new triangle under it.
-        double delta = INFINITY;
-        for (const auto &t : hole.triangles) {
-            const glm::dvec2 &a = q[t.a], &b = q[t.b], &c = q[t.c];
-            const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-            const double w0 = (b.x * c.y - c.x * b.y) / area, w1 = (c.x * a.y - a.x * c.y) / area;
-            const double w2 = 1.0 - w0 - w1;
-            if (std::min({w0, w1, w2}) < -1e-12)
-                continue;
-            const glm::dvec3 pa = point(hole.ring[t.a]), pb = point(hole.ring[t.b]),
-                             pc = point(hole.ring[t.c]);
-            const glm::dvec3 nt = glm::cross(pb - pa, pc - pa);
-            delta = xy_ ? std::abs(pv.z - (w0 * pa.z + w1 * pb.z + w2 * pc.z))
-                        : std::abs(glm::dot(pv - pa, nt)) / std::max(glm::length(nt), 1e-300);
-            break;
-        }
-        if (!std::isfinite(delta))
-            return false;
-        hole.sp = delta * tinlod::screen_weight(view_, pv, options_);
-        return true;
-    }
-
-    void rescore(VertexHandle vh) {
-        std::uint32_t &version = mesh_.property(version_, vh);
-        ++version;
-        mesh_.property(sp_, vh) = evaluate(vh, scratch_) ? float(scratch_.sp) : INFINITY;
-        if (std::isfinite(mesh_.property(sp_, vh)))
-            queue_.push({mesh_.property(sp_, vh), vh.idx(), version});
-    }
-
-    std::size_t run(std::size_t max_removals, std::size_t target) {
-        if (!initialized_ && !initialize())
+    // Without a view only the vertical model erases.
+    std::size_t run(std::int64_t max_nodes) {
+        const bool vertical = options_.significance.model == tinlod::SpModel::vertical;
+        if ((!view_ && !vertical) || (!work_ && !initialize()))
             return 0;
-        std::size_t live = n_live_vertices(), removed = 0;
-        Hole hole;
-        while (!queue_.empty() && removed < max_removals && live > target) {
-            const Entry e = queue_.top();
-            queue_.pop();
-            const VertexHandle vh(e.vertex);
-            if (mesh_.status(vh).deleted() || mesh_.property(version_, vh) != e.version)
-                continue; // superseded by a re-score
-            if (!(double(e.sp) < tolerance_))
-                break; // the least significant vertex is visible: done
-            if (!evaluate(vh, hole))
-                continue;
-            mesh_.delete_vertex(vh, false);
-            for (const auto &t : hole.triangles)
-                mesh_.add_face(hole.ring[t.a], hole.ring[t.b], hole.ring[t.c]);
-            for (auto u : hole.ring)
-                rescore(u);
-            ++removed;
-            --live;
+        tinlod::EraseOptions options = options_;
+        options.max_nodes = max_nodes;
+        const tinlod::View *view = view_ ? &*view_ : nullptr;
+        if (!eraser_)
+            eraser_ = std::make_unique<tinlod::NodeEraser>(*work_, view, options);
+        else
+            eraser_->set_view(view, options);
+        const std::size_t before = n_live_vertices();
+        stats_ = eraser_->erase();
+        write_back();
+        return before - n_live_vertices();
+    }
+
+    // The face of the library's mesh with these corners, in this order, is live.
+    bool work_has_face(int a, int b, int c) const {
+        const tinlod::Mesh &w = *work_;
+        using WV = tinlod::Mesh::VertexHandle;
+        if (w.status(WV(a)).deleted() || w.status(WV(b)).deleted() || w.status(WV(c)).deleted())
+            return false;
+        const auto h = w.find_halfedge(WV(a), WV(b));
+        if (!h.is_valid())
+            return false;
+        const auto f = w.face_handle(h);
+        return f.is_valid() && !w.status(f).deleted() &&
+               w.to_vertex_handle(w.next_halfedge_handle(h)) == WV(c);
+    }
+
+    // The user's mesh has a face with these corners, in this order.
+    bool user_has_face(VertexHandle a, VertexHandle b, VertexHandle c) const {
+        const auto h = mesh_.find_halfedge(a, b);
+        return h.is_valid() && mesh_.face_handle(h).is_valid() &&
+               mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)) == c;
+    }
+
+    // Makes the user's mesh show the library's. A triangle OpenMesh refuses (it never did on the
+    // meshes we test; it would take a vertex OpenMesh cannot join two fans at) is not left as a
+    // hole: the erases whose ring holds it are undone in the library and the write-back runs again,
+    // so those nodes stay and their fans come back. Each round brings nodes back, so it ends.
+    void write_back() {
+        for (;;) {
+            const std::vector<std::array<VertexHandle, 3>> refused = write_back_once();
+            failed_faces_ = refused.size();
+            if (refused.empty() || !undo_erases_under(refused))
+                return;
         }
-        return removed;
+    }
+
+    // Faces gone are deleted, erased vertices marked deleted (recovered ones live again), new
+    // triangles added, those next to a present face first (so OpenMesh need not join separate fans
+    // at a vertex where that can be helped). Returns the triangles OpenMesh refused.
+    std::vector<std::array<VertexHandle, 3>> write_back_once() {
+        for (auto fh : mesh_.faces()) {
+            std::array<int, 3> w{};
+            int i = 0;
+            for (auto vh : mesh_.fv_range(fh))
+                if (i < 3)
+                    w[std::size_t(i++)] = work_vertex_[std::size_t(vh.idx())];
+            if (w[0] >= 0 && w[1] >= 0 && w[2] >= 0 && !work_has_face(w[0], w[1], w[2]))
+                mesh_.delete_face(fh, false);
+        }
+        for (std::size_t i = 0; i < user_vertex_.size(); ++i) {
+            const bool erased = work_->status(tinlod::Mesh::VertexHandle(int(i))).deleted();
+            mesh_.status(user_vertex_[i]).set_deleted(erased);
+        }
+        std::vector<std::array<VertexHandle, 3>> pending, refused;
+        for (auto fh : work_->faces()) {
+            std::array<VertexHandle, 3> u;
+            int i = 0;
+            for (auto vh : work_->fv_range(fh))
+                u[std::size_t(i++)] = user_vertex_[std::size_t(vh.idx())];
+            if (!user_has_face(u[0], u[1], u[2]))
+                pending.push_back(u);
+        }
+        while (!pending.empty()) {
+            // A pass adds the faces that share an edge with the mesh; when none does, the first
+            // one goes anyway. Each pass adds a face or gives one up.
+            std::size_t kept = 0;
+            bool added = false;
+            for (const auto &u : pending) {
+                if (touches_mesh(u) && mesh_.add_face(u[0], u[1], u[2]).is_valid())
+                    added = true;
+                else
+                    pending[kept++] = u; // maybe once its neighbours are in
+            }
+            pending.resize(kept);
+            if (!added && !pending.empty()) {
+                const auto u = pending.front();
+                pending.erase(pending.begin());
+                if (!mesh_.add_face(u[0], u[1], u[2]).is_valid())
+                    refused.push_back(u);
+            }
+        }
+        return refused;
+    }
+
+    // Undoes, in the library, every erase whose ring holds all corners of a refused triangle (the
+    // one that made it among them). False when there is none.
+    bool undo_erases_under(const std::vector<std::array<VertexHandle, 3>> &refused) {
+        std::vector<tinlod::Mesh::VertexHandle> undo;
+        for (std::size_t i = 0; i < user_vertex_.size(); ++i) {
+            const tinlod::Mesh::VertexHandle x{int(i)};
+            if (!eraser_->is_erased(x))
+                continue;
+            const tinlod::ErasedNodeRing ring = eraser_->ring(x);
+            auto holds = [&](VertexHandle u) {
+                const auto w = std::uint32_t(work_vertex_[std::size_t(u.idx())]);
+                return std::find(ring.nodes.begin(), ring.nodes.end(), w) != ring.nodes.end();
+            };
+            for (const auto &t : refused)
+                if (holds(t[0]) && holds(t[1]) && holds(t[2])) {
+                    undo.push_back(x);
+                    break;
+                }
+        }
+        std::int64_t recovered = 0;
+        for (auto x : undo)
+            recovered += eraser_->recover(x);
+        return recovered > 0;
+    }
+
+    // One of the face's sides is already a boundary half-edge of the user's mesh.
+    bool touches_mesh(const std::array<VertexHandle, 3> &u) const {
+        for (int i = 0; i < 3; ++i) {
+            const auto h = mesh_.find_halfedge(u[std::size_t(i)], u[std::size_t((i + 1) % 3)]);
+            if (h.is_valid() && mesh_.is_boundary(h))
+                return true;
+        }
+        return false;
     }
 
     MeshT &mesh_;
-    OpenMesh::VPropHandleT<float> sp_;
-    OpenMesh::VPropHandleT<std::uint32_t> version_;
-    tinlod::View view_;
-    bool has_view_ = false;
-    bool initialized_ = false;
-    bool xy_ = true;
-    double tolerance_ = 1.0;
-    tinlod::SignificanceOptions options_;
-    Hole scratch_;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
+    std::optional<tinlod::View> view_;
+    tinlod::EraseOptions options_;
+    tinlod::EraseStats stats_;
+    std::size_t failed_faces_ = 0;
+    std::unique_ptr<tinlod::Mesh> work_;         // the library's copy the eraser edits
+    std::unique_ptr<tinlod::NodeEraser> eraser_; // the erase history; goes before work_
+    std::vector<VertexHandle> user_vertex_;      // the user's vertex of each library vertex
+    std::vector<int> work_vertex_;               // the library vertex of each user vertex, or -1
 };
 
 } // namespace tinlod::om

@@ -1,5 +1,6 @@
 // The point of a triangle nearest to a point: Ericson, "Real-Time Collision Detection" (2005),
-// 5.1.5. Shared by the Hausdorff measure and the node erase's deviation on surface meshes.
+// 5.1.5. Shared by the Hausdorff measure, the node erase's deviation on surface meshes and the
+// plugin's ModDistanceDecayT.
 #pragma once
 
 #include <glm/glm.hpp>
