@@ -308,9 +308,19 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     GreedyTin out;
     const std::int64_t max_nodes =
         options.max_nodes > 0 ? std::min(options.max_nodes, k_max_nodes) : k_max_nodes;
+    const auto on_outline = [&](std::uint32_t sample) {
+        const std::uint32_t c = sample % std::uint32_t(hf.width),
+                            r = sample / std::uint32_t(hf.width);
+        return c == 0 || r == 0 || c + 1 == std::uint32_t(hf.width) ||
+               r + 1 == std::uint32_t(hf.height);
+    };
     std::int32_t t;
     while (ins.pop(t)) {
-        if (std::int64_t(ins.points.size()) >= max_nodes) {
+        const std::int64_t triangles = std::int64_t(ins.corner.size() / 3);
+        if (std::int64_t(ins.points.size()) >= max_nodes ||
+            (options.max_triangles > 0 &&
+             triangles + (on_outline(ins.candidate[std::size_t(t)]) ? 1 : 2) >
+                 options.max_triangles)) {
             out.stopped = true;
             break;
         }
