@@ -21,12 +21,15 @@ namespace tinlod::cli {
 
 // Greedy insertion by largest vertical error until the budget (or the bound, when one is given:
 // whichever comes first). Without a bound it goes on until every sample is within float noise of
-// the TIN: 2^-60 of the height range (greedy_tin's queue needs a threshold above 0).
+// the TIN, 2^-30 of the height range (greedy_tin's queue needs a threshold above 0), and the queue
+// orders to 1 % (64 buckets per octave over those 30 octaves): the error the budget reaches is the
+// greedy order's, not up to 41 % over it (N42E001 to 10,000 nodes: 154.3 m, 171.9 at 2).
 static GreedyTin greedy_to_budget(const Heightfield &hf, double max_error, std::int64_t max_nodes,
                                   std::int64_t max_triangles) {
     GreedyOptions go;
     const double range = double(hf.max_z()) - double(hf.min_z());
-    go.max_error = max_error > 0.0 ? max_error : range > 0.0 ? std::ldexp(range, -60) : 1.0;
+    go.max_error = max_error > 0.0 ? max_error : range > 0.0 ? std::ldexp(range, -30) : 1.0;
+    go.buckets_per_octave = 64;
     go.max_nodes = max_nodes;
     go.max_triangles = max_triangles;
     return greedy_tin(hf, go);

@@ -38,6 +38,10 @@ struct GreedyOptions {
     // of the first few levels, over the whole lattice each, for a few more nodes (N42E001 to 20 m,
     // every 16th sample: a quarter less time, 1 % more nodes).
     int seed_step = 0;
+    // The queue's resolution: the next sample is within a factor 2^(1 / this) of the farthest
+    // (2: fast, for a bound; a budget's output keeps that factor in its error, so 64 there). Over
+    // 2048 / this octaves above max_error the queue no longer orders.
+    int buckets_per_octave = 2;
 };
 
 // Inserts until every sample is within options.max_error of the TIN (vertical distance, computed
