@@ -247,7 +247,7 @@ TEST(Cli, BadInputGetsOneLineNamingTheProblemAndNoOutput) {
         {"infinite tau",
          "simplify " + asset("dem_squared.tif") +
              " --eye 1,1,900 --at 9,9,0 --tol inf -o {out}/a.ply",
-         "--tol: must be a finite number of pixels >= 0"},
+         "--tol: must be a finite number >= 0"},
         {"zero tau in flight",
          "fly " + asset("dem_squared.tif") + " --path " + asset("paths/n42_descent.csv") +
              " --tol 0 --stats {out}/f.csv",

@@ -23,19 +23,19 @@ static Register build("build", 20, [](CLI::App &cmd) {
         RasterOptions raster;
     };
     auto args = std::make_shared<Args>();
-    cmd.add_option("DEM", args->input, "DEM file (GeoTIFF, PNG, EXR, .hgt, ...)")->required();
+    cmd.add_option("DEM", args->input, "DEM file (GeoTIFF, PNG, EXR, .hgt, ...) or store")
+        ->required();
     cmd.add_option("-o,--output", args->output, "store file to write (.tlq)")->required();
     cmd.add_option("--stats", args->stats, "write statistics as JSON");
     args->raster.add(cmd);
     declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}});
     return [args] {
         if (is_mesh_path(args->output))
-            throw Error(args->output, "a store is not a mesh file; name it .tlq");
+            throw UsageError(args->output, "a store is not a mesh file; name it .tlq");
         check_store_writable(args->output);
         check_writable({args->stats});
         Stopwatch clock;
-        const LoadOptions lo = args->raster.load_options();
-        Heightfield hf = load_heightfield(args->input, lo);
+        Heightfield hf = args->raster.load(args->input);
         const double ms_load = clock.ms();
         clock.reset();
         const int levels = QuadLayout(hf.width, hf.height).levels();

@@ -35,15 +35,18 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
         RasterOptions raster;
     };
     auto args = std::make_shared<Args>();
-    cmd.add_option("MESH", args->input, "the TIN or mesh to judge (a DEM is taken as its grid TIN)")
+    cmd.add_option("MESH", args->input,
+                   "the TIN or mesh to judge (a DEM or store is taken as its grid TIN)")
         ->required();
-    cmd.add_option("REFERENCE", args->reference, "the DEM (full grid TIN) or mesh it approximates")
+    cmd.add_option("REFERENCE", args->reference,
+                   "the DEM or store (full grid TIN) or mesh it approximates")
         ->required();
     cmd.add_option("--diff", args->diff, "write |render - reference render| x8 as an image");
     declare_outputs(cmd, {{"--diff", &args->diff}});
     cmd.add_flag("--json", args->json, "print JSON instead of text");
     cmd.add_option("--threshold", args->threshold,
                    "grey levels (0..255) by which a pixel must differ to count as differing")
+        ->check(real_in(0.0, 255.0))
         ->capture_default_str();
     cmd.add_option("--color", args->color, "colouring of both renders: shade | height")
         ->check(CLI::IsMember({"shade", "height"}))
@@ -52,6 +55,7 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
                  "shade both renders with the reference DEM's own normals, so the image error "
                  "shows only where the surface moves on screen");
     cmd.add_option("--samples", args->samples, "Hausdorff sample points per mesh (mesh reference)")
+        ->check(whole_in(1, 100000000))
         ->capture_default_str();
     args->camera.add(cmd, true);
     args->raster.add(cmd);
@@ -60,17 +64,16 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
         const View view = args->camera.view();
         check_writable({args->diff});
         if (args->dem_normals && is_mesh_path(args->reference))
-            throw Error("--dem-normals", "needs a DEM as REFERENCE");
+            throw UsageError("--dem-normals", "needs a DEM or store as REFERENCE");
         Renderer renderer; // before the long work, so a machine without OpenGL says so at once
-        const LoadOptions lo = args->raster.load_options();
         const Mesh mesh = is_mesh_path(args->input) ? read_mesh(args->input)
-                                                    : grid_tin(load_heightfield(args->input, lo));
+                                                    : grid_tin(args->raster.load(args->input));
         std::optional<Heightfield> dem;
         Mesh reference;
         if (is_mesh_path(args->reference)) {
             reference = read_mesh(args->reference);
         } else {
-            dem = load_heightfield(args->reference, lo);
+            dem = args->raster.load(args->reference);
             reference = grid_tin(*dem);
         }
 

@@ -33,6 +33,9 @@ static const char *k_frame_header =
     "t,nodes,triangles,erased,recovered,tiles_read,ms_retrieve,"
     "ms_erase,ms_recover,ms_total,max_screen_px,entered,evaluations";
 
+// A flight's frames are held as views (and a line of statistics each) before the first is flown.
+constexpr double k_max_frames = 1e6;
+
 static double percentile(std::vector<double> v, double q) {
     if (v.empty())
         return 0.0;
@@ -59,13 +62,18 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
     cmd.add_option("--path", args->path, "camera path CSV: t,eye_x,eye_y,eye_z,at_x,at_y,at_z")
         ->required();
     cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
+        ->check(real_in(0.0, INFINITY, true))
         ->capture_default_str();
-    cmd.add_option("--fps", args->fps, "frames per second of path time")->capture_default_str();
+    cmd.add_option("--fps", args->fps, "frames per second of path time")
+        ->check(real_in(0.0, 1000.0, true))
+        ->capture_default_str();
     cmd.add_option("--hysteresis", args->hysteresis, "erase down to (1 - h) tau, recover above tau")
+        ->check(real_in(0.0, 1.0, false, true))
         ->capture_default_str();
     cmd.add_option("--retrieve-share", args->retrieve_share,
                    "DEM, screen model: the first frame retrieves at this share of the erase's "
                    "bound; the samples it leaves out enter later where needed (0: full grid)")
+        ->check(real_in(0.0, 1.0))
         ->capture_default_str();
     cmd.add_option("--model", args->model, "significance model: screen or paper")
         ->check(CLI::IsMember({"screen", "paper"}))
@@ -76,9 +84,11 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
                    "write one rendered PNG per frame into this folder (created when missing)");
     cmd.add_option("--frames-eye", args->frames_eye,
                    "draw the frames from this fixed camera X,Y,Z instead of the observer's, to see "
-                   "the TIN follow the observer from outside");
+                   "the TIN follow the observer from outside")
+        ->check(point_text());
     cmd.add_option("--frames-at", args->frames_at,
-                   "the point the camera of --frames-eye looks toward X,Y,Z");
+                   "the point the camera of --frames-eye looks toward X,Y,Z")
+        ->check(point_text());
     cmd.add_option(
         "--meshes", args->meshes_dir,
         "write each frame's TIN into this folder (frame_NNNNN.ply; created when missing)");
@@ -86,23 +96,21 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
     declare_outputs(cmd, {{"--stats", &args->stats}},
                     "The folders of --frames and --meshes are created when missing; their files "
                     "enter them together once the flight is through.");
-    cmd.add_option("--fov", args->fov, "vertical field of view, degrees")->capture_default_str();
-    cmd.add_option("--viewport", args->viewport, "viewport WxH, pixels")->capture_default_str();
+    cmd.add_option("--fov", args->fov, "vertical field of view, degrees")
+        ->check(real_in(0.0, 180.0, true, true))
+        ->capture_default_str();
+    cmd.add_option("--viewport", args->viewport, "viewport WxH, pixels (each side 1 to 65536)")
+        ->check(viewport_text())
+        ->capture_default_str();
     args->raster.add(cmd);
     return [args] {
-        if (!(args->tol > 0.0) || !std::isfinite(args->tol))
-            throw Error("--tol", "must be a positive number of pixels");
-        if (!(args->fps > 0.0) || args->fps > 1000.0)
-            throw Error("--fps", "must be in (0, 1000]");
-        if (!(args->hysteresis >= 0.0 && args->hysteresis < 1.0))
-            throw Error("--hysteresis", "must be in [0, 1)");
-        if (!(args->retrieve_share >= 0.0 && args->retrieve_share <= 1.0))
-            throw Error("--retrieve-share", "must be in [0, 1]");
         if (args->frames_eye.empty() != args->frames_at.empty())
-            throw Error(args->frames_eye.empty() ? "--frames-at" : "--frames-eye",
-                        "give both --frames-eye and --frames-at");
+            throw UsageError(args->frames_eye.empty() ? "--frames-at" : "--frames-eye",
+                             "give both --frames-eye and --frames-at");
         if (!args->frames_eye.empty() && args->frames_dir.empty())
-            throw Error("--frames-eye", "draws the frames of --frames: give --frames DIR");
+            throw UsageError("--frames-eye", "draws the frames of --frames: give --frames DIR");
+        if (args->check && is_mesh_path(args->input))
+            throw UsageError("--check", "measures against DEM samples: give a DEM, not a mesh");
         check_writable({args->stats});
         for (const std::string *folder : {&args->frames_dir, &args->meshes_dir})
             if (!folder->empty())
@@ -111,7 +119,16 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         View base;
         base.fov_deg = args->fov;
         parse_viewport(args->viewport, base.viewport_w, base.viewport_h);
-        const int frames = std::max(1, int(std::floor(path.duration() * args->fps + 1e-9)) + 1);
+        // Counted in double: a path from t = 0 to 1e300 overflowed the int.
+        const double frame_count = std::floor(path.duration() * args->fps + 1e-9) + 1.0;
+        if (!(frame_count <= k_max_frames)) {
+            char why[160];
+            std::snprintf(why, sizeof why,
+                          "the path lasts %g s: %g frames at --fps %g, more than %g",
+                          path.duration(), frame_count, args->fps, k_max_frames);
+            throw Error(args->path, why);
+        }
+        const int frames = std::max(1, int(frame_count));
         std::vector<View> views = path.sample(frames, base);
         for (const View &v : views)
             validate(v, args->path);
@@ -120,7 +137,11 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             outside = base;
             outside->eye = parse_vec3(args->frames_eye, "--frames-eye");
             outside->at = parse_vec3(args->frames_at, "--frames-at");
-            validate(*outside, "--frames-eye/--frames-at");
+            try {
+                validate(*outside, "--frames-eye/--frames-at");
+            } catch (const Error &e) {
+                throw UsageError(e.subject(), e.reason());
+            }
         }
 
         Stopwatch clock;
@@ -133,20 +154,23 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         options.retrieve_share = args->retrieve_share;
         options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
         if (is_mesh_path(args->input)) {
-            if (args->check)
-                throw Error("--check", "measures against DEM samples: give a DEM, not a mesh");
             refiner.emplace(read_mesh(args->input), views.front(), options);
         } else {
             const LoadOptions lo = args->raster.load_options();
             // A store's first retrieval reads the bounds it holds: no quad-tree is built.
             std::unique_ptr<TileStore> store;
-            if (is_store_file(args->input)) {
+            if (is_store_path(args->input)) {
+                args->raster.check_store(args->input);
                 store = std::make_unique<TileStore>(args->input);
                 hf = store->heightfield();
                 store_tiles = store->tile_count();
             } else {
                 hf = load_heightfield(args->input, lo);
             }
+            // Every keyframe, as well as every frame: a keyframe between two frames is flown
+            // through all the same.
+            for (const Keyframe &k : path.keys)
+                check_eye_above(*hf, k.eye, args->path);
             for (const View &v : views)
                 check_eye_above(*hf, v.eye, args->path);
             if (store)

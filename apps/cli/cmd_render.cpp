@@ -130,7 +130,7 @@ static Register render("render", 60, [](CLI::App &cmd) {
     };
     auto args = std::make_shared<Args>();
     cmd.add_option("INPUT", args->input,
-                   "mesh (PLY, OBJ, OFF, STL) or DEM (drawn as its full grid TIN)")
+                   "mesh (PLY, OBJ, OFF, STL), or DEM or store (.tlq) drawn as its full grid TIN")
         ->required();
     cmd.add_option("-o,--output", args->output, "image (.png, .tif, .exr, ...)")->required();
     cmd.add_option("--color", args->color, "shade | height | sp | level | error")
@@ -140,13 +140,14 @@ static Register render("render", 60, [](CLI::App &cmd) {
     cmd.add_option("--depth", args->depth, "also write depth along the view axis (.exr)");
     declare_outputs(cmd, {{"--output", &args->output}, {"--depth", &args->depth}});
     cmd.add_option("--reference", args->reference,
-                   "the DEM the mesh was made from (for --color error and level)");
+                   "the DEM or store the mesh was made from (for --color error and level)");
     cmd.add_flag("--dem-normals", args->dem_normals,
                  "shade with the DEM's own normals (the input or --reference DEM) instead of the "
                  "mesh's");
     cmd.add_option("--scalar-max", args->scalar_max,
                    "value at the top of the colour map for sp/level/error (default: the largest; "
-                   "for sp the 99th percentile)");
+                   "for sp the 99th percentile)")
+        ->check(real_in(0.0, INFINITY));
     args->camera.add(cmd, true);
     args->raster.add(cmd);
     return [args] {
@@ -155,21 +156,21 @@ static Register render("render", 60, [](CLI::App &cmd) {
         check_writable({args->output, args->depth});
         const bool has_dem = !is_mesh_path(args->input) || !args->reference.empty();
         if ((args->color == "level" || args->color == "error") && !has_dem)
-            throw Error("--color " + args->color, "needs the DEM: give a DEM or --reference DEM");
+            throw UsageError("--color " + args->color,
+                             "needs the DEM: give a DEM or --reference DEM");
         if (args->dem_normals && !has_dem)
-            throw Error("--dem-normals", "needs the DEM: give a DEM or --reference DEM");
+            throw UsageError("--dem-normals", "needs the DEM: give a DEM or --reference DEM");
         Renderer renderer; // before the long work, so a machine without OpenGL says so at once
-        const LoadOptions lo = args->raster.load_options();
         std::optional<Heightfield> dem;
         Mesh mesh;
         if (is_mesh_path(args->input)) {
             mesh = read_mesh(args->input);
         } else {
-            dem = load_heightfield(args->input, lo);
+            dem = args->raster.load(args->input);
             mesh = grid_tin(*dem);
         }
         if (!args->reference.empty())
-            dem = load_heightfield(args->reference, lo);
+            dem = args->raster.load(args->reference);
 
         RenderOptions options;
         options.wire = args->wire;

@@ -15,7 +15,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 
 namespace tinlod::cli {
@@ -69,39 +68,37 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
     declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}});
     cmd.add_flag("--full", args->full, "the full-resolution grid TIN (no level of detail)");
     cmd.add_option("--tol", args->tol, "screen-space error bound tau, pixels")
+        ->check(real_in(0.0, INFINITY))
         ->capture_default_str();
     cmd.add_flag("--cull", args->cull, "leave the terrain outside the view frustum coarse");
     cmd.add_flag("--check", args->check,
                  "measure the error exhaustively over every sample (error.max_screen_px)");
     cmd.add_option("--cache-mb", args->cache_mb, "store tiles kept in memory, MiB")
+        ->check(real_in(0.0, 1e9))
         ->capture_default_str();
     args->camera.add(cmd, false);
     args->raster.add(cmd);
     return [args] {
         if (!is_mesh_path(args->output))
-            throw Error(args->output, "unknown mesh format (use .ply, .obj, .off or .stl)");
-        check_writable({args->output, args->stats});
+            throw UsageError(args->output, "unknown mesh format (use .ply, .obj, .off or .stl)");
         if (args->full && args->camera.given())
-            throw Error("--full", "takes no camera: give either --full or --eye/--at");
+            throw UsageError("--full", "takes no camera: give either --full or --eye/--at");
         if (!args->full && (args->camera.eye.empty() || args->camera.at.empty()))
-            throw Error("retrieve", "give --eye and --at (or --full for the whole grid)");
-        if (!(args->tol >= 0.0 && std::isfinite(args->tol)))
-            throw Error("--tol", "must be a finite number of pixels >= 0");
-        if (!(args->cache_mb >= 0.0 && std::isfinite(args->cache_mb)))
-            throw Error("--cache-mb", "must be a finite size >= 0");
+            throw UsageError("retrieve", "give --eye and --at (or --full for the whole grid)");
+        check_writable({args->output, args->stats});
         std::optional<View> view;
         if (!args->full)
             view = args->camera.view();
 
         Stopwatch clock;
-        nlohmann::json times;
+        StageTimes times;
         std::optional<Heightfield> hf;
         std::optional<QuadTree> tree;
         TileStore *store = nullptr;
         std::unique_ptr<QuadTreeLod> lod;
-        const bool from_store =
-            is_store_file(args->input) || std::filesystem::path(args->input).extension() == ".tlq";
+        const bool from_store = is_store_path(args->input);
         if (from_store) {
+            args->raster.check_store(args->input);
             StoreOptions so;
             so.cache_mb = args->cache_mb;
             auto owned = std::make_unique<TileStore>(args->input, so);
@@ -110,16 +107,16 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                 hf = store->heightfield();
             else
                 lod = std::make_unique<QuadTreeLod>(std::move(owned));
-            times["load"] = clock.ms();
+            times.add("load", clock.ms());
         } else {
             const LoadOptions lo = args->raster.load_options();
             hf = load_heightfield(args->input, lo);
-            times["load"] = clock.ms();
+            times.add("load", clock.ms());
             if (!args->full) {
                 clock.reset();
                 tree.emplace(*hf);
                 lod = std::make_unique<QuadTreeLod>(*tree);
-                times["build"] = clock.ms();
+                times.add("build", clock.ms());
             }
         }
         const GridFrame frame =
@@ -134,7 +131,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
         if (args->full) {
             clock.reset();
             mesh = grid_tin(*hf);
-            times["retrieve"] = clock.ms();
+            times.add("retrieve", clock.ms());
             stats["error"] = {{"max_screen_px", 0.0}, {"max_vertical", 0.0}, {"measured", true}};
         } else {
             RetrieveOptions ro;
@@ -142,14 +139,14 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
             ro.cull = args->cull;
             clock.reset();
             const Retrieval &r = lod->retrieve(*view, ro);
-            times["retrieve"] = clock.ms();
+            times.add("retrieve", clock.ms());
             if (const auto ground = surface_under(r, frame, view->eye);
                 ground && view->eye.z < *ground)
                 throw Error("--eye", "the eye is below the terrain surface (" +
                                          std::to_string(*ground) + " there)");
             clock.reset();
             mesh = to_mesh(r, frame);
-            times["convert"] = clock.ms();
+            times.add("convert", clock.ms());
             triangles = r.triangles;
             stats["retrieve"] = {{"tol_px", args->tol},
                                  {"cull", args->cull},
@@ -170,7 +167,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
         }
         clock.reset();
         write_mesh(mesh, args->output);
-        times["write"] = clock.ms();
+        times.add("write", clock.ms());
 
         if (args->check && !args->full) {
             clock.reset();
@@ -189,7 +186,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                               {"uncovered_samples", all.uncovered},
                               {"bound_px", stats["retrieve"]["bound_px"]},
                               {"measured", true}};
-            times["check"] = clock.ms();
+            times.add("check", clock.ms());
         }
         stats["input"] = {{"file", args->input},
                           {"kind", from_store ? "store" : "raster"},
@@ -197,7 +194,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                           {"triangles", grid_triangles}};
         stats["output"] = {
             {"file", args->output}, {"nodes", mesh.n_vertices()}, {"triangles", mesh.n_faces()}};
-        stats["time_ms"] = times;
+        stats["time_ms"] = times.json();
         stats["peak_rss_mb"] = peak_rss_mb();
         if (!args->stats.empty())
             write_json(args->stats, stats);
@@ -212,7 +209,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
             std::printf(", %lld of %lld tiles read",
                         static_cast<long long>(store->last_stats().tiles_read),
                         static_cast<long long>(store->tile_count()));
-        std::printf(" in %.0f ms retrieval\n", times["retrieve"].get<double>());
+        std::printf(" in %s\n", times.summary().c_str());
     };
 });
 

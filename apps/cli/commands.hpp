@@ -2,13 +2,17 @@
 // live in their own files.
 #pragma once
 
+#include "tinlod/error.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/view.hpp"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tinlod::cli {
@@ -30,6 +34,25 @@ struct Register {
     }
 };
 
+// The command line itself is wrong: an option's value, a missing or conflicting option. main()
+// prints it as any Error but exits 2, as for CLI11's parse errors; bad input and failed work
+// exit 1.
+class UsageError : public Error {
+  public:
+    using Error::Error;
+};
+
+// Checks of an option's text, run by CLI11 as it parses (a failure is a usage error naming the
+// option): the whole text is one finite number in the range (empty, nan, inf, an overflow or
+// trailing characters fail). `open_lo`/`open_hi` leave that end out of the range.
+CLI::Validator real_in(double lo, double hi, bool open_lo = false, bool open_hi = false);
+// The whole text is a whole number in [lo, hi] (no sign, fraction or exponent past it).
+CLI::Validator whole_in(std::int64_t lo, std::int64_t hi);
+
+// The text is a point X,Y,Z of finite numbers (parse_vec3), or a viewport WxH (parse_viewport).
+CLI::Validator point_text();
+CLI::Validator viewport_text();
+
 // Camera options shared by retrieve, simplify, render, compare, fly.
 struct CameraOptions {
     std::string eye, at, viewport = "1920x1080";
@@ -46,6 +69,29 @@ struct RasterOptions {
     bool terrain_rgb = false;
     void add(CLI::App &cmd);
     LoadOptions load_options() const;
+    // The DEM file, or the quad-tree store (`tinlod build`) at `path`, whole. A store keeps the
+    // cell size and heights it was built with: --cell, --zscale or --terrain-rgb given with one is
+    // a usage error.
+    Heightfield load(const std::string &path) const;
+    // Throws that usage error when one of them was given for the store at `path`.
+    void check_store(const std::string &path) const;
+
+  private:
+    std::vector<const CLI::Option *> given_; // the options above, to tell whether one was given
 };
+
+// The stages a command ran, in order, with their wall times: the stats' time_ms and the summary's
+// "T ms (load a, retrieve b, ...)" come from one list, so the parts add up to the whole.
+struct StageTimes {
+    std::vector<std::pair<std::string, double>> stages;
+    void add(const std::string &name, double ms) { stages.emplace_back(name, ms); }
+    double total() const;
+    nlohmann::json json() const; // {"load": a, ...}
+    std::string summary() const; // "T ms (load a, retrieve b)"
+};
+
+// Whether `path` names a quad-tree store: its magic bytes, or a .tlq name (whose store errors then
+// say what is wrong with it).
+bool is_store_path(const std::string &path);
 
 } // namespace tinlod::cli

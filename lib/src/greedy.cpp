@@ -29,11 +29,11 @@ struct Queued {
     std::uint32_t version;
 };
 
-// The queue orders triangles by their farthest sample's distance in buckets of half an octave of
-// distance, last in first out within a bucket, not exactly: a binary heap took about twice the
+// The queue orders triangles by their farthest sample's distance in buckets of a fraction of an
+// octave (GreedyOptions::buckets_per_octave; half by default), last in first out within a bucket,
+// not exactly: a binary heap took about twice the
 // time on N42E001 to 1 and 5 m (its pops miss the cache; a bucket's last entries are the triangles
 // just made, near each other) for 0.2-2.5 % fewer nodes (scratch runs at 1, 5 and 20 m).
-constexpr double k_buckets_per_octave = 2.0;
 constexpr int k_buckets = 2048;
 
 struct Inserter {
@@ -41,6 +41,7 @@ struct Inserter {
     std::int64_t w;
     double threshold;                  // a triangle is queued when its farthest sample is farther
     double slope_margin;               // GreedyOptions::slope_margin
+    double buckets_per_octave;         // GreedyOptions::buckets_per_octave
     bool exact64;                      // in_circle fits in 64 bits (lattice side <= 16385)
     std::vector<std::uint32_t> points; // sample id per node
     std::vector<std::int32_t> px, py;  // lattice column and row per node
@@ -49,12 +50,13 @@ struct Inserter {
     std::vector<std::uint32_t> candidate;     // per triangle: its farthest sample
     std::vector<std::uint32_t> version;       // per triangle: bumped when its slot is rewritten
     std::vector<std::uint8_t> is_pending;     // per triangle: waiting for its scan
-    std::vector<std::vector<Queued>> buckets; // by distance over the threshold, half-octaves
+    std::vector<std::vector<Queued>> buckets; // by distance over the threshold
     int top_bucket = -1;                      // no bucket above holds an entry
     std::vector<std::int32_t> pending;        // triangles to scan
 
     Inserter(const Heightfield &h, const GreedyOptions &o)
         : hf(h), w(h.width), threshold(o.max_error), slope_margin(o.slope_margin),
+          buckets_per_octave(std::max(1, o.buckets_per_octave)),
           exact64(std::max(h.width, h.height) <= 16385), buckets(k_buckets) {}
 
     // Twice the signed area of (a, b, p) in lattice coordinates: > 0 when p is left of a -> b.
@@ -179,8 +181,8 @@ struct Inserter {
             worst +=
                 slope_margin * std::sqrt(gx * gx / (hf.dx * hf.dx) + gy * gy / (hf.dy * hf.dy));
         if (worst > threshold && at != sa && at != sb && at != sc) {
-            const int b = int(std::min(double(k_buckets - 1),
-                                       std::log2(worst / threshold) * k_buckets_per_octave));
+            const int b = int(
+                std::min(double(k_buckets - 1), std::log2(worst / threshold) * buckets_per_octave));
             buckets[std::size_t(b)].push_back({t, version[t]});
             top_bucket = std::max(top_bucket, b);
         }
@@ -308,9 +310,19 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     GreedyTin out;
     const std::int64_t max_nodes =
         options.max_nodes > 0 ? std::min(options.max_nodes, k_max_nodes) : k_max_nodes;
+    const auto on_outline = [&](std::uint32_t sample) {
+        const std::uint32_t c = sample % std::uint32_t(hf.width),
+                            r = sample / std::uint32_t(hf.width);
+        return c == 0 || r == 0 || c + 1 == std::uint32_t(hf.width) ||
+               r + 1 == std::uint32_t(hf.height);
+    };
     std::int32_t t;
     while (ins.pop(t)) {
-        if (std::int64_t(ins.points.size()) >= max_nodes) {
+        const std::int64_t triangles = std::int64_t(ins.corner.size() / 3);
+        if (std::int64_t(ins.points.size()) >= max_nodes ||
+            (options.max_triangles > 0 &&
+             triangles + (on_outline(ins.candidate[std::size_t(t)]) ? 1 : 2) >
+                 options.max_triangles)) {
             out.stopped = true;
             break;
         }

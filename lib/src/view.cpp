@@ -74,10 +74,19 @@ glm::dvec3 parse_vec3(const std::string &text, const std::string &option) {
 }
 
 void parse_viewport(const std::string &text, int &w, int &h) {
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0 || w > 65536 ||
-        h > 65536)
-        throw Error("--viewport", "expected WxH in pixels, got '" + text + "'");
+    // Digits only, at most 6 each: scanf's %d wrapped 4294967297 to 1.
+    const auto side = [](const std::string &digits) {
+        if (digits.empty() || digits.size() > 6 ||
+            digits.find_first_not_of("0123456789") != std::string::npos)
+            return 0;
+        return std::stoi(digits);
+    };
+    const auto x = text.find('x');
+    w = x == std::string::npos ? 0 : side(text.substr(0, x));
+    h = x == std::string::npos ? 0 : side(text.substr(x + 1));
+    if (w <= 0 || h <= 0 || w > 65536 || h > 65536)
+        throw Error("--viewport",
+                    "expected WxH in pixels, each from 1 to 65536, got '" + text + "'");
 }
 
 } // namespace tinlod

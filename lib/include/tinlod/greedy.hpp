@@ -19,12 +19,16 @@ struct GreedyTin {
     // The TIN as a retrieval has it (nodes, z and counter-clockwise triangles by sample id, for
     // to_lattice_mesh); its counters stay 0.
     Retrieval tin;
-    bool stopped = false; // max_nodes was reached before max_error was
+    bool stopped = false; // max_nodes or max_triangles was reached before max_error was
 };
 
 struct GreedyOptions {
     double max_error = 1.0;     // > 0, world units
     std::int64_t max_nodes = 0; // stop at this many nodes (0, or over 357 M: 357 M)
+    // Stop before an insertion would take the triangles past this many (0: no limit). A TIN over
+    // the lattice's rectangle with n nodes, b on its outline, has 2n - b - 2: an insertion inside
+    // adds two, one on the outline one, so the count stops at the limit or one under it.
+    std::int64_t max_triangles = 0;
     // Added to a triangle's largest deviation, times the triangle's slope (|grad z|): what a
     // consumer that rounds the TIN's coordinates to float counts on top of the deviation (the
     // node erase's rounding margin), so its own measure stays within max_error too.
@@ -34,11 +38,16 @@ struct GreedyOptions {
     // of the first few levels, over the whole lattice each, for a few more nodes (N42E001 to 20 m,
     // every 16th sample: a quarter less time, 1 % more nodes).
     int seed_step = 0;
+    // The queue's resolution: the next sample is within a factor 2^(1 / this) of the farthest
+    // (2: fast, for a bound; a budget's output keeps that factor in its error, so 64 there). Over
+    // 2048 / this octaves above max_error the queue no longer orders.
+    int buckets_per_octave = 2;
 };
 
 // Inserts until every sample is within options.max_error of the TIN (vertical distance, computed
 // in double from the samples' float heights, plus the slope margin), or until it holds max_nodes
-// nodes. Cost: O(samples * log(nodes)) time on a terrain, about 80 bytes per node.
+// nodes or max_triangles triangles. Cost: O(samples * log(nodes)) time on a terrain, about 80 bytes
+// per node.
 GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options);
 
 } // namespace tinlod
