@@ -87,6 +87,9 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
     cmd.add_option("--fov", args->fov, "vertical field of view, degrees")->capture_default_str();
     cmd.add_option("--viewport", args->viewport, "viewport WxH, pixels")->capture_default_str();
     args->raster.add(cmd);
+    // Peak memory per DEM sample of `tinlod fly --path`, measured
+    // (docs/decisions/memory-per-sample.md).
+    args->raster.bytes_per_sample = 180;
     return [args] {
         if (!(args->tol > 0.0) || !std::isfinite(args->tol))
             throw Error("--tol", "must be a positive number of pixels");

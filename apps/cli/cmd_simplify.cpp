@@ -56,6 +56,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         ->capture_default_str();
     args->camera.add(cmd, false);
     args->raster.add(cmd);
+    // Peak memory per DEM sample of `tinlod simplify`, measured
+    // (docs/decisions/memory-per-sample.md).
+    args->raster.bytes_per_sample = 130;
     return [args, tol, max_error] {
         const bool vertical = max_error->count() > 0;
         if (vertical && args->camera.given())

@@ -42,11 +42,16 @@ View CameraOptions::view() const {
 }
 
 void RasterOptions::add(CLI::App &cmd) {
-    cmd.add_option("--cell", cell, "ground size of a pixel for rasters without georeferencing")
-        ->capture_default_str();
+    cmd.add_option("--cell", cell,
+                   "ground size of a pixel for rasters without georeferencing (default 1; an "
+                   ".hgt file without an SRTM tile name needs it)");
     cmd.add_option("--zscale", zscale, "factor applied to every elevation")->capture_default_str();
     cmd.add_flag("--terrain-rgb", terrain_rgb,
                  "decode an RGB image as Mapbox Terrain-RGB: (R*65536+G*256+B)/10-10000");
+    cmd.add_option("--max-memory-mb", max_memory_mb,
+                   "refuse a DEM whose run would need more memory than this, MiB (default: this "
+                   "machine's physical memory)")
+        ->check(CLI::PositiveNumber);
 }
 
 // --threads N: a whole number from 1 to 1024, or 0 when the text is not one.
@@ -69,6 +74,8 @@ LoadOptions RasterOptions::load_options() const {
     lo.cell = cell;
     lo.zscale = zscale;
     lo.terrain_rgb = terrain_rgb;
+    lo.max_memory_mb = max_memory_mb;
+    lo.bytes_per_sample = bytes_per_sample;
     return lo;
 }
 
