@@ -59,6 +59,9 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
         ->capture_default_str();
     args->camera.add(cmd, true);
     args->raster.add(cmd);
+    // Peak memory per DEM sample of `tinlod compare (both rasters)`, measured
+    // (docs/decisions/memory-per-sample.md).
+    args->raster.bytes_per_sample = 570;
     return [args] {
         Stopwatch clock;
         const View view = args->camera.view();

@@ -103,6 +103,9 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         ->check(viewport_text())
         ->capture_default_str();
     args->raster.add(cmd);
+    // Peak memory per DEM sample of `tinlod fly --path`, measured
+    // (docs/decisions/memory-per-sample.md).
+    args->raster.bytes_per_sample = 180;
     return [args] {
         if (args->frames_eye.empty() != args->frames_at.empty())
             throw UsageError(args->frames_eye.empty() ? "--frames-at" : "--frames-eye",

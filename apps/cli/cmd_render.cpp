@@ -150,6 +150,9 @@ static Register render("render", 60, [](CLI::App &cmd) {
         ->check(real_in(0.0, INFINITY));
     args->camera.add(cmd, true);
     args->raster.add(cmd);
+    // Peak memory per DEM sample of `tinlod render`, measured
+    // (docs/decisions/memory-per-sample.md).
+    args->raster.bytes_per_sample = 380;
     return [args] {
         Stopwatch clock;
         const View view = args->camera.view();

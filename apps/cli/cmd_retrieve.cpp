@@ -109,7 +109,10 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                 lod = std::make_unique<QuadTreeLod>(std::move(owned));
             times.add("load", clock.ms());
         } else {
-            const LoadOptions lo = args->raster.load_options();
+            LoadOptions lo = args->raster.load_options();
+            // Peak memory per DEM sample, measured (docs/decisions/memory-per-sample.md): the
+            // full grid as a mesh, or the quad-tree and one view's TIN.
+            lo.bytes_per_sample = args->full ? 340 : 120;
             hf = load_heightfield(args->input, lo);
             times.add("load", clock.ms());
             if (!args->full) {

@@ -92,6 +92,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             ->capture_default_str();
     args->camera.add(cmd, false);
     args->raster.add(cmd);
+    // Peak memory per DEM sample of `tinlod simplify`, measured
+    // (docs/decisions/memory-per-sample.md).
+    args->raster.bytes_per_sample = 130;
     return [args, tol, model, max_nodes, max_triangles, max_error, share] {
         const bool bound = max_error->count() > 0;
         const bool budget = max_nodes->count() > 0 || max_triangles->count() > 0;

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,9 +65,13 @@ struct CameraOptions {
 
 // Raster loading options shared by the commands that read DEMs.
 struct RasterOptions {
-    double cell = 1.0;
+    std::optional<double> cell; // unset: 1 for rasters without georeferencing
     double zscale = 1.0;
     bool terrain_rgb = false;
+    double max_memory_mb = 0; // --max-memory-mb; 0: this machine's physical memory
+    // Peak memory of the command per raster sample, loading included (set by the command from a
+    // measurement; see LoadOptions::bytes_per_sample).
+    double bytes_per_sample = 0;
     void add(CLI::App &cmd);
     LoadOptions load_options() const;
     // The DEM file, or the quad-tree store (`tinlod build`) at `path`, whole. A store keeps the

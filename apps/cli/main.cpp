@@ -127,10 +127,10 @@ View CameraOptions::view() const {
 }
 
 void RasterOptions::add(CLI::App &cmd) {
-    given_.push_back(
-        cmd.add_option("--cell", cell, "ground size of a pixel for rasters without georeferencing")
-            ->check(real_in(0.0, INFINITY, true))
-            ->capture_default_str());
+    given_.push_back(cmd.add_option("--cell", cell,
+                                    "ground size of a pixel for rasters without georeferencing "
+                                    "(default 1; an .hgt file without an SRTM tile name needs it)")
+                         ->check(real_in(0.0, INFINITY, true)));
     // Zero would flatten the terrain to nothing: refused like the library's loader does.
     given_.push_back(cmd.add_option("--zscale", zscale, "factor applied to every elevation (not 0)")
                          ->check(real_in(-INFINITY, INFINITY) &
@@ -145,6 +145,10 @@ void RasterOptions::add(CLI::App &cmd) {
     given_.push_back(
         cmd.add_flag("--terrain-rgb", terrain_rgb,
                      "decode an RGB image as Mapbox Terrain-RGB: (R*65536+G*256+B)/10-10000"));
+    cmd.add_option("--max-memory-mb", max_memory_mb,
+                   "refuse a DEM whose run would need more memory than this, MiB (default: this "
+                   "machine's physical memory)")
+        ->check(real_in(0.0, INFINITY, true));
 }
 
 double StageTimes::total() const {
@@ -211,6 +215,8 @@ LoadOptions RasterOptions::load_options() const {
     lo.cell = cell;
     lo.zscale = zscale;
     lo.terrain_rgb = terrain_rgb;
+    lo.max_memory_mb = max_memory_mb;
+    lo.bytes_per_sample = bytes_per_sample;
     return lo;
 }
 

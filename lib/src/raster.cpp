@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -39,6 +40,8 @@ struct Georef {
     int epsg = 0;               // EPSG code of the CRS (geographic or projected), 0 if unknown
     double west = 0, north = 0; // CRS coordinates of the NW corner of the NW pixel's area
     double sx = 1, sy = 1;      // pixel size in CRS units (positive)
+    bool flip_columns = false;  // the file's columns run west, its rows north: mirror them
+    bool flip_rows = false;
     std::optional<double> nodata;
 };
 
@@ -56,28 +59,58 @@ std::string lower_extension(const std::string &path) {
     return ext;
 }
 
-// Bytes the loader will hold for a w x h raster of `channels` samples of `sample_bytes` each:
-// the samples as read, the float grid, the void mask and the heightfield.
-double load_bytes(std::int64_t w, std::int64_t h, int channels, int sample_bytes) {
-    return double(w) * double(h) * (double(channels) * sample_bytes + 4.0 + 1.0 + 4.0 + 1.0);
+// Bytes the loader holds per sample of a raster of `channels` samples of `sample_bytes` each:
+// the samples as read, the float grid, the void mask, the fill's marks and indices, the
+// heightfield's heights and mask.
+double load_bytes_per_sample(int channels, int sample_bytes) {
+    return double(channels) * sample_bytes + 4.0 + 1.0 + 2.0 + 4.0 + 4.0 + 1.0;
 }
 
-// Refuses a raster whose load would need more than options.max_memory_mb, or more than half of
-// this machine's memory, before any allocation: a header can declare any size.
+// Refuses, before any allocation, a w x h raster whose run would need more memory than
+// options.max_memory_mb or, by default, this machine has: a header can declare any size.
+// `buffer`: a decoder's own scratch (one TIFF tile), bytes, which `layout` describes.
 void check_memory(const std::string &path, const LoadOptions &options, std::int64_t w,
-                  std::int64_t h, int channels, int sample_bytes) {
-    const double need = load_bytes(w, h, channels, sample_bytes);
+                  std::int64_t h, int channels, int sample_bytes, double buffer = 0,
+                  const std::string &layout = "") {
+    const double per_sample =
+        std::max(load_bytes_per_sample(channels, sample_bytes), options.bytes_per_sample);
+    const double need = double(w) * double(h) * per_sample + buffer;
     const double mib = 1 << 20;
     const double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-    const std::string size = "raster is " + std::to_string(w) + "x" + std::to_string(h) +
-                             ": loading it needs " + std::to_string(std::int64_t(need / mib)) +
-                             " MiB";
-    if (options.max_memory_mb > 0 && need > options.max_memory_mb * mib)
-        throw Error(path, size + ", more than the limit of " +
-                              std::to_string(std::int64_t(options.max_memory_mb)) + " MiB");
-    if (have > 0 && need > have / 2)
-        throw Error(path, size + ", more than half of this machine's " +
-                              std::to_string(std::int64_t(have / mib)) + " MiB");
+    const double limit = options.max_memory_mb > 0 ? options.max_memory_mb * mib : have;
+    if (!(limit > 0) || need <= limit)
+        return;
+    std::error_code ec;
+    const auto bytes = fs::file_size(path, ec);
+    throw Error(path, "a " + std::to_string(w) + "x" + std::to_string(h) + " raster" + layout +
+                          " (" + std::to_string(ec ? 0 : bytes) + " bytes on disk) needs about " +
+                          std::to_string(std::int64_t(std::ceil(need / mib))) + " MiB, more than " +
+                          (options.max_memory_mb > 0 ? "the limit of " : "this machine's ") +
+                          std::to_string(std::int64_t(limit / mib)) +
+                          " MiB (--max-memory-mb sets the limit)");
+}
+
+// Checks a TIFF's declared size and tile size before OpenImageIO, which allocates a tile's
+// buffer when it opens the file.
+void check_tiff_memory(const std::string &path, const LoadOptions &options) {
+    TIFFSetWarningHandler(nullptr);
+    TIFFSetErrorHandler(nullptr);
+    const std::unique_ptr<TIFF, void (*)(TIFF *)> tif(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
+    std::uint32_t w = 0, h = 0, tw = 0, th = 0;
+    std::uint16_t spp = 1, bits = 8;
+    if (!tif || !TIFFGetField(tif.get(), TIFFTAG_IMAGEWIDTH, &w) ||
+        !TIFFGetField(tif.get(), TIFFTAG_IMAGELENGTH, &h))
+        return; // OpenImageIO says what is wrong with it
+    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_SAMPLESPERPIXEL, &spp);
+    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_BITSPERSAMPLE, &bits);
+    const int sample_bytes = std::max(1, (bits + 7) / 8);
+    if (TIFFGetField(tif.get(), TIFFTAG_TILEWIDTH, &tw) &&
+        TIFFGetField(tif.get(), TIFFTAG_TILELENGTH, &th))
+        check_memory(path, options, w, h, spp, sample_bytes,
+                     double(tw) * double(th) * spp * sample_bytes,
+                     " in tiles of " + std::to_string(tw) + "x" + std::to_string(th));
+    else
+        check_memory(path, options, w, h, spp, sample_bytes);
 }
 
 void check_size(const std::string &path, std::int64_t w, std::int64_t h) {
@@ -123,6 +156,9 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
         // Samples sit on whole-degree lines (pixel is point): the NW sample is at (lon, lat + 1).
         geo.west = lon - geo.sx / 2;
         geo.north = lat + 1 + geo.sy / 2;
+    } else if (!options.cell) {
+        throw Error(path, "not an SRTM tile name ([NS]dd[EW]ddd.hgt, the south-west corner), so "
+                          "where it lies and its spacing are unknown: rename it, or give --cell");
     }
     geo.nodata = -32768.0;
     std::ifstream in(path, std::ios::binary);
@@ -139,7 +175,9 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
 
 // --- GeoTIFF tags through libgeotiff. ---
 
-Georef read_geotiff_tags(const std::string &path) {
+// A width x height GeoTIFF's georeferencing. Grids whose columns run west or rows run north (a
+// negative pixel scale) are marked to be mirrored into the usual order.
+Georef read_geotiff_tags(const std::string &path, int width, int height) {
     Georef geo;
     TIFFSetWarningHandler(nullptr);
     TIFFSetErrorHandler(nullptr);
@@ -147,47 +185,9 @@ Georef read_geotiff_tags(const std::string &path) {
     TIFF *tif = file.get();
     if (!tif)
         return geo;
-    std::uint16_t count = 0;
-    double *scale = nullptr;
-    double *ties = nullptr;
-    double *matrix = nullptr;
-    if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
-        geo.sx = std::abs(scale[0]);
-        geo.sy = std::abs(scale[1]);
-        std::uint16_t tcount = 0;
-        if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &tcount, &ties) && tcount >= 6) {
-            geo.west = ties[3] - ties[0] * geo.sx;
-            geo.north = ties[4] + ties[1] * geo.sy;
-            geo.present = geo.sx > 0 && geo.sy > 0;
-        }
-    } else if (TIFFGetField(tif, TIFFTAG_GEOTRANSMATRIX, &count, &matrix) && count >= 16) {
-        // The model transformation, x = m0 col + m1 row + m3 and y = m4 col + m5 row + m7: north
-        // up without rotation is what a tie point and a pixel scale say; anything else would need
-        // a resampling (before, such a file was read as a raster without georeferencing).
-        if (matrix[1] != 0.0 || matrix[4] != 0.0 || !(matrix[0] > 0.0) || !(matrix[5] < 0.0))
-            throw Error(path, "georeferenced by a rotated, sheared or flipped model "
-                              "transformation; resample it north up first (gdalwarp)");
-        geo.sx = matrix[0];
-        geo.sy = -matrix[5];
-        geo.west = matrix[3];
-        geo.north = matrix[7];
-        geo.present = true;
-    } else if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &count, &ties) && count > 6) {
-        throw Error(path, "georeferenced by " + std::to_string(count / 6) +
-                              " ground control points without a pixel scale; resample it to a "
-                              "grid first (gdalwarp)");
-    }
-    // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
-    std::uint16_t ncount = 0;
-    char *nodata = nullptr;
-    if (TIFFGetField(tif, TIFFTAG_GDAL_NODATA, &ncount, &nodata) && nodata && ncount > 0) {
-        char *end = nullptr;
-        const double v = std::strtod(nodata, &end);
-        if (end != nodata)
-            geo.nodata = v;
-    }
+    unsigned short raster = RasterPixelIsArea;
     if (GTIF *gtif = GTIFNew(tif)) {
-        unsigned short model = 0, code = 0, raster = RasterPixelIsArea;
+        unsigned short model = 0, code = 0;
         GTIFKeyGetSHORT(gtif, GTModelTypeGeoKey, &model, 0, 1);
         GTIFKeyGetSHORT(gtif, GTRasterTypeGeoKey, &raster, 0, 1);
         if (model == ModelTypeGeographic) {
@@ -201,22 +201,116 @@ Georef read_geotiff_tags(const std::string &path) {
                    code != KvUserDefined) {
             geo.epsg = code;
         }
-        if (raster == RasterPixelIsPoint) {
-            // The tie point names the sample itself; shift to the corner of its area.
-            geo.west -= geo.sx / 2;
-            geo.north += geo.sy / 2;
-        }
         GTIFFree(gtif);
+    }
+    // Pixel corner (i, j) (column i, row j down the file) stands at
+    // x = x0 + i * sx, y = y0 - j * sy; a tie point of a pixel-is-point raster names a centre.
+    const double centre = raster == RasterPixelIsPoint ? 0.5 : 0.0;
+    std::uint16_t count = 0;
+    double *scale = nullptr;
+    double *ties = nullptr;
+    double *matrix = nullptr;
+    double sx = 0, sy = 0, x0 = 0, y0 = 0;
+    if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
+        std::uint16_t tcount = 0;
+        if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &tcount, &ties) && tcount >= 6) {
+            sx = scale[0];
+            sy = scale[1];
+            x0 = ties[3] - (ties[0] + centre) * sx;
+            y0 = ties[4] + (ties[1] + centre) * sy;
+            geo.present = true;
+        }
+    } else if (TIFFGetField(tif, TIFFTAG_GEOTRANSMATRIX, &count, &matrix) && count >= 16) {
+        // The model transformation, x = m0 col + m1 row + m3 and y = m4 col + m5 row + m7: without
+        // rotation it is what a tie point and a pixel scale say; a rotation needs a resampling.
+        if (matrix[1] != 0.0 || matrix[4] != 0.0)
+            throw Error(path, "georeferenced by a rotated or sheared model transformation; "
+                              "resample it north up first (gdalwarp)");
+        sx = matrix[0];
+        sy = -matrix[5];
+        x0 = matrix[3] - centre * sx;
+        y0 = matrix[7] + centre * sy;
+        geo.present = true;
+    } else if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &count, &ties) && count > 6) {
+        throw Error(path, "georeferenced by " + std::to_string(count / 6) +
+                              " ground control points without a pixel scale; resample it to a "
+                              "grid first (gdalwarp)");
+    }
+    if (geo.present) {
+        if (sx == 0 || sy == 0)
+            throw Error(path, "georeferencing has a pixel size of zero");
+        geo.flip_columns = sx < 0;
+        geo.flip_rows = sy < 0;
+        geo.sx = std::abs(sx);
+        geo.sy = std::abs(sy);
+        geo.west = sx > 0 ? x0 : x0 + width * sx;
+        geo.north = sy > 0 ? y0 : y0 - height * sy;
+    }
+    // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
+    std::uint16_t ncount = 0;
+    char *nodata = nullptr;
+    if (TIFFGetField(tif, TIFFTAG_GDAL_NODATA, &ncount, &nodata) && nodata && ncount > 0) {
+        std::string text(nodata, strnlen(nodata, ncount));
+        const auto first = text.find_first_not_of(" \t\r\n");
+        text = first == std::string::npos
+                   ? ""
+                   : text.substr(first, text.find_last_not_of(" \t\r\n") + 1 - first);
+        char *end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size())
+            throw Error(path, "GDAL_NODATA is '" + text.substr(0, 40) +
+                                  "', not a number: which samples are voids is unknown");
+        geo.nodata = v;
     }
     return geo;
 }
 
+// Mirrors a w x h grid's columns and/or rows.
+template <typename T> void mirror(std::vector<T> &v, int w, int h, bool columns, bool rows) {
+    const auto row = [&](int r) { return v.begin() + std::ptrdiff_t(r) * w; };
+    if (columns)
+        for (int r = 0; r < h; ++r)
+            std::reverse(row(r), row(r + 1));
+    if (rows)
+        for (int r = 0, s = h - 1; r < s; ++r, --s)
+            std::swap_ranges(row(r), row(r + 1), row(s));
+}
+
+// Mirrors a grid whose georeferencing runs its columns west or its rows north, so that column 0
+// is the west edge and row 0 the north edge, as in most files.
+void orient(RawGrid &g, const Georef &geo) {
+    mirror(g.z, g.width, g.height, geo.flip_columns, geo.flip_rows);
+    if (!g.is_void.empty())
+        mirror(g.is_void, g.width, g.height, geo.flip_columns, geo.flip_rows);
+}
+
 // --- Everything else through OpenImageIO, samples in their native type. ---
 
+// Channel `height` of each pixel is its height; where the alpha channel (if any) is 0 the pixel
+// is a void. Alpha is read unassociated: a partly transparent pixel keeps its height.
 template <typename T>
-void copy_channel(const std::vector<T> &src, int channels, std::vector<float> &dst) {
-    for (std::size_t i = 0; i < dst.size(); ++i)
-        dst[i] = static_cast<float>(src[i * channels]);
+void copy_heights(const std::vector<T> &src, int channels, int height, int alpha, RawGrid &g) {
+    for (std::size_t i = 0; i < g.z.size(); ++i) {
+        g.z[i] = static_cast<float>(src[i * channels + height]);
+        if (alpha >= 0 && src[i * channels + alpha] == T(0))
+            g.is_void[i] = 1;
+    }
+}
+
+// Why an image with `colours` channels besides alpha is no DEM: a palette or colour image, and
+// an 8-bit RGB one most likely Terrain-RGB.
+std::string not_a_dem(const std::string &path, const OIIO::ImageSpec &spec, int colours) {
+    char header[26] = {};
+    std::ifstream(path, std::ios::binary).read(header, sizeof header);
+    // OpenImageIO expands a palette to RGB: the PNG header (colour type, byte 25) tells.
+    if (std::memcmp(header, "\x89PNG\r\n\x1a\n", 8) == 0 && header[25] == 3)
+        return "a palette image is not a DEM (one channel of heights, and optionally alpha)";
+    std::string why = "a colour image (" + std::to_string(colours) + " colour channels of " +
+                      spec.format.c_str() + ") is not a DEM (one channel of heights, and " +
+                      "optionally alpha)";
+    if (colours == 3 && spec.format == OIIO::TypeDesc::UINT8)
+        why += "; it looks like Mapbox Terrain-RGB: use --terrain-rgb";
+    return why;
 }
 
 // Sends the process's stderr to /dev/null while it lives: libpng prints its errors there itself
@@ -246,7 +340,14 @@ class QuietStderr {
 
 RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
     const QuietStderr quiet;
-    auto in = OIIO::ImageInput::open(path);
+    const std::string ext = lower_extension(path);
+    if (ext == ".tif" || ext == ".tiff")
+        check_tiff_memory(path, options);
+    // Alpha as stored: by default OpenImageIO multiplies the other channels by it, and reads a
+    // PNG's tRNS key as alpha 0 (so the key's heights came out as 0 m).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
     if (!in) {
         std::string why = OIIO::geterror();
         if (why.empty())
@@ -259,12 +360,20 @@ RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
     check_memory(path, options, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
     if (spec.depth > 1)
         throw Error(path, "volume images are not elevation rasters");
+    const int nc = spec.nchannels;
+    const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel : -1;
+    const int colours = nc - (alpha >= 0);
+    if (options.terrain_rgb && (colours != 3 || spec.format != OIIO::TypeDesc::UINT8))
+        throw Error(path, "--terrain-rgb needs an 8-bit RGB image, this one has " +
+                              std::to_string(nc) + " channel(s) of " + spec.format.c_str());
+    if (!options.terrain_rgb && colours != 1)
+        throw Error(path, not_a_dem(path, spec, colours));
     RawGrid g;
     g.width = spec.width;
     g.height = spec.height;
     const std::size_t n = std::size_t(g.width) * g.height;
-    const int nc = spec.nchannels;
     g.z.resize(n);
+    g.is_void.assign(n, 0);
     auto read = [&](auto tag) {
         using T = decltype(tag);
         std::vector<T> buf(n * nc);
@@ -283,54 +392,61 @@ RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
         }
         return buf;
     };
+    const int height = alpha == 0 ? 1 : 0;
     if (options.terrain_rgb) {
-        if (nc < 3 || spec.format != OIIO::TypeDesc::UINT8)
-            throw Error(path, "--terrain-rgb needs an 8-bit RGB image, this one has " +
-                                  std::to_string(nc) + " channel(s) of " + spec.format.c_str());
         const auto buf = read(std::uint8_t{});
+        int rgb[3], k = 0;
+        for (int c = 0; c < nc; ++c)
+            if (c != alpha)
+                rgb[k++] = c;
         for (std::size_t i = 0; i < n; ++i) {
             const std::uint8_t *px = &buf[i * nc];
-            g.z[i] = static_cast<float>((px[0] * 65536.0 + px[1] * 256.0 + px[2]) / 10.0 - 10000.0);
+            g.z[i] = static_cast<float>(
+                (px[rgb[0]] * 65536.0 + px[rgb[1]] * 256.0 + px[rgb[2]]) / 10.0 - 10000.0);
+            if (alpha >= 0 && px[alpha] == 0)
+                g.is_void[i] = 1;
         }
         return g;
     }
     switch (spec.format.basetype) {
     case OIIO::TypeDesc::INT16:
-        copy_channel(read(std::int16_t{}), nc, g.z);
+        copy_heights(read(std::int16_t{}), nc, height, alpha, g);
         break;
     case OIIO::TypeDesc::UINT16:
-        copy_channel(read(std::uint16_t{}), nc, g.z);
+        copy_heights(read(std::uint16_t{}), nc, height, alpha, g);
         break;
     case OIIO::TypeDesc::INT32:
-        copy_channel(read(std::int32_t{}), nc, g.z);
+        copy_heights(read(std::int32_t{}), nc, height, alpha, g);
         break;
     case OIIO::TypeDesc::UINT32:
-        copy_channel(read(std::uint32_t{}), nc, g.z);
+        copy_heights(read(std::uint32_t{}), nc, height, alpha, g);
         break;
     case OIIO::TypeDesc::UINT8:
-        copy_channel(read(std::uint8_t{}), nc, g.z);
+        copy_heights(read(std::uint8_t{}), nc, height, alpha, g);
         break;
     case OIIO::TypeDesc::INT8:
-        copy_channel(read(char{}), nc, g.z);
+        copy_heights(read(char{}), nc, height, alpha, g);
         break;
     case OIIO::TypeDesc::DOUBLE:
-        copy_channel(read(double{}), nc, g.z);
+        copy_heights(read(double{}), nc, height, alpha, g);
         break;
     default:
-        copy_channel(read(float{}), nc, g.z);
+        copy_heights(read(float{}), nc, height, alpha, g);
         break; // half and float
     }
     return g;
 }
 
-// Marks voids (the nodata value; NaN only when NaN is the declared nodata) and rejects
-// non-finite heights.
+// Marks voids (the nodata value; NaN only when NaN is the declared nodata) beside those the
+// reader marked (alpha 0), and rejects non-finite heights elsewhere.
 void mark_voids(const std::string &path, RawGrid &g, const Georef &geo) {
-    g.is_void.assign(g.z.size(), 0);
+    g.is_void.resize(g.z.size(), 0);
     const bool nan_is_nodata = geo.nodata && std::isnan(*geo.nodata);
     for (std::size_t i = 0; i < g.z.size(); ++i) {
         const float v = g.z[i];
-        if (std::isnan(v)) {
+        if (g.is_void[i]) {
+            continue;
+        } else if (std::isnan(v)) {
             if (!nan_is_nodata)
                 throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
                                       std::to_string(i % g.width) +
@@ -346,49 +462,8 @@ void mark_voids(const std::string &path, RawGrid &g, const Georef &geo) {
     }
 }
 
-// Voids are missing data, never heights. Whole rows/columns of voids at the edges are cropped
-// away (too large to invent); the rest are filled from valid neighbours, ring by ring inward.
-void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield &hf, bool fill) {
-    int top = g.height, bottom = -1, left = g.width, right = -1;
-    std::int64_t voids = 0;
-    for (int r = 0; r < g.height; ++r)
-        for (int c = 0; c < g.width; ++c) {
-            if (g.is_void[std::size_t(r) * g.width + c]) {
-                ++voids;
-                continue;
-            }
-            top = std::min(top, r), bottom = std::max(bottom, r);
-            left = std::min(left, c), right = std::max(right, c);
-        }
-    if (bottom < 0)
-        throw Error(path, "every sample is a void (nodata); there is no terrain to use");
-    hf.voids = voids;
-    if (top > 0 || left > 0 || bottom < g.height - 1 || right < g.width - 1) {
-        const int w = right - left + 1, h = bottom - top + 1;
-        check_size(path, w, h);
-        RawGrid cropped;
-        cropped.width = w;
-        cropped.height = h;
-        cropped.z.resize(std::size_t(w) * h);
-        cropped.is_void.resize(std::size_t(w) * h);
-        for (int r = 0; r < h; ++r)
-            for (int c = 0; c < w; ++c) {
-                const std::size_t src = std::size_t(r + top) * g.width + c + left;
-                cropped.z[std::size_t(r) * w + c] = g.z[src];
-                cropped.is_void[std::size_t(r) * w + c] = g.is_void[src];
-            }
-        hf.cropped = std::int64_t(g.width) * g.height - std::int64_t(w) * h;
-        geo.west += left * geo.sx;
-        geo.north -= top * geo.sy;
-        g = std::move(cropped);
-    }
-    std::int64_t remaining = 0;
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        remaining += g.is_void[i];
-    if (remaining == 0)
-        return;
-    if (!fill)
-        throw Error(path, std::to_string(remaining) + " void samples inside the terrain");
+// First guess of the voids: ring by ring inward, each the average of its known 8 neighbours.
+void ring_fill(RawGrid &g) {
     // known: 0 void, 1 valid or filled in an earlier ring. Ring k holds the voids k steps (8-way)
     // from the valid samples; each ring is found from the last, so the fill is linear in the
     // samples (rescanning every void each ring took minutes for a half-void SRTM1 tile).
@@ -442,7 +517,261 @@ void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield
             });
         ring.swap(next);
     }
+}
+
+void harmonic_fill(RawGrid &g);
+
+// Regions of fewer voids are solved directly at their own resolution.
+constexpr std::size_t k_coarse_min_voids = 4096;
+
+// Samples in the bounding box of `cells` (indices into a grid of width w).
+std::size_t box_area(const std::vector<std::size_t> &cells, int w) {
+    std::size_t c0 = SIZE_MAX, c1 = 0, r0 = SIZE_MAX, r1 = 0;
+    for (const std::size_t i : cells) {
+        c0 = std::min(c0, i % std::size_t(w)), c1 = std::max(c1, i % std::size_t(w));
+        r0 = std::min(r0, i / std::size_t(w)), r1 = std::max(r1, i / std::size_t(w));
+    }
+    return (c1 - c0 + 1) * (r1 - r0 + 1);
+}
+
+// A first guess for a large region of voids: the same fill on a grid of half the resolution over
+// the region's bounding box, interpolated back (cascadic multigrid). Conjugate gradients then
+// only remove what the coarse grid cannot show, instead of carrying the boundary's heights
+// across the whole region a step per iteration.
+void coarse_guess(RawGrid &g, const std::vector<std::size_t> &cells) {
+    const int w = g.width;
+    int c0 = w, c1 = -1, r0 = g.height, r1 = -1;
+    for (const std::size_t i : cells) {
+        const int r = int(i / std::size_t(w)), c = int(i % std::size_t(w));
+        c0 = std::min(c0, c), c1 = std::max(c1, c), r0 = std::min(r0, r), r1 = std::max(r1, r);
+    }
+    c0 = std::max(0, c0 - 1), r0 = std::max(0, r0 - 1);
+    c1 = std::min(w - 1, c1 + 1), r1 = std::min(g.height - 1, r1 + 1);
+    RawGrid coarse;
+    coarse.width = (c1 - c0 + 2) / 2;
+    coarse.height = (r1 - r0 + 2) / 2;
+    if (coarse.width < 2 || coarse.height < 2)
+        return; // a strip: the ring fill is guess enough
+    const std::size_t n = std::size_t(coarse.width) * coarse.height;
+    coarse.z.assign(n, 0.0f);
+    coarse.is_void.assign(n, 1);
+    std::vector<std::uint8_t> count(n, 0);
+    // Each coarse sample is the mean of the valid samples of its 2 x 2 block.
+    for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c) {
+            const std::size_t i = std::size_t(r) * w + c;
+            const std::size_t k = std::size_t((r - r0) / 2) * coarse.width + (c - c0) / 2;
+            if (!g.is_void[i])
+                coarse.z[k] += g.z[i], ++count[k];
+        }
+    for (std::size_t k = 0; k < n; ++k)
+        if (count[k])
+            coarse.z[k] /= float(count[k]), coarse.is_void[k] = 0;
+    ring_fill(coarse);
+    harmonic_fill(coarse);
+    // Bilinear interpolation: block k's centre is at fine column c0 + 2k + 0.5.
+    const auto at = [&](int x, int y) { return coarse.z[std::size_t(y) * coarse.width + x]; };
+    for (const std::size_t i : cells) {
+        const double x =
+            std::clamp((double(i % std::size_t(w)) - c0 - 0.5) / 2, 0.0, double(coarse.width - 1));
+        const double y =
+            std::clamp((double(i / std::size_t(w)) - r0 - 0.5) / 2, 0.0, double(coarse.height - 1));
+        const int x0 = std::min(int(x), coarse.width - 2), y0 = std::min(int(y), coarse.height - 2);
+        const double fx = x - x0, fy = y - y0;
+        g.z[i] = float((1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+                       fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1)));
+    }
+}
+
+// Fills each 4-connected region of voids with the harmonic (Laplace) interpolation of the valid
+// samples around it: every filled value the mean of its 4 neighbours (those inside the grid),
+// the smoothest surface through the region's boundary, with no terraces. Solved by conjugate
+// gradients (Jacobi-preconditioned) from the ring fill, one region at a time, so the work follows
+// the voids and a small hole is not iterated as long as a large one.
+void harmonic_fill(RawGrid &g) {
+    const int w = g.width, h = g.height;
+    std::vector<std::int32_t> index(g.z.size(), -1);
+    std::vector<std::size_t> cells;
+    std::vector<std::array<std::int32_t, 4>> links;
+    std::vector<double> u, b, diag, r, zr, p, q;
+    // Visits the 4 neighbours inside the grid: (direction 0..3, index).
+    const auto neighbours = [&](std::size_t i, auto &&visit) {
+        const int row = int(i / std::size_t(w)), col = int(i % std::size_t(w));
+        if (row > 0)
+            visit(0, i - w);
+        if (row + 1 < h)
+            visit(1, i + w);
+        if (col > 0)
+            visit(2, i - 1);
+        if (col + 1 < w)
+            visit(3, i + 1);
+    };
+    for (std::size_t seed = 0; seed < g.z.size(); ++seed) {
+        if (!g.is_void[seed] || index[seed] >= 0)
+            continue;
+        // The region: breadth first from the seed over void 4-neighbours.
+        cells.assign(1, seed);
+        index[seed] = 0;
+        for (std::size_t k = 0; k < cells.size(); ++k)
+            neighbours(cells[k], [&](int, std::size_t n) {
+                if (g.is_void[n] && index[n] < 0) {
+                    index[n] = std::int32_t(cells.size());
+                    cells.push_back(n);
+                }
+            });
+        // Large regions start from a coarser solution; thin ones (whose box is mostly valid)
+        // converge fast anyway and would make the coarse grid cost more than the voids.
+        const std::size_t m = cells.size();
+        if (m >= k_coarse_min_voids && 4 * m >= box_area(cells, w))
+            coarse_guess(g, cells);
+        // Row k of the system: deg * u_k - (void neighbours) = (valid neighbours' heights).
+        links.assign(m, {-1, -1, -1, -1});
+        u.resize(m), b.assign(m, 0.0), diag.assign(m, 0.0);
+        double scale = 1;
+        for (std::size_t k = 0; k < m; ++k) {
+            u[k] = g.z[cells[k]];
+            neighbours(cells[k], [&](int d, std::size_t n) {
+                diag[k] += 1;
+                if (g.is_void[n]) {
+                    links[k][std::size_t(d)] = index[n];
+                } else {
+                    b[k] += g.z[n];
+                    scale = std::max(scale, double(std::abs(g.z[n])));
+                }
+            });
+        }
+        const auto apply = [&](const std::vector<double> &x, std::vector<double> &out) {
+            for (std::size_t k = 0; k < m; ++k) {
+                double v = diag[k] * x[k];
+                for (const std::int32_t l : links[k])
+                    if (l >= 0)
+                        v -= x[std::size_t(l)];
+                out[k] = v;
+            }
+        };
+        // Done when every value is within a millionth of the heights' scale of its neighbours'
+        // mean (3 mm for 3000 m): a few roundings of the float it is stored in.
+        const double tolerance = 1e-6 * scale;
+        const auto converged = [&] {
+            for (std::size_t k = 0; k < m; ++k)
+                if (std::abs(r[k]) > tolerance * diag[k])
+                    return false;
+            return true;
+        };
+        r.resize(m), zr.resize(m), p.resize(m), q.resize(m);
+        apply(u, q);
+        for (std::size_t k = 0; k < m; ++k) {
+            r[k] = b[k] - q[k];
+            zr[k] = r[k] / diag[k];
+            p[k] = zr[k];
+        }
+        double rz = 0;
+        for (std::size_t k = 0; k < m; ++k)
+            rz += r[k] * zr[k];
+        // Conjugate gradients end in at most m steps in exact arithmetic; the cap only guards
+        // against rounding.
+        for (std::size_t step = 0; step < 2 * m + 100 && !converged(); ++step) {
+            apply(p, q);
+            double pq = 0;
+            for (std::size_t k = 0; k < m; ++k)
+                pq += p[k] * q[k];
+            if (!(pq > 0))
+                break; // the residual is already at rounding level
+            const double alpha = rz / pq;
+            double rz_next = 0;
+            for (std::size_t k = 0; k < m; ++k) {
+                u[k] += alpha * p[k];
+                r[k] -= alpha * q[k];
+                zr[k] = r[k] / diag[k];
+                rz_next += r[k] * zr[k];
+            }
+            const double beta = rz_next / rz;
+            rz = rz_next;
+            for (std::size_t k = 0; k < m; ++k)
+                p[k] = zr[k] + beta * p[k];
+        }
+        for (std::size_t k = 0; k < m; ++k)
+            g.z[cells[k]] = float(u[k]);
+    }
+}
+
+// Voids are missing data, never heights. Whole rows/columns of voids at the edges are cropped
+// away (too large to invent); the rest are filled smoothly from the valid samples around them.
+void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield &hf, bool fill) {
+    int top = g.height, bottom = -1, left = g.width, right = -1;
+    std::int64_t voids = 0;
+    for (int r = 0; r < g.height; ++r)
+        for (int c = 0; c < g.width; ++c) {
+            if (g.is_void[std::size_t(r) * g.width + c]) {
+                ++voids;
+                continue;
+            }
+            top = std::min(top, r), bottom = std::max(bottom, r);
+            left = std::min(left, c), right = std::max(right, c);
+        }
+    if (bottom < 0)
+        throw Error(path, "every sample is a void (nodata); there is no terrain to use");
+    hf.voids = voids;
+    if (top > 0 || left > 0 || bottom < g.height - 1 || right < g.width - 1) {
+        const int w = right - left + 1, h = bottom - top + 1;
+        check_size(path, w, h);
+        RawGrid cropped;
+        cropped.width = w;
+        cropped.height = h;
+        cropped.z.resize(std::size_t(w) * h);
+        cropped.is_void.resize(std::size_t(w) * h);
+        for (int r = 0; r < h; ++r)
+            for (int c = 0; c < w; ++c) {
+                const std::size_t src = std::size_t(r + top) * g.width + c + left;
+                cropped.z[std::size_t(r) * w + c] = g.z[src];
+                cropped.is_void[std::size_t(r) * w + c] = g.is_void[src];
+            }
+        hf.cropped = std::int64_t(g.width) * g.height - std::int64_t(w) * h;
+        geo.west += left * geo.sx;
+        geo.north -= top * geo.sy;
+        g = std::move(cropped);
+    }
+    std::int64_t remaining = 0;
+    for (std::size_t i = 0; i < g.z.size(); ++i)
+        remaining += g.is_void[i];
+    if (remaining == 0)
+        return;
+    if (!fill)
+        throw Error(path, std::to_string(remaining) + " void samples inside the terrain");
+    ring_fill(g);
+    harmonic_fill(g);
     hf.filled = remaining;
+}
+
+// Refuses a CRS PROJ does not know, of another kind than the GeoKeys say, or projected in other
+// units than metres: its place or units would be guesses.
+void check_crs(const std::string &path, int epsg, bool geographic) {
+    const std::unique_ptr<PJ_CONTEXT, void (*)(PJ_CONTEXT *)> ctx(
+        proj_context_create(), [](PJ_CONTEXT *c) { proj_context_destroy(c); });
+    proj_log_level(ctx.get(), PJ_LOG_NONE);
+    const std::string code = "EPSG:" + std::to_string(epsg);
+    const std::unique_ptr<PJ, void (*)(PJ *)> crs(proj_create(ctx.get(), code.c_str()),
+                                                  [](PJ *p) { proj_destroy(p); });
+    if (!crs)
+        throw Error(path, code + " is not a coordinate reference system PROJ knows (or PROJ's "
+                                 "database is missing): the raster's units and place are unknown");
+    const PJ_TYPE type = proj_get_type(crs.get());
+    if (geographic ? type != PJ_TYPE_GEOGRAPHIC_2D_CRS && type != PJ_TYPE_GEOGRAPHIC_3D_CRS
+                   : type != PJ_TYPE_PROJECTED_CRS)
+        throw Error(path, code + " is not a " + (geographic ? "geographic" : "projected") +
+                              " CRS, yet the file's GeoKeys say it is one");
+    if (geographic)
+        return;
+    const std::unique_ptr<PJ, void (*)(PJ *)> cs(
+        proj_crs_get_coordinate_system(ctx.get(), crs.get()), [](PJ *p) { proj_destroy(p); });
+    double to_metres = 0;
+    const char *unit = nullptr;
+    if (!cs ||
+        !proj_cs_get_axis_info(ctx.get(), cs.get(), 0, nullptr, nullptr, nullptr, &to_metres, &unit,
+                               nullptr, nullptr) ||
+        to_metres != 1.0)
+        throw Error(path, code + " measures in " + (unit ? unit : "unknown units") +
+                              ", not metres: reproject the raster to a metric CRS (gdalwarp)");
 }
 
 // Local metric frame: projected CRSs keep their units; geographic ones go to the UTM zone of
@@ -450,10 +779,13 @@ void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield
 void apply_georef(const std::string &path, const Georef &geo, const LoadOptions &options,
                   const RawGrid &g, Heightfield &hf) {
     if (!geo.present) {
-        hf.dx = hf.dy = options.cell;
-        hf.crs = "none (cell " + std::to_string(options.cell) + ")";
+        hf.dx = hf.dy = options.cell.value_or(1.0);
+        hf.crs = "none (cell " + std::to_string(hf.dx) + ")";
         return;
     }
+    if (options.cell)
+        throw Error(path, "georeferenced, so its ground spacing comes from the file: --cell "
+                          "applies only to rasters without georeferencing");
     if (!std::isfinite(geo.sx) || !std::isfinite(geo.sy) || !std::isfinite(geo.west) ||
         !std::isfinite(geo.north))
         throw Error(path, "georeferencing is not finite (pixel scale or tie point)");
@@ -465,9 +797,12 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
         hf.dy = geo.sy;
         hf.origin_x = sw_x;
         hf.origin_y = sw_y;
+        if (geo.epsg)
+            check_crs(path, geo.epsg, false);
         hf.crs = geo.epsg ? "EPSG:" + std::to_string(geo.epsg) : "projected (unknown EPSG)";
         return;
     }
+    check_crs(path, geo.epsg ? geo.epsg : 4326, true);
     const double lon_c = sw_x + (g.width - 1) * geo.sx / 2;
     const double lat_c = sw_y + (g.height - 1) * geo.sy / 2;
     if (!(std::abs(lat_c) <= 84))
@@ -509,7 +844,9 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
 
 } // namespace
 
-Heightfield load_heightfield(const std::string &path, const LoadOptions &options) {
+namespace {
+
+Heightfield load(const std::string &path, const LoadOptions &options) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw Error(path, "no such file");
@@ -517,7 +854,7 @@ Heightfield load_heightfield(const std::string &path, const LoadOptions &options
         throw Error(path, "not a regular file");
     if (fs::file_size(path, ec) == 0)
         throw Error(path, "file is empty");
-    if (!(options.cell > 0) || !std::isfinite(options.cell))
+    if (options.cell && (!(*options.cell > 0) || !std::isfinite(*options.cell)))
         throw Error("--cell", "ground size of a pixel must be a positive number");
     if (!std::isfinite(options.zscale) || options.zscale == 0)
         throw Error("--zscale", "must be a non-zero finite number");
@@ -534,8 +871,9 @@ Heightfield load_heightfield(const std::string &path, const LoadOptions &options
     } else {
         g = read_oiio(path, options);
         if (ext == ".tif" || ext == ".tiff")
-            geo = read_geotiff_tags(path);
+            geo = read_geotiff_tags(path, g.width, g.height);
     }
+    orient(g, geo);
     mark_voids(path, g, geo);
     Heightfield hf;
     crop_and_fill(path, g, geo, hf, options.fill_voids);
@@ -556,6 +894,17 @@ Heightfield load_heightfield(const std::string &path, const LoadOptions &options
     if (hf.voids == 0)
         hf.void_mask.clear();
     return hf;
+}
+
+} // namespace
+
+Heightfield load_heightfield(const std::string &path, const LoadOptions &options) {
+    try {
+        return load(path, options);
+    } catch (const std::bad_alloc &) {
+        // What the estimate did not foresee (a decoder's own buffers) still names the file.
+        throw Error(path, "out of memory while loading it");
+    }
 }
 
 } // namespace tinlod

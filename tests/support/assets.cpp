@@ -1,5 +1,6 @@
 #include "assets.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <csignal>
@@ -66,7 +67,7 @@ static std::string slurp(const fs::path &p) {
 }
 
 std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>> &georef,
-                          const std::vector<unsigned> &keys) {
+                          const std::vector<unsigned> &keys, const std::string &nodata) {
     std::string b = "II*";
     b += '\0';
     const auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
@@ -76,7 +77,7 @@ std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<doub
     std::vector<std::array<unsigned, 4>> entries = {
         {256, 3, 1, 2}, {257, 3, 1, 2}, {258, 3, 1, 16}, {259, 3, 1, 1}, {262, 3, 1, 1},
         {273, 4, 1, 0}, {277, 3, 1, 1}, {278, 3, 1, 2},  {279, 4, 1, 8}, {339, 3, 1, 2}};
-    const unsigned count = unsigned(entries.size() + georef.size() + 1);
+    const unsigned count = unsigned(entries.size() + georef.size() + 1 + !nodata.empty());
     unsigned at = 8 + 2 + 12 * count + 4;
     for (const auto &[tag, values] : georef) {
         entries.push_back({tag, 12, unsigned(values.size()), at});
@@ -84,6 +85,15 @@ std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<doub
     }
     entries.push_back({34735, 3, unsigned(keys.size()), at});
     at += unsigned(2 * keys.size());
+    // GDAL_NODATA's text with its NUL: in the entry itself when it fits in 4 bytes, else after.
+    const bool inline_nodata = nodata.size() < 4;
+    if (!nodata.empty()) {
+        unsigned packed = 0;
+        for (std::size_t i = 0; i < nodata.size() && inline_nodata; ++i)
+            packed |= unsigned(static_cast<unsigned char>(nodata[i])) << (8 * i);
+        entries.push_back({42113, 2, unsigned(nodata.size() + 1), inline_nodata ? packed : at});
+        at += inline_nodata ? 0 : unsigned(nodata.size() + 1);
+    }
     entries[5][3] = at; // the strip
     u32(8);
     u16(count);
@@ -100,9 +110,90 @@ std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<doub
         }
     for (const unsigned k : keys)
         u16(k);
+    if (!nodata.empty() && !inline_nodata)
+        b += nodata + '\0';
     for (const unsigned z : {100u, 200u, 300u, 400u})
         u16(z);
     return b;
+}
+
+std::string tiled_tiff_bytes(unsigned w, unsigned h, unsigned tile_w, unsigned tile_h) {
+    std::string b = "II*";
+    b += '\0';
+    const auto u16 = [&](unsigned v) { b += char(v & 255), b += char(v >> 8); };
+    const auto u32 = [&](unsigned v) { u16(v & 0xffff), u16(v >> 16); };
+    const std::vector<std::array<unsigned, 3>> entries = {
+        {256, 4, w},      {257, 4, h},      {258, 3, 16}, {259, 3, 1}, {262, 3, 1}, {277, 3, 1},
+        {322, 4, tile_w}, {323, 4, tile_h}, {324, 4, 0},  {325, 4, 8}, {339, 3, 2}};
+    const unsigned data = 8 + 2 + 12 * unsigned(entries.size()) + 4;
+    u32(8);
+    u16(unsigned(entries.size()));
+    for (const auto &[tag, type, value] : entries) {
+        u16(tag), u16(type), u32(1);
+        type == 3 ? (u16(value), u16(0)) : u32(tag == 324 ? data : value);
+    }
+    u32(0);
+    b += std::string(8, '\0');
+    return b;
+}
+
+std::string png_bytes(int w, int h, int color_type, int bit_depth,
+                      const std::vector<unsigned> &samples,
+                      const std::vector<std::pair<std::string, std::string>> &chunks) {
+    const auto be32 = [](std::uint32_t v) {
+        return std::string{char(v >> 24), char(v >> 16 & 255), char(v >> 8 & 255), char(v & 255)};
+    };
+    const auto crc32 = [](const std::string &bytes) {
+        std::uint32_t c = 0xffffffffu;
+        for (const unsigned char b : bytes) {
+            c ^= b;
+            for (int k = 0; k < 8; ++k)
+                c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+        }
+        return ~c;
+    };
+    std::string png = "\x89PNG\r\n\x1a\n";
+    const auto chunk = [&](const std::string &type, const std::string &data) {
+        png += be32(std::uint32_t(data.size())) + type + data + be32(crc32(type + data));
+    };
+    chunk("IHDR", be32(std::uint32_t(w)) + be32(std::uint32_t(h)) +
+                      std::string{char(bit_depth), char(color_type), 0, 0, 0});
+    for (const auto &[type, data] : chunks)
+        chunk(type, data);
+    // Scanlines, each after its filter byte 0 (none), samples big-endian.
+    std::string raw;
+    if (!samples.empty()) {
+        const int channels = color_type == 2 ? 3 : color_type == 4 ? 2 : color_type == 6 ? 4 : 1;
+        const std::size_t per_row = std::size_t(w) * channels;
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            if (i % per_row == 0)
+                raw += '\0';
+            if (bit_depth == 16)
+                raw += char(samples[i] >> 8);
+            raw += char(samples[i] & 255);
+        }
+    } else {
+        raw = std::string(16, '\0');
+    }
+    // zlib stream of stored blocks, then the Adler-32 of the raw bytes.
+    std::string z = "\x78\x01";
+    std::uint32_t a = 1, b = 0;
+    for (const unsigned char c : raw)
+        a = (a + c) % 65521, b = (b + a) % 65521;
+    for (std::size_t at = 0; at < raw.size() || at == 0; at += 65535) {
+        const std::size_t n = std::min<std::size_t>(65535, raw.size() - at);
+        z += char(at + n >= raw.size() ? 1 : 0);
+        z += {char(n & 255), char(n >> 8), char(~n & 255), char(~n >> 8 & 255)};
+        z += raw.substr(at, n);
+        if (raw.empty())
+            break;
+    }
+    if (!samples.empty())
+        z += be32((b << 16) | a);
+    chunk("IDAT", z);
+    if (!samples.empty())
+        chunk("IEND", "");
+    return png;
 }
 
 RunResult run_cli(const std::string &args, std::uint64_t max_file_bytes) {

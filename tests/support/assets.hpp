@@ -24,9 +24,23 @@ std::string temp_dir();
 
 // The bytes of a 2 x 2 int16 GeoTIFF (heights 100, 200 in the north row, 300, 400 in the south):
 // `georef` holds TIFF tags with their doubles, in ascending tag order (33550 pixel scale, 33922
-// tie points, 34264 model transformation), `keys` the GeoKey directory (tag 34735).
+// tie points, 34264 model transformation), `keys` the GeoKey directory (tag 34735), `nodata`
+// (unless empty) the GDAL_NODATA text (tag 42113).
 std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>> &georef,
-                          const std::vector<unsigned> &keys);
+                          const std::vector<unsigned> &keys, const std::string &nodata = "");
+
+// The bytes of a w x h int16 TIFF in tiles of tile_w x tile_h samples, of which only the first
+// is stored (8 bytes): a header may declare tiles of any size.
+std::string tiled_tiff_bytes(unsigned w, unsigned h, unsigned tile_w, unsigned tile_h);
+
+// The bytes of a PNG of w x h pixels of colour type `color_type` (0 grey, 2 RGB, 3 palette,
+// 4 grey+alpha, 6 RGBA) and `bit_depth` 8 or 16: `samples` row-major, north row first, channels
+// interleaved. `chunks` (type, data), e.g. a tRNS or PLTE, go before the image data. With
+// `samples` empty the image data stops after a few bytes: a file that declares its size and
+// holds almost nothing. Uncompressed (stored deflate blocks), so nothing but the bytes is needed.
+std::string png_bytes(int w, int h, int color_type, int bit_depth,
+                      const std::vector<unsigned> &samples,
+                      const std::vector<std::pair<std::string, std::string>> &chunks = {});
 
 struct RunResult {
     int status = 0;

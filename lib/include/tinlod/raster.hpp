@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,16 +34,23 @@ struct Heightfield {
 };
 
 struct LoadOptions {
-    double cell = 1.0;        // ground size of a pixel for rasters without georeferencing
+    // Ground size of a pixel, for rasters without georeferencing only (default 1); a
+    // georeferenced raster refuses it, and an .hgt file without an SRTM tile name needs it.
+    std::optional<double> cell;
     double zscale = 1.0;      // multiplies every elevation
     bool terrain_rgb = false; // decode RGB as Mapbox Terrain-RGB: (R*65536 + G*256 + B)/10 - 10000
     bool fill_voids = true;   // fill voids from valid neighbours (else: throw if any void)
-    double max_memory_mb = 0; // refuse a raster whose load needs more, MiB, checked before
-                              // allocating (0: half of this machine's memory)
+    // Memory the caller's whole run holds per raster sample at its peak, loading included, bytes
+    // (0: the load alone); with the raster's size it makes the estimate checked before loading.
+    double bytes_per_sample = 0;
+    double max_memory_mb = 0; // refuse a raster whose estimate exceeds this, MiB (0: this
+                              // machine's physical memory)
 };
 
 // Loads a DEM by extension/content: .hgt, or anything OpenImageIO reads. Throws Error naming the
-// file on anything unusable (unreadable, truncated, NaN, all-void, absurd size).
+// file on anything unusable (unreadable, truncated, NaN, all-void, absurd size, more memory than
+// allowed, a colour image, georeferencing it cannot honour). Alpha 0 and a PNG's tRNS key are
+// voids, as is the nodata value.
 Heightfield load_heightfield(const std::string &path, const LoadOptions &options = {});
 
 // Largest raster we accept (samples); checked before allocating.
