@@ -54,8 +54,9 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
     cmd.add_flag("--dem-normals", args->dem_normals,
                  "shade both renders with the reference DEM's own normals, so the image error "
                  "shows only where the surface moves on screen");
-    cmd.add_option("--samples", args->samples, "Hausdorff sample points per mesh (mesh reference)")
-        ->check(whole_in(1, 100000000))
+    cmd.add_option("--samples", args->samples,
+                   "Hausdorff sample points per mesh (mesh reference; 0: the vertices alone)")
+        ->check(whole_in(0, 100000000))
         ->capture_default_str();
     args->camera.add(cmd, true);
     args->raster.add(cmd);
