@@ -17,6 +17,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace tinlod {
 
@@ -78,21 +79,36 @@ static void check_count(const std::string &path, const char *what, std::uintmax_
                          " but the file holds only " + std::to_string(bytes) + " bytes");
 }
 
-static void check_index(const std::string &path, const std::string &where, std::int64_t index,
-                        std::uintmax_t vertices) {
+// `face` is the face's number in the file, for the message only (built when refusing).
+static void check_index(const std::string &path, const char *format, std::uintmax_t face,
+                        std::int64_t index, std::uintmax_t vertices) {
     if (index < 0 || std::uintmax_t(index) >= vertices)
-        refuse(path, where + ": vertex index " + std::to_string(index) +
-                         " is out of range (the file has " + std::to_string(vertices) +
-                         " vertices)");
+        refuse(path, format + (" face " + std::to_string(face)) + ": vertex index " +
+                         std::to_string(index) + " is out of range (the file has " +
+                         std::to_string(vertices) + " vertices)");
 }
 
 // A coordinate as OpenMesh's text readers parse it (into a float): the whole word a number whose
-// float is finite. "nan", "inf" and 1e39 are not.
-static bool finite_coordinate(const std::string &word) {
-    const char *begin = word.c_str();
+// float is finite. "nan", "inf" and 1e39 are not. The word lies in a NUL-terminated line.
+static bool finite_coordinate(std::string_view word) {
     char *end = nullptr;
-    const double v = std::strtod(begin, &end);
-    return end != begin && *end == '\0' && std::isfinite(static_cast<float>(v));
+    const double v = std::strtod(word.data(), &end);
+    return !word.empty() && end == word.data() + word.size() &&
+           std::isfinite(static_cast<float>(v));
+}
+
+// The next blank-separated word of a line from `at` on, or an empty one at its end.
+static std::string_view next_word(const std::string &line, std::size_t &at) {
+    const std::size_t begin = std::min(line.find_first_not_of(" \t\r\v\f", at), line.size());
+    at = std::min(line.find_first_of(" \t\r\v\f", begin), line.size());
+    return std::string_view(line).substr(begin, at - begin);
+}
+
+// Whether `word` is the lowercase `keyword` in any case.
+static bool is_keyword(std::string_view word, std::string_view keyword) {
+    return word.size() == keyword.size() &&
+           std::equal(word.begin(), word.end(), keyword.begin(),
+                      [](char a, char b) { return std::tolower((unsigned char)a) == b; });
 }
 
 struct PlyProperty {
@@ -271,7 +287,7 @@ static void walk_ply_ascii(const std::string &path, const PlyHeader &h) {
                 case PlyRead::indices:
                     in >> count;
                     for (unsigned k = 0; k < count && in >> index; ++k)
-                        check_index(path, "PLY face " + std::to_string(n), index, vertices);
+                        check_index(path, "PLY", n, index, vertices);
                     break;
                 case PlyRead::other:
                     in >> word;
@@ -286,15 +302,17 @@ static void walk_ply_ascii(const std::string &path, const PlyHeader &h) {
     }
 }
 
-// A binary PLY integer of `type` (indices are integers: walk_ply_binary refuses real ones).
-static std::int64_t ply_integer(const unsigned char *raw, const std::string &type,
+static bool ply_is_signed(const std::string &type) {
+    return type == "char" || type == "int8" || type == "short" || type == "int16" ||
+           type == "int" || type == "int32";
+}
+
+// A binary PLY integer of `n` bytes (indices are integers: walk_ply_binary refuses real ones).
+static std::int64_t ply_integer(const unsigned char *raw, std::uintmax_t n, bool is_signed,
                                 bool big_endian) {
-    const std::uintmax_t n = ply_type_bytes(type);
     std::uint64_t bits = 0;
     for (std::uintmax_t k = 0; k < n; ++k)
         bits |= std::uint64_t(raw[big_endian ? n - 1 - k : k]) << (8 * k);
-    const bool is_signed = type == "char" || type == "int8" || type == "short" || type == "int16" ||
-                           type == "int" || type == "int32";
     if (is_signed && n < 8 && (bits >> (8 * n - 1)) & 1)
         return std::int64_t(bits) - (std::int64_t{1} << (8 * n));
     return std::int64_t(bits);
@@ -363,11 +381,13 @@ static void walk_ply_binary(const std::string &path, const PlyHeader &h, std::ui
                         count |= std::uint32_t(raw[h.big_endian ? count_bytes - 1 - k : k])
                                  << (8 * k);
                     const std::uintmax_t entry_bytes = ply_type_bytes(p.type);
+                    const bool is_signed = ply_is_signed(p.type);
                     take(std::uintmax_t{count} * entry_bytes);
                     for (std::uint32_t k = 0; k < count; ++k) {
                         in.read(reinterpret_cast<char *>(raw), std::streamsize(entry_bytes));
-                        check_index(path, "PLY face " + std::to_string(n),
-                                    ply_integer(raw, p.type, h.big_endian), vertices);
+                        check_index(path, "PLY", n,
+                                    ply_integer(raw, entry_bytes, is_signed, h.big_endian),
+                                    vertices);
                     }
                 }
         }
@@ -420,7 +440,7 @@ static void check_off(const std::string &path, const std::string &head, std::uin
                                  std::to_string(count) + " vertices");
             for (std::uintmax_t k = 0; k < count; ++k) {
                 in.read(reinterpret_cast<char *>(raw), 4);
-                check_index(path, "OFF face " + std::to_string(f), u32(raw), nv);
+                check_index(path, "OFF", f, u32(raw), nv);
             }
             at += 4 * count;
         }
@@ -445,7 +465,7 @@ static void check_off(const std::string &path, const std::string &head, std::uin
     for (unsigned f = 0; f < nf; ++f) {
         in >> count;
         for (unsigned k = 0; k < count && in >> index; ++k)
-            check_index(path, "OFF face " + std::to_string(f), index, nv);
+            check_index(path, "OFF", f, index, nv);
         if (!in)
             refuse(path, "truncated or malformed OFF: face " + std::to_string(f));
         if (colors)
@@ -513,50 +533,52 @@ static void check_obj(const std::string &path) {
 // with finite vertices, and a binary file's vertices must be finite.
 static void check_stl_ascii(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
-    std::string line, word;
-    // The keywords of a file, in order; a facet runs from "facet" to "endfacet".
-    static const std::array<const char *, 7> k_facet = {"facet",  "outer",   "vertex",  "vertex",
-                                                        "vertex", "endloop", "endfacet"};
+    std::string line;
+    // The keywords of a facet, in order, from "facet" to "endfacet".
+    static const std::array<std::string_view, 7> k_facet = {
+        "facet", "outer", "vertex", "vertex", "vertex", "endloop", "endfacet"};
     enum class State { solid, facet_or_end, in_facet };
     State state = State::solid;
     std::size_t step = 0;
     std::int64_t facets = 0, number = 0;
-    auto lower = [](std::string w) {
-        std::transform(w.begin(), w.end(), w.begin(),
-                       [](unsigned char c) { return std::tolower(c); });
-        return w;
-    };
+    auto where = [&] { return "ASCII STL line " + std::to_string(number) + ": "; };
     while (std::getline(in, line)) {
         ++number;
-        std::istringstream words(line);
-        if (!(words >> word))
+        std::size_t at = 0;
+        const std::string_view word = next_word(line, at);
+        if (word.empty())
             continue;
-        word = lower(word);
-        const std::string where = "ASCII STL line " + std::to_string(number) + ": ";
+        auto found = [&] { return "found '" + std::string(word.substr(0, 40)) + "'"; };
         if (state == State::solid) {
-            if (word != "solid")
-                refuse(path, where + "expected 'solid', found '" + word + "'");
+            if (!is_keyword(word, "solid"))
+                refuse(path, where() + "expected 'solid', " + found());
             state = State::facet_or_end;
         } else if (state == State::facet_or_end) {
-            if (word == "endsolid") {
+            if (is_keyword(word, "endsolid")) {
                 state = State::solid;
-            } else if (word == "facet") {
+            } else if (is_keyword(word, "facet")) {
                 state = State::in_facet;
                 step = 1;
             } else {
-                refuse(path, where + "expected 'facet' or 'endsolid', found '" + word + "'");
+                refuse(path, where() + "expected 'facet' or 'endsolid', " + found());
             }
         } else {
-            if (word != k_facet[step])
-                refuse(path, where + "facet " + std::to_string(facets) + ": expected '" +
-                                 k_facet[step] + "', found '" + word + "'");
-            if (word == "vertex") {
-                std::string x, y, z, extra;
-                if (!(words >> x >> y >> z) || (words >> extra) || !finite_coordinate(x) ||
-                    !finite_coordinate(y) || !finite_coordinate(z))
-                    refuse(path, where + "facet " + std::to_string(facets) + ", vertex " +
-                                     std::to_string(step - 2) + ": '" + x + " " + y + " " + z +
+            if (!is_keyword(word, k_facet[step]))
+                refuse(path, where() + "facet " + std::to_string(facets) + ": expected '" +
+                                 std::string(k_facet[step]) + "', " + found());
+            if (k_facet[step] == "vertex") {
+                const std::size_t coordinates = at;
+                const std::string_view x = next_word(line, at), y = next_word(line, at),
+                                       z = next_word(line, at);
+                if (!finite_coordinate(x) || !finite_coordinate(y) || !finite_coordinate(z) ||
+                    !next_word(line, at).empty()) {
+                    std::string given = line.substr(coordinates);
+                    given.erase(0, given.find_first_not_of(" \t"));
+                    given.erase(given.find_last_not_of(" \t\r") + 1);
+                    refuse(path, where() + "facet " + std::to_string(facets) + ", vertex " +
+                                     std::to_string(step - 2) + ": '" + given +
                                      "' is not three finite numbers");
+                }
             }
             if (++step == k_facet.size()) {
                 state = State::facet_or_end;
