@@ -198,6 +198,20 @@ void check_stats(const std::vector<Row> &rows, int frames, double duration, std:
     EXPECT_GT(rows.back().nodes, rows.front().nodes);
 }
 
+// A path of our own over `hf`: from far above the south edge down to just over the hilltops,
+// looking north past the far edge, so the last frame shows both terrain and sky.
+CameraPath approach_path(const Heightfield &hf) {
+    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+    const glm::dvec3 at(0.5 * w, 1.2 * h, hf.min_z());
+    CameraPath camera;
+    for (int i = 0; i <= 4; ++i) {
+        const double f = 1.0 - i / 4.0; // 1 .. 0
+        const glm::dvec3 eye(0.5 * w, 0.1 * h, hf.max_z() + 0.05 * w + 3.0 * w * f);
+        camera.keys.push_back({double(i), eye, at});
+    }
+    return camera;
+}
+
 } // namespace
 
 TEST(ViewScript, DescentOverN42E001) {
@@ -230,16 +244,7 @@ TEST(ViewScript, ApproachOverDemSquared) {
         GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
     const std::string dem = test::asset("dem_squared.tif");
     const Heightfield hf = load_heightfield(dem);
-    // A path of our own: from far above the south edge down to just over the hilltops, looking
-    // north past the far edge, so the last frame shows both terrain and sky.
-    const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
-    const glm::dvec3 at(0.5 * w, 1.2 * h, hf.min_z());
-    CameraPath camera;
-    for (int i = 0; i <= 4; ++i) {
-        const double f = 1.0 - i / 4.0; // 1 .. 0
-        const glm::dvec3 eye(0.5 * w, 0.1 * h, hf.max_z() + 0.05 * w + 3.0 * w * f);
-        camera.keys.push_back({double(i), eye, at});
-    }
+    const CameraPath camera = approach_path(hf);
     const std::string dir = test::temp_dir();
     write_camera_path(camera, dir + "/path.csv");
     const int frames = 5;
@@ -285,4 +290,59 @@ TEST(ViewScript, BadInputsFailWithOneLineNamingTheFile) {
     EXPECT_NE(no_shot.status, 0);
     EXPECT_NE(no_shot.err.find("--screenshot"), std::string::npos) << no_shot.err;
     EXPECT_FALSE(fs::exists(shot));
+}
+
+// The viewer reads rasters as the command line does: a 16-bit PNG at the cell size and height
+// scale given, a Terrain-RGB tile decoded. Its screenshot covers the frame the terrain read with
+// the same options must cover (at 1 m cells, or undecoded, the terrain would be elsewhere
+// entirely).
+TEST(ViewScript, RasterOptionsAsTheCommandLine) {
+    if (!have_xvfb())
+        GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+    struct Case {
+        std::string file;
+        std::vector<std::string> args;
+        LoadOptions load;
+    };
+    LoadOptions crater, fuji;
+    crater.cell = 10.0;
+    crater.zscale = 1.5;
+    fuji.cell = 30.0;
+    fuji.terrain_rgb = true;
+    for (const Case &c : {Case{"crater_u16.png", {"--cell", "10", "--zscale", "1.5"}, crater},
+                          Case{"fuji.png", {"--terrain-rgb", "--cell", "30"}, fuji}}) {
+        SCOPED_TRACE(c.file);
+        const std::string dem = test::asset(c.file);
+        const Heightfield hf = load_heightfield(dem, c.load);
+        const CameraPath camera = approach_path(hf);
+        const std::string dir = test::temp_dir();
+        write_camera_path(camera, dir + "/path.csv");
+        std::vector<std::string> args = {
+            dem,       "--script",         dir + "/path.csv", "--screenshot", dir + "/shot.png",
+            "--stats", dir + "/stats.csv", "--size",          "480x320",      "--color",
+            "shade"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        const ViewRun run = run_view(args, true);
+        if (no_gl(run))
+            GTEST_SKIP() << "no display or OpenGL under Xvfb: " << run.err;
+        ASSERT_EQ(run.status, 0) << run.err;
+        View base;
+        base.viewport_w = 480;
+        base.viewport_h = 320;
+        check_screenshot(dir + "/shot.png", camera.at_time(camera.keys.back().t, base), hf);
+        check_stats(read_stats(dir + "/stats.csv"), 5, camera.duration(), hf.size());
+    }
+}
+
+TEST(ViewScript, BadRasterOptionIsNamed) {
+    // Checked as the command line's, before any window opens: no display is needed.
+    const std::string dir = test::temp_dir();
+    const ViewRun run =
+        run_view({test::asset("crater_u16.png"), "--cell", "0", "--script",
+                  test::asset("paths/n42_descent.csv"), "--screenshot", dir + "/shot.png"},
+                 false);
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err.rfind("tinlod-view: --cell", 0), 0u) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(dir + "/shot.png"));
 }

@@ -8,6 +8,7 @@
 //   level  the quad-tree depth at which the node's grid sample first appears (0 = the corners of
 //          the whole grid, log2(size - 1) = the finest samples);
 //   error  per face, the largest vertical distance between the face and the DEM samples under it.
+// Each of these renders carries a legend: the colour bar from 0 to the top of the map, with units.
 #include "commands.hpp"
 #include "outputs.hpp"
 
@@ -21,6 +22,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 
 namespace tinlod::cli {
@@ -179,6 +181,12 @@ static Register render("render", 60, [](CLI::App &cmd) {
         options.wire = args->wire;
         options.depth = !args->depth.empty();
         options.scalar_max = args->scalar_max;
+        // The colour-mapped renders carry a legend: the quantity and its units (world units are
+        // metres; the SP stand-in is a distance on screen).
+        const std::map<std::string, std::string> legends = {
+            {"sp", "sp (px)"}, {"level", "quad-tree level"}, {"error", "vertical error (m)"}};
+        if (const auto legend = legends.find(args->color); legend != legends.end())
+            options.legend = legend->second;
         if (args->color == "height") {
             options.color = ColorMode::height;
         } else if (args->color == "sp") {

@@ -270,7 +270,8 @@ std::optional<double> ground_height(const LodResult &result, const SceneInfo &sc
     return hit.hit ? std::optional<double>(hit.point.z) : std::nullopt;
 }
 
-std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info) {
+std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info,
+                                      const LoadOptions &load) {
     Stopwatch clock;
     info = SceneInfo{};
     info.path = path;
@@ -299,7 +300,7 @@ std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info) 
         const double extent = glm::length(info.hi - info.lo);
         engine = std::make_unique<MeshEngine>(std::move(mesh), extent);
     } else {
-        const Heightfield hf = load_heightfield(path);
+        const Heightfield hf = load_heightfield(path, load);
         info.kind = "DEM";
         info.lo = {0.0, 0.0, hf.min_z()};
         info.hi = {(hf.width - 1) * hf.dx, (hf.height - 1) * hf.dy, hf.max_z()};

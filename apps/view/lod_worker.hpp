@@ -5,6 +5,7 @@
 #pragma once
 
 #include "tinlod/focal.hpp"
+#include "tinlod/raster.hpp"
 #include "tinlod/significance.hpp"
 #include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
@@ -84,8 +85,10 @@ class LodEngine {
 std::optional<double> ground_height(const LodResult &result, const SceneInfo &scene, double x,
                                     double y);
 
-// Opens a DEM, a store (.tlq) or a mesh by its content / extension; throws Error naming the file.
-std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info);
+// Opens a DEM (read with `load`), a store (.tlq) or a mesh by its content / extension; throws Error
+// naming the file.
+std::unique_ptr<LodEngine> open_scene(const std::string &path, SceneInfo &info,
+                                      const LoadOptions &load = {});
 
 // Runs an engine on its own thread. request() never blocks on a computation; the render thread
 // polls take() each frame.

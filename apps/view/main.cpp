@@ -1,6 +1,8 @@
 // `tinlod-view [DEM|STORE|MESH]`: the interactive viewer, and its scripted mode
 // `tinlod-view INPUT --script PATH.csv --screenshot OUT.png [--frames N] [--size WxH] [--stats
-// CSV]` for tests and demos. Errors print one line on stderr and exit non-zero.
+// CSV]` for tests and demos; DEMs take the command line's --cell, --zscale and --terrain-rgb.
+// Errors print one line on stderr and exit non-zero.
+#include "commands.hpp"
 #include "viewer.hpp"
 
 #include "tinlod/error.hpp"
@@ -48,7 +50,17 @@ int main(int argc, char **argv) {
     app.add_option("--color", color, "shade, height, sp, level or error")->capture_default_str();
     app.add_flag("--wire", options.wire, "wireframe overlay");
     app.add_flag("--ui", options.ui, "scripted mode: draw the panel into the screenshot");
-    CLI11_PARSE(app, argc, argv);
+    cli::RasterOptions raster;
+    raster.add(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        if (e.get_exit_code() == 0) // --help, --version
+            return app.exit(e);
+        std::fprintf(stderr, "tinlod-view: %s\n", e.what());
+        return 2; // a usage error, as the command line's
+    }
+    options.load = raster.load_options();
 
     try {
         parse_viewport(size, options.width, options.height);
@@ -79,6 +91,8 @@ int main(int argc, char **argv) {
         } else if (!options.screenshot.empty() || !options.stats.empty()) {
             throw Error("--screenshot", "--screenshot and --stats need --script");
         }
+        if (cli::is_store_path(options.input))
+            raster.check_store(options.input);
         run_viewer(options);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "tinlod-view: %s\n", e.what());

@@ -203,7 +203,7 @@ class Viewer {
     // Opens `path` (replacing the current scene); throws Error naming it.
     void open(const std::string &path) {
         SceneInfo info;
-        auto engine = open_scene(path, info);
+        auto engine = open_scene(path, info, options_.load);
         show(std::move(engine), info);
     }
     // Shows a scene already opened.
@@ -647,7 +647,7 @@ void run_viewer(const ViewerOptions &options) {
     SceneInfo info;
     std::unique_ptr<LodEngine> engine;
     if (!options.input.empty())
-        engine = open_scene(options.input, info);
+        engine = open_scene(options.input, info, options.load);
     std::optional<CameraPath> path;
     if (!options.script.empty())
         path = read_camera_path(options.script);

@@ -19,6 +19,7 @@ struct ViewerOptions {
     bool wire = false;
     bool ui = false; // scripted mode: draw the panel into the screenshot too
     LodSettings lod;
+    LoadOptions load; // how DEMs are read (cell size, height scale, Terrain-RGB)
 };
 
 // Opens the window and runs until it is closed (interactive) or the path has played (scripted).

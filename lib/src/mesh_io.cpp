@@ -17,6 +17,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace tinlod {
 
@@ -60,6 +61,12 @@ struct QuietOpenMesh {
 // are checked against the file, and the body of a PLY or OFF file is walked here first, value by
 // value as OpenMesh will read it: a file is refused unless every value it will read is there and
 // parses, after which OpenMesh's loops run on good values only.
+//
+// They also add a face whose vertex index is out of range as nothing (a PLY or OFF face naming
+// vertex 100000 of 100, or -1, vanished, and a file of only such faces read as "no faces"), and
+// the STL readers weld vertices through a std::map whose ordering a NaN breaks (undefined
+// behaviour: one run put a vertex at y = 1.8e31). So indices are checked against the vertex count
+// and STL coordinates for finiteness here, naming the line, face or vertex at fault.
 
 [[noreturn]] static void refuse(const std::string &path, const std::string &why) {
     throw Error(path, why);
@@ -70,6 +77,38 @@ static void check_count(const std::string &path, const char *what, std::uintmax_
     if (count > bytes / min_bytes)
         refuse(path, "header declares " + std::to_string(count) + " " + what +
                          " but the file holds only " + std::to_string(bytes) + " bytes");
+}
+
+// `face` is the face's number in the file, for the message only (built when refusing).
+static void check_index(const std::string &path, const char *format, std::uintmax_t face,
+                        std::int64_t index, std::uintmax_t vertices) {
+    if (index < 0 || std::uintmax_t(index) >= vertices)
+        refuse(path, format + (" face " + std::to_string(face)) + ": vertex index " +
+                         std::to_string(index) + " is out of range (the file has " +
+                         std::to_string(vertices) + " vertices)");
+}
+
+// A coordinate as OpenMesh's text readers parse it (into a float): the whole word a number whose
+// float is finite. "nan", "inf" and 1e39 are not. The word lies in a NUL-terminated line.
+static bool finite_coordinate(std::string_view word) {
+    char *end = nullptr;
+    const double v = std::strtod(word.data(), &end);
+    return !word.empty() && end == word.data() + word.size() &&
+           std::isfinite(static_cast<float>(v));
+}
+
+// The next blank-separated word of a line from `at` on, or an empty one at its end.
+static std::string_view next_word(const std::string &line, std::size_t &at) {
+    const std::size_t begin = std::min(line.find_first_not_of(" \t\r\v\f", at), line.size());
+    at = std::min(line.find_first_of(" \t\r\v\f", begin), line.size());
+    return std::string_view(line).substr(begin, at - begin);
+}
+
+// Whether `word` is the lowercase `keyword` in any case.
+static bool is_keyword(std::string_view word, std::string_view keyword) {
+    return word.size() == keyword.size() &&
+           std::equal(word.begin(), word.end(), keyword.begin(),
+                      [](char a, char b) { return std::tolower((unsigned char)a) == b; });
 }
 
 struct PlyProperty {
@@ -91,6 +130,14 @@ struct PlyHeader {
     std::uintmax_t ascii_body = 0;  // where OpenMesh's ASCII reader goes on: after "end_header"
     std::uintmax_t binary_body = 0; // where its binary reader seeks to, by its own arithmetic
 };
+
+// The number of vertices a PLY face may index.
+static std::uintmax_t ply_vertices(const PlyHeader &h) {
+    for (const PlyElement &e : h.elements)
+        if (e.name == "vertex")
+            return e.count;
+    return 0;
+}
 
 // How OpenMesh's PLY reader reads a property (by element and property name, as its header parser).
 enum class PlyRead { coordinate, color, indices, other };
@@ -218,8 +265,10 @@ static void walk_ply_ascii(const std::string &path, const PlyHeader &h) {
     in.seekg(std::streamoff(h.ascii_body));
     float real = 0;
     int integer = 0;
-    unsigned count = 0, index = 0;
+    unsigned count = 0;
+    std::int64_t index = 0;
     std::string word;
+    const std::uintmax_t vertices = ply_vertices(h);
     for (const PlyElement &e : h.elements) {
         if (in.eof())
             return; // OpenMesh stops here: "unexpected end of file"
@@ -237,8 +286,8 @@ static void walk_ply_ascii(const std::string &path, const PlyHeader &h) {
                     break;
                 case PlyRead::indices:
                     in >> count;
-                    for (unsigned k = 0; k < count && in; ++k)
-                        in >> index;
+                    for (unsigned k = 0; k < count && in >> index; ++k)
+                        check_index(path, "PLY", n, index, vertices);
                     break;
                 case PlyRead::other:
                     in >> word;
@@ -253,8 +302,25 @@ static void walk_ply_ascii(const std::string &path, const PlyHeader &h) {
     }
 }
 
+static bool ply_is_signed(const std::string &type) {
+    return type == "char" || type == "int8" || type == "short" || type == "int16" ||
+           type == "int" || type == "int32";
+}
+
+// A binary PLY integer of `n` bytes (indices are integers: walk_ply_binary refuses real ones).
+static std::int64_t ply_integer(const unsigned char *raw, std::uintmax_t n, bool is_signed,
+                                bool big_endian) {
+    std::uint64_t bits = 0;
+    for (std::uintmax_t k = 0; k < n; ++k)
+        bits |= std::uint64_t(raw[big_endian ? n - 1 - k : k]) << (8 * k);
+    if (is_signed && n < 8 && (bits >> (8 * n - 1)) & 1)
+        return std::int64_t(bits) - (std::int64_t{1} << (8 * n));
+    return std::int64_t(bits);
+}
+
 // The bytes OpenMesh's binary reader will consume, and every face's vertex count.
 static void walk_ply_binary(const std::string &path, const PlyHeader &h, std::uintmax_t bytes) {
+    const std::uintmax_t vertices = ply_vertices(h);
     std::ifstream in(path, std::ios::binary);
     in.seekg(std::streamoff(std::min(h.binary_body, bytes)));
     std::uintmax_t at = h.binary_body;
@@ -314,9 +380,15 @@ static void walk_ply_binary(const std::string &path, const PlyHeader &h, std::ui
                     for (std::uintmax_t k = 0; k < count_bytes && k < 4; ++k)
                         count |= std::uint32_t(raw[h.big_endian ? count_bytes - 1 - k : k])
                                  << (8 * k);
-                    const std::uintmax_t entries = std::uintmax_t{count} * ply_type_bytes(p.type);
-                    take(entries);
-                    in.ignore(std::streamsize(entries));
+                    const std::uintmax_t entry_bytes = ply_type_bytes(p.type);
+                    const bool is_signed = ply_is_signed(p.type);
+                    take(std::uintmax_t{count} * entry_bytes);
+                    for (std::uint32_t k = 0; k < count; ++k) {
+                        in.read(reinterpret_cast<char *>(raw), std::streamsize(entry_bytes));
+                        check_index(path, "PLY", n,
+                                    ply_integer(raw, entry_bytes, is_signed, h.big_endian),
+                                    vertices);
+                    }
                 }
         }
         if (e.name == "face")
@@ -366,7 +438,10 @@ static void check_off(const std::string &path, const std::string &head, std::uin
             if (count > (bytes - at) / 4)
                 refuse(path, "truncated binary OFF: face " + std::to_string(f) + " declares " +
                                  std::to_string(count) + " vertices");
-            in.ignore(std::streamsize(4 * count));
+            for (std::uintmax_t k = 0; k < count; ++k) {
+                in.read(reinterpret_cast<char *>(raw), 4);
+                check_index(path, "OFF", f, u32(raw), nv);
+            }
             at += 4 * count;
         }
         return;
@@ -377,7 +452,8 @@ static void check_off(const std::string &path, const std::string &head, std::uin
     check_count(path, "vertices", nv, bytes, 6);
     check_count(path, "faces", nf, bytes, 6);
     float real = 0;
-    unsigned count = 0, index = 0;
+    unsigned count = 0;
+    std::int64_t index = 0;
     for (unsigned v = 0; v < nv && !in.eof(); ++v) {
         in >> real >> real >> real;
         if (normals)
@@ -388,8 +464,8 @@ static void check_off(const std::string &path, const std::string &head, std::uin
     }
     for (unsigned f = 0; f < nf; ++f) {
         in >> count;
-        for (unsigned k = 0; k < count && in; ++k)
-            in >> index;
+        for (unsigned k = 0; k < count && in >> index; ++k)
+            check_index(path, "OFF", f, index, nv);
         if (!in)
             refuse(path, "truncated or malformed OFF: face " + std::to_string(f));
         if (colors)
@@ -398,25 +474,147 @@ static void check_off(const std::string &path, const std::string &head, std::uin
 }
 
 // OBJ: OpenMesh's reader asserts (aborts the process) on a face vertex without a position index
-// ("f /2 3"), and takes a position that fails to parse as whatever value it read last. The OBJ
-// grammar asks every face vertex for an integer position: v, v/vt, v//vn or v/vt/vn.
+// ("f /2 3"), takes a position that fails to parse as whatever value it read last, and drops a
+// face whose index names no vertex. The OBJ grammar asks every face vertex for an integer
+// position: v, v/vt, v//vn or v/vt/vn, counted from 1, or back from the last vertex when negative.
 static void check_obj(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     std::string line, word;
+    std::int64_t vertices = 0, faces = 0;
+    std::int64_t last_index = 0, last_line = 0; // the largest position index, checked at the end
     for (std::int64_t number = 1; std::getline(in, line); ++number) {
         std::istringstream words(line);
-        if (!(words >> word) || word != "f")
+        const std::string where = "OBJ line " + std::to_string(number);
+        if (!(words >> word))
+            continue;
+        if (word == "v") {
+            std::string x, y, z;
+            if (!(words >> x >> y >> z) || !finite_coordinate(x) || !finite_coordinate(y) ||
+                !finite_coordinate(z))
+                refuse(path, where + ": vertex " + std::to_string(vertices) +
+                                 " is not three finite numbers");
+            ++vertices;
+            continue;
+        }
+        if (word != "f")
             continue;
         while (words >> word) {
             const std::size_t slash = word.find('/');
-            if (slash == std::string::npos)
-                continue; // OpenMesh skips a lone word that is not a number
             std::istringstream position(word.substr(0, slash));
             int index = 0;
-            if (!(position >> index))
-                refuse(path, "OBJ line " + std::to_string(number) + ": face vertex '" + word +
-                                 "' has no position index");
+            if (!(position >> index)) {
+                if (slash == std::string::npos)
+                    continue; // OpenMesh skips a lone word that is not a number
+                refuse(path, where + ": face vertex '" + word + "' has no position index");
+            }
+            if (index < 0 && -std::int64_t{index} > vertices)
+                refuse(path, where + ": face " + std::to_string(faces) + ": vertex index " +
+                                 std::to_string(index) + " reaches back past the " +
+                                 std::to_string(vertices) + " vertices before it");
+            if (index == 0)
+                refuse(path, where + ": face " + std::to_string(faces) +
+                                 ": vertex index 0 (OBJ counts from 1)");
+            if (index > last_index) {
+                last_index = index;
+                last_line = number;
+            }
         }
+        ++faces;
+    }
+    if (last_index > vertices)
+        refuse(path, "OBJ line " + std::to_string(last_line) + ": vertex index " +
+                         std::to_string(last_index) + " is out of range (the file has " +
+                         std::to_string(vertices) + " vertices)");
+}
+
+// STL: the readers weld vertices through a std::map, which a NaN coordinate corrupts, and the
+// ASCII one leaves a coordinate that fails to parse uninitialised and stops without complaint at
+// the end of the file, wherever it is. So an ASCII file must follow the grammar to its 'endsolid'
+// with finite vertices, and a binary file's vertices must be finite.
+static void check_stl_ascii(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    // The keywords of a facet, in order, from "facet" to "endfacet".
+    static const std::array<std::string_view, 7> k_facet = {
+        "facet", "outer", "vertex", "vertex", "vertex", "endloop", "endfacet"};
+    enum class State { solid, facet_or_end, in_facet };
+    State state = State::solid;
+    std::size_t step = 0;
+    std::int64_t facets = 0, number = 0;
+    auto where = [&] { return "ASCII STL line " + std::to_string(number) + ": "; };
+    while (std::getline(in, line)) {
+        ++number;
+        std::size_t at = 0;
+        const std::string_view word = next_word(line, at);
+        if (word.empty())
+            continue;
+        auto found = [&] { return "found '" + std::string(word.substr(0, 40)) + "'"; };
+        if (state == State::solid) {
+            if (!is_keyword(word, "solid"))
+                refuse(path, where() + "expected 'solid', " + found());
+            state = State::facet_or_end;
+        } else if (state == State::facet_or_end) {
+            if (is_keyword(word, "endsolid")) {
+                state = State::solid;
+            } else if (is_keyword(word, "facet")) {
+                state = State::in_facet;
+                step = 1;
+            } else {
+                refuse(path, where() + "expected 'facet' or 'endsolid', " + found());
+            }
+        } else {
+            if (!is_keyword(word, k_facet[step]))
+                refuse(path, where() + "facet " + std::to_string(facets) + ": expected '" +
+                                 std::string(k_facet[step]) + "', " + found());
+            if (k_facet[step] == "vertex") {
+                const std::size_t coordinates = at;
+                const std::string_view x = next_word(line, at), y = next_word(line, at),
+                                       z = next_word(line, at);
+                if (!finite_coordinate(x) || !finite_coordinate(y) || !finite_coordinate(z) ||
+                    !next_word(line, at).empty()) {
+                    std::string given = line.substr(coordinates);
+                    given.erase(0, given.find_first_not_of(" \t"));
+                    given.erase(given.find_last_not_of(" \t\r") + 1);
+                    refuse(path, where() + "facet " + std::to_string(facets) + ", vertex " +
+                                     std::to_string(step - 2) + ": '" + given +
+                                     "' is not three finite numbers");
+                }
+            }
+            if (++step == k_facet.size()) {
+                state = State::facet_or_end;
+                ++facets;
+            }
+        }
+    }
+    if (state == State::in_facet)
+        refuse(path, "truncated ASCII STL: the file ends inside facet " + std::to_string(facets) +
+                         " (line " + std::to_string(number) + ")");
+    if (state == State::facet_or_end)
+        refuse(path, "truncated ASCII STL: no 'endsolid' after " + std::to_string(facets) +
+                         " facets (line " + std::to_string(number) + ")");
+}
+
+static void check_stl_binary(const std::string &path, std::uintmax_t triangles) {
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(84);
+    constexpr std::uintmax_t k_batch = 4096; // facets per read
+    std::vector<char> buffer(50 * k_batch);
+    for (std::uintmax_t first = 0; first < triangles; first += k_batch) {
+        const std::uintmax_t n = std::min(k_batch, triangles - first);
+        in.read(buffer.data(), std::streamsize(50 * n));
+        for (std::uintmax_t t = 0; t < n; ++t)
+            for (int k = 0; k < 9; ++k) {
+                // After the facet's normal (12 bytes), three corners of three little-endian floats.
+                const auto *b =
+                    reinterpret_cast<const unsigned char *>(buffer.data()) + 50 * t + 12 + 4 * k;
+                const std::uint32_t bits = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 |
+                                           std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+                float v = 0;
+                std::memcpy(&v, &bits, 4);
+                if (!std::isfinite(v))
+                    refuse(path, "binary STL facet " + std::to_string(first + t) + ", vertex " +
+                                     std::to_string(k / 3) + ": non-finite coordinate");
+            }
     }
 }
 
@@ -434,12 +632,23 @@ static void check_header(const std::string &path, const std::string &ext, std::u
         check_off(path, head, bytes);
     } else if (ext == ".obj") {
         check_obj(path);
-    } else if (ext == ".stl" && head.rfind("solid", 0) != 0 && bytes >= 84) {
-        const auto *p = reinterpret_cast<const unsigned char *>(head.data()) + 80;
-        const std::uintmax_t n = p[0] | p[1] << 8 | p[2] << 16 | std::uintmax_t(p[3]) << 24;
-        if (84 + 50 * n != bytes)
+    } else if (ext == ".stl") {
+        // OpenMesh takes a file as binary when its size fits the triangle count it declares, even
+        // when its 80-byte header starts with "solid", as some exporters write.
+        std::uintmax_t n = 0;
+        if (bytes >= 84) {
+            const auto *p = reinterpret_cast<const unsigned char *>(head.data()) + 80;
+            n = p[0] | p[1] << 8 | p[2] << 16 | std::uintmax_t(p[3]) << 24;
+        }
+        if (bytes >= 84 && 84 + 50 * n == bytes)
+            check_stl_binary(path, n);
+        else if (head.rfind("solid", 0) == 0)
+            check_stl_ascii(path);
+        else if (bytes >= 84)
             refuse(path, "binary STL declares " + std::to_string(n) + " triangles but holds " +
                              std::to_string(bytes) + " bytes");
+        else
+            refuse(path, "not an STL file (no 'solid', and shorter than a binary header)");
     }
 }
 

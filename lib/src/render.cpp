@@ -99,18 +99,15 @@ uniform float scalar_max;
 uniform samplerBuffer face_scalars;
 out vec4 color;
 
-// Turbo colour map, polynomial fit by A. Mikhailov (Google, 2019).
+uniform vec4 turbo4[3]; // k_turbo, per channel: the coefficients of 1, x, x^2, x^3
+uniform vec2 turbo2[3]; // and of x^4, x^5
+
 vec3 turbo(float x) {
-    const vec4 r4 = vec4(0.13572138, 4.61539260, -42.66032258, 132.13108234);
-    const vec4 g4 = vec4(0.09140261, 2.19418839, 4.84296658, -14.18503333);
-    const vec4 b4 = vec4(0.10667330, 12.64194608, -60.58204836, 110.36276771);
-    const vec2 r2 = vec2(-152.94239396, 59.28637943);
-    const vec2 g2 = vec2(4.27729857, 2.82956604);
-    const vec2 b2 = vec2(-89.90310912, 27.34824973);
     x = clamp(x, 0.0, 1.0);
     vec4 v4 = vec4(1.0, x, x * x, x * x * x);
     vec2 v2 = v4.zw * v4.z;
-    return vec3(dot(v4, r4) + dot(v2, r2), dot(v4, g4) + dot(v2, g2), dot(v4, b4) + dot(v2, b2));
+    return vec3(dot(v4, turbo4[0]) + dot(v2, turbo2[0]), dot(v4, turbo4[1]) + dot(v2, turbo2[1]),
+                dot(v4, turbo4[2]) + dot(v2, turbo2[2]));
 }
 
 // Hypsometric tints: lowland green, upland tan, mountain brown, snow.
@@ -153,6 +150,13 @@ void main() {
     color = vec4(base, 1.0);
 }
 )";
+
+// Turbo colour map, polynomial fit by A. Mikhailov (Google, 2019): per channel (r, g, b), the
+// coefficients of 1, x, ..., x^5. One table for the shaders and for turbo().
+constexpr float k_turbo[3][6] = {
+    {0.13572138f, 4.61539260f, -42.66032258f, 132.13108234f, -152.94239396f, 59.28637943f},
+    {0.09140261f, 2.19418839f, 4.84296658f, -14.18503333f, 4.27729857f, 2.82956604f},
+    {0.10667330f, 12.64194608f, -60.58204836f, 110.36276771f, -89.90310912f, 27.34824973f}};
 
 GLuint compile(GLenum kind, const char *source, const char *name) {
     const GLuint shader = glCreateShader(kind);
@@ -217,6 +221,18 @@ Bounds live_bounds(const Mesh &mesh) {
 }
 
 } // namespace
+
+glm::vec3 turbo(float x) {
+    x = std::clamp(x, 0.0f, 1.0f);
+    const glm::vec4 v4(1.0f, x, x * x, x * x * x);
+    const glm::vec2 v2 = glm::vec2(v4.z, v4.w) * v4.z;
+    glm::vec3 rgb;
+    for (int c = 0; c < 3; ++c)
+        rgb[c] =
+            glm::dot(v4, glm::vec4(k_turbo[c][0], k_turbo[c][1], k_turbo[c][2], k_turbo[c][3])) +
+            glm::dot(v2, glm::vec2(k_turbo[c][4], k_turbo[c][5]));
+    return rgb;
+}
 
 glm::dvec2 clip_range(const Mesh &mesh, const View &view) {
     const Bounds b = live_bounds(mesh);
@@ -430,6 +446,13 @@ void MeshPainter::draw(const View &view, glm::dvec2 clip, const RenderOptions &o
     glUniform1f(glGetUniformLocation(program_, "ambient"), std::clamp(options.ambient, 0.0f, 1.0f));
     glUniform2f(glGetUniformLocation(program_, "z_range"), z_range.x, z_range.y);
     glUniform1f(glGetUniformLocation(program_, "scalar_max"), scalar_max_);
+    float turbo4[3][4], turbo2[3][2];
+    for (int c = 0; c < 3; ++c) {
+        std::copy(k_turbo[c], k_turbo[c] + 4, turbo4[c]);
+        std::copy(k_turbo[c] + 4, k_turbo[c] + 6, turbo2[c]);
+    }
+    glUniform4fv(glGetUniformLocation(program_, "turbo4"), 3, &turbo4[0][0]);
+    glUniform2fv(glGetUniformLocation(program_, "turbo2"), 3, &turbo2[0][0]);
     glUniform1i(glGetUniformLocation(program_, "face_scalars"), 0);
     glUniform1i(glGetUniformLocation(program_, "normal_map"), 1);
     glUniform1i(glGetUniformLocation(program_, "dem_normals"), normal_map_ ? 1 : 0);
@@ -602,6 +625,9 @@ Image Renderer::render(const Mesh &mesh, const View &view, const RenderOptions &
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     check_gl("reading the image back");
+    if (!options.legend.empty() &&
+        (options.color == ColorMode::vertex_scalar || options.color == ColorMode::face_scalar))
+        draw_legend(image, painter_->scalar_max(), options.legend);
     return image;
 }
 

@@ -44,6 +44,9 @@ struct RenderOptions {
                                                 // one only where its surface moves on screen
     glm::dvec2 clip{0.0, 0.0};                  // near, far planes, world units; 0, 0: clip_range()
     bool depth = false;                         // also read back depth (Image::depth)
+    std::string legend; // scalar modes, Renderer only: when not empty, a colour legend titled
+                        // with this (the quantity and its units, e.g. "error (m)") is drawn
+                        // into the image's top-right corner (see draw_legend)
 };
 
 // An RGBA8 picture, row 0 at the TOP, and optionally its depth.
@@ -54,6 +57,15 @@ struct Image {
     std::vector<float> depth;       // empty, or width*height distances from the eye along the
                                     // observation axis, world units; +infinity where no surface
 };
+
+// The colour map of the scalar modes (Turbo): x in [0, 1] (clamped) to RGB in [0, 1]. The shaders
+// evaluate the same polynomial; the scalar modes show it times (0.6 + 0.4 * lambert).
+glm::vec3 turbo(float x);
+
+// Draws a colour legend into the top-right corner of `image`: a bar running the colour map from 0
+// at its bottom to `top` at its top, both ends labelled, under `title` (quantity and units). Draws
+// nothing when the image is too small to hold it (under about 100 pixels high).
+void draw_legend(Image &image, float top, const std::string &title);
 
 // Near and far clipping distances (world units) that enclose every point of `mesh` seen from
 // `view`: far just beyond the farthest bounding-box corner, near at the distance to the box (or a
@@ -77,6 +89,9 @@ class MeshPainter {
     // Clears the bound framebuffer to the sky and draws the uploaded mesh for `view` into a
     // viewport of view.viewport_w x view.viewport_h pixels, with clipping planes `clip`.
     void draw(const View &view, glm::dvec2 clip, const RenderOptions &options) const;
+    // The value at the top of the colour map for the uploaded scalars (RenderOptions::scalar_max
+    // or, when that is <= 0, the largest value).
+    float scalar_max() const { return scalar_max_; }
 
   private:
     void upload_normal_map(const Heightfield *hf);
