@@ -204,7 +204,7 @@ TEST(CliUsage, BadOptionValuesAreUsageErrorsNamingTheOption) {
         {fly + " --frames-eye nan,0,0 --frames-at 0,0,0", "--frames-eye"},
         {render + " --scalar-max nan", "--scalar-max"},
         {compare + " --threshold 300", "--threshold"},
-        {compare + " --samples 0", "--samples"},
+        {compare + " --samples -1", "--samples"},
         {"--threads 0 info " + dem, "--threads"},
     };
     for (const Case &c : cases) {

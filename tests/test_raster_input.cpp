@@ -7,6 +7,7 @@
 #include "tinlod/raster.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -184,9 +185,10 @@ TEST(RasterInput, CellIsNeededByAnUnnamedHgtAndRefusedByAGeoreferencedRaster) {
     EXPECT_EQ(hf.width, 1201);
     const std::string tif = asset("dem_squared.tif");
     EXPECT_TRUE(contains(refusal(tif, cell), "--cell")) << refusal(tif, cell);
-    const test::RunResult r = test::run_cli("info --cell 90 '" + foo + "'");
-    EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_TRUE(contains(r.out, "cell_size: [90.0,90.0]")) << r.out;
+    const test::RunResult r = test::run_cli("info --json --cell 90 '" + foo + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto info = nlohmann::json::parse(r.out);
+    EXPECT_EQ(info["cell_size"], nlohmann::json::array({90.0, 90.0})) << r.out;
 }
 
 namespace {

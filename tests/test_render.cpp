@@ -22,13 +22,6 @@ using tinlod::test::is_sky;
 
 namespace {
 
-#define REQUIRE_RENDER()                                                                           \
-    do {                                                                                           \
-        std::string why;                                                                           \
-        if (!render_available(&why))                                                               \
-            GTEST_SKIP() << "no OpenGL context: " << why;                                          \
-    } while (0)
-
 const Heightfield &squared_dem() {
     static const Heightfield hf = load_heightfield(asset("dem_squared.tif"));
     return hf;

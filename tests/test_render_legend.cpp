@@ -17,13 +17,6 @@ using tinlod::test::asset;
 
 namespace {
 
-#define REQUIRE_RENDER()                                                                           \
-    do {                                                                                           \
-        std::string why;                                                                           \
-        if (!render_available(&why))                                                               \
-            GTEST_SKIP() << "no OpenGL context: " << why;                                          \
-    } while (0)
-
 using Rgb = std::array<int, 3>;
 
 Rgb pixel(const Image &image, int x, int y) {

@@ -69,3 +69,11 @@ double xy_area(const Mesh &mesh);
 bool is_sky(const Image &image, std::size_t pixel, const RenderOptions &options = {});
 
 } // namespace tinlod::test
+
+// Skips the test (GoogleTest) where no OpenGL context can be made, saying why.
+#define REQUIRE_RENDER()                                                                           \
+    do {                                                                                           \
+        std::string why;                                                                           \
+        if (!tinlod::render_available(&why))                                                       \
+            GTEST_SKIP() << "no OpenGL context: " << why;                                          \
+    } while (0)
