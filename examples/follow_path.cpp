@@ -23,13 +23,15 @@ int main(int argc, char **argv) {
         if (argc == 5)
             options.tol_px = std::atof(argv[4]);
         tinlod::Refiner refiner(hf, views.front(), options);
-        for (std::size_t i = 0; i < views.size(); ++i) {
-            const tinlod::FrameStats s = i == 0 ? refiner.first_frame() : refiner.update(views[i]);
-            std::printf("frame %zu nodes %lld triangles %lld erased %lld recovered %lld "
-                        "bound_px %.4f tol_px %g\n",
+        std::printf("samples %lld first_frame_bound_px %.4f tol_px %g\n",
+                    static_cast<long long>(hf.size()), refiner.first_frame().bound_px,
+                    options.tol_px);
+        for (std::size_t i = 1; i < views.size(); ++i) {
+            const tinlod::FrameStats s = refiner.update(views[i]);
+            std::printf("frame %zu nodes %lld triangles %lld erased %lld recovered %lld ms %.1f\n",
                         i, static_cast<long long>(s.nodes), static_cast<long long>(s.triangles),
                         static_cast<long long>(s.erased), static_cast<long long>(s.recovered),
-                        s.bound_px, options.tol_px);
+                        s.ms_total);
         }
     } catch (const tinlod::Error &e) {
         std::fprintf(stderr, "follow_path: error: %s\n", e.what());
