@@ -10,6 +10,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
