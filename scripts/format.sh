@@ -3,7 +3,7 @@
 # in place (make format); `format.sh --check` lists the files that differ and fails (a CTest test).
 set -eu
 cd "$(dirname "$0")/.."
-files=$(find apps bench lib plugin tests -name '*.cpp' -o -name '*.hpp' -o -name '*.h' | grep -v node_modules | sort)
+files=$(find apps bench examples lib plugin tests -name '*.cpp' -o -name '*.hpp' -o -name '*.h' | grep -v node_modules | sort)
 if [ "${1:-}" = "--check" ]; then
     bad=0
     for f in $files; do

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "tinlod/error.hpp"
+#include "tinlod/json_io.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/view.hpp"
 

@@ -1,6 +1,7 @@
 // Image error between renders (image_metrics.hpp) through OpenImageIO's ImageBufAlgo::compare and
 // ImageBufAlgo::absdiff.
 #include "tinlod/image_metrics.hpp"
+#include "oiio_threads.hpp"
 #include "tinlod/error.hpp"
 
 #include <OpenImageIO/imagebuf.h>
@@ -35,6 +36,7 @@ OIIO::ROI rgb(const Image &image) { return OIIO::ROI(0, image.width, 0, image.he
 
 ImageDifference compare_images(const Image &a, const Image &b, const ImageCompareOptions &options) {
     check_same_size(a, b);
+    limit_oiio_threads();
     const OIIO::ImageBuf A = wrap(a), B = wrap(b);
     // OpenImageIO reads 8-bit values as v / 255; half a level above the threshold makes "differs
     // by more than t levels" exact for integer t despite rounding.
@@ -57,6 +59,7 @@ ImageDifference compare_images(const Image &a, const Image &b, const ImageCompar
 
 Image difference_image(const Image &a, const Image &b, double gain) {
     check_same_size(a, b);
+    limit_oiio_threads();
     const OIIO::ImageBuf A = wrap(a), B = wrap(b);
     const OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(A, B, rgb(a));
     if (diff.has_error())

@@ -1,6 +1,7 @@
 // Elevation rasters in: SRTM .hgt (our reader), everything else through OpenImageIO, with
 // GeoTIFF georeferencing from libgeotiff and geographic-to-metric conversion with PROJ.
 #include "tinlod/raster.hpp"
+#include "oiio_threads.hpp"
 #include "tinlod/error.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -27,9 +28,6 @@
 namespace tinlod {
 
 namespace fs = std::filesystem;
-
-float Heightfield::min_z() const { return z.empty() ? 0.f : *std::min_element(z.begin(), z.end()); }
-float Heightfield::max_z() const { return z.empty() ? 0.f : *std::max_element(z.begin(), z.end()); }
 
 namespace {
 
@@ -339,6 +337,7 @@ class QuietStderr {
 };
 
 RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
+    limit_oiio_threads();
     const QuietStderr quiet;
     const std::string ext = lower_extension(path);
     if (ext == ".tif" || ext == ".tiff")

@@ -7,6 +7,7 @@
 // Rendering" (SIGGRAPH 2006 sketch): a geometry shader gives each fragment its distance in pixels
 // to the three edges of its triangle.
 #include "tinlod/render.hpp"
+#include "oiio_threads.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
 
@@ -650,6 +651,7 @@ bool render_available(std::string *why) {
 
 static void write_pixels(const std::string &path, int width, int height, int channels,
                          OIIO::TypeDesc type, const void *pixels) {
+    limit_oiio_threads();
     write_atomically(path, [&](const std::string &tmp) {
         auto out = OIIO::ImageOutput::create(tmp);
         if (!out)
@@ -683,6 +685,7 @@ void write_depth(const std::string &path, const Image &image) {
 }
 
 Image read_image(const std::string &path) {
+    limit_oiio_threads();
     auto in = OIIO::ImageInput::open(path);
     if (!in)
         throw Error(path, "cannot read the image: " + OIIO::geterror());

@@ -2,8 +2,6 @@
 #include "tinlod/util.hpp"
 #include "tinlod/error.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/types.h>
@@ -341,15 +339,6 @@ void StagedFolder::commit() {
     created_.clear();
 }
 
-void write_json(const std::string &path, const nlohmann::json &doc) {
-    write_atomically(path, [&](const std::string &tmp) {
-        std::ofstream out(tmp);
-        out << doc.dump(2) << '\n';
-        if (!out.flush())
-            throw Error(path, "cannot write: " + std::string(std::strerror(errno)));
-    });
-}
-
 double peak_rss_mb() {
     std::ifstream status("/proc/self/status");
     std::string line;
@@ -378,8 +367,6 @@ static std::atomic<int> g_max_threads{0}; // 0: the hardware concurrency
 void set_max_threads(int threads) {
     assert(threads >= 1);
     g_max_threads = threads;
-    OIIO::attribute("threads", threads);
-    OIIO::attribute("exr_threads", threads);
 }
 
 int max_threads() {

@@ -1,8 +1,5 @@
-// Small shared services: atomic file writes, timing, peak memory, progress bar, stats JSON, the
-// thread count.
+// Small shared services: atomic file writes, timing, peak memory, progress bar, the thread count.
 #pragma once
-
-#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstddef>
@@ -113,9 +110,6 @@ class StagedFolder {
     std::vector<std::string> names_;
 };
 
-// Writes a JSON document atomically (pretty-printed).
-void write_json(const std::string &path, const nlohmann::json &doc);
-
 // Peak resident set size of this process, MiB (VmHWM).
 double peak_rss_mb();
 
@@ -125,8 +119,9 @@ double peak_rss_mb();
 void advise_huge_pages(const void *data, std::size_t bytes);
 
 // Threads the library may run at once: its own workers (the quad-tree build, Hausdorff distances)
-// and OpenImageIO's and OpenEXR's pools. `threads` >= 1; the default is the hardware concurrency.
-// Set it before the work starts (the CLI's --threads), not while a pool runs.
+// and OpenImageIO's and OpenEXR's pools (tinlod::io and tinlod::render apply it before each use).
+// `threads` >= 1; the default is the hardware concurrency. Set it before the work starts (the CLI's
+// --threads), not while a pool runs.
 void set_max_threads(int threads);
 int max_threads();
 
