@@ -48,8 +48,10 @@ struct FrameStats {
     double ms_recover = 0.0;
     double ms_erase = 0.0;
     double ms_total = 0.0;
-    double bound_px = 0.0; // the refiner's bound: max weighted deviation of every erased node
-                           // (pixels inside the frustum, relaxed outside), <= tol_px
+    // The first frame's erase bound: max weighted deviation of every erased node (pixels inside
+    // the frustum, relaxed outside), <= tol_px. update() leaves it 0: it keeps every deviation
+    // within tol_px without measuring the largest (measure_error does, over every sample).
+    double bound_px = 0.0;
 };
 
 // Holds the current TIN and its erase history between frames.
