@@ -212,6 +212,29 @@ CameraPath approach_path(const Heightfield &hf) {
     return camera;
 }
 
+// Plays approach_path(hf) over `dem` in the viewer (480x320, shaded, plus `extra` options) and
+// checks its last screenshot against hf's geometry and its stats against the path's 5 frames.
+void play_and_check_approach(const std::string &dem, const Heightfield &hf,
+                             const std::vector<std::string> &extra) {
+    const CameraPath camera = approach_path(hf);
+    const std::string dir = test::temp_dir();
+    write_camera_path(camera, dir + "/path.csv");
+    std::vector<std::string> args = {
+        dem,       "--script",         dir + "/path.csv", "--screenshot", dir + "/shot.png",
+        "--stats", dir + "/stats.csv", "--size",          "480x320",      "--color",
+        "shade"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ViewRun run = run_view(args, true);
+    if (no_gl(run))
+        GTEST_SKIP() << "no display or OpenGL under Xvfb: " << run.err;
+    ASSERT_EQ(run.status, 0) << run.err;
+    View base;
+    base.viewport_w = 480;
+    base.viewport_h = 320;
+    check_screenshot(dir + "/shot.png", camera.at_time(camera.keys.back().t, base), hf);
+    check_stats(read_stats(dir + "/stats.csv"), 5, camera.duration(), hf.size());
+}
+
 } // namespace
 
 TEST(ViewScript, DescentOverN42E001) {
@@ -243,24 +266,7 @@ TEST(ViewScript, ApproachOverDemSquared) {
     if (!have_xvfb())
         GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
     const std::string dem = test::asset("dem_squared.tif");
-    const Heightfield hf = load_heightfield(dem);
-    const CameraPath camera = approach_path(hf);
-    const std::string dir = test::temp_dir();
-    write_camera_path(camera, dir + "/path.csv");
-    const int frames = 5;
-    const ViewRun run =
-        run_view({dem, "--script", dir + "/path.csv", "--screenshot", dir + "/shot.png", "--stats",
-                  dir + "/stats.csv", "--size", "480x320", "--color", "shade", "--wire"},
-                 true);
-    if (no_gl(run))
-        GTEST_SKIP() << "no display or OpenGL under Xvfb: " << run.err;
-    ASSERT_EQ(run.status, 0) << run.err;
-
-    View base;
-    base.viewport_w = 480;
-    base.viewport_h = 320;
-    check_screenshot(dir + "/shot.png", camera.at_time(camera.keys.back().t, base), hf);
-    check_stats(read_stats(dir + "/stats.csv"), frames, camera.duration(), hf.size());
+    play_and_check_approach(dem, load_heightfield(dem), {"--wire"});
 }
 
 TEST(ViewScript, BadInputsFailWithOneLineNamingTheFile) {
@@ -313,24 +319,7 @@ TEST(ViewScript, RasterOptionsAsTheCommandLine) {
                           Case{"fuji.png", {"--terrain-rgb", "--cell", "30"}, fuji}}) {
         SCOPED_TRACE(c.file);
         const std::string dem = test::asset(c.file);
-        const Heightfield hf = load_heightfield(dem, c.load);
-        const CameraPath camera = approach_path(hf);
-        const std::string dir = test::temp_dir();
-        write_camera_path(camera, dir + "/path.csv");
-        std::vector<std::string> args = {
-            dem,       "--script",         dir + "/path.csv", "--screenshot", dir + "/shot.png",
-            "--stats", dir + "/stats.csv", "--size",          "480x320",      "--color",
-            "shade"};
-        args.insert(args.end(), c.args.begin(), c.args.end());
-        const ViewRun run = run_view(args, true);
-        if (no_gl(run))
-            GTEST_SKIP() << "no display or OpenGL under Xvfb: " << run.err;
-        ASSERT_EQ(run.status, 0) << run.err;
-        View base;
-        base.viewport_w = 480;
-        base.viewport_h = 320;
-        check_screenshot(dir + "/shot.png", camera.at_time(camera.keys.back().t, base), hf);
-        check_stats(read_stats(dir + "/stats.csv"), 5, camera.duration(), hf.size());
+        play_and_check_approach(dem, load_heightfield(dem, c.load), c.args);
     }
 }
 
