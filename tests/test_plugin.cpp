@@ -235,8 +235,8 @@ TEST(Plugin, NodeEraseDecimateToReachesTheCount) {
 
 // A scanned mesh of meshes/ and the camera it is seen from: on the +z side of its box, looking at
 // its centre; the armadillo run 350 units away, the larger bunny close enough that part of
-// it lies outside the frustum (where the peripheral factor relaxes the bound), the smaller one
-// whole in view.
+// it lies outside the frustum (where the peripheral factor relaxes the bound), the others whole in
+// view.
 struct Scan {
     std::string file;
     View view;
@@ -244,7 +244,8 @@ struct Scan {
 
 std::vector<Scan> scans() {
     std::vector<Scan> out;
-    for (const char *file : {"bun_zipper_res4.ply", "bun_zipper_res2.ply", "armadillo.off"}) {
+    for (const char *file : {"bun_zipper_res4.ply", "bun_zipper_res2.ply", "armadillo.off",
+                             "lion-head.off", "bull.off", "elephant.off"}) {
         PlainMesh mesh;
         EXPECT_TRUE(OpenMesh::IO::read_mesh(mesh, test::asset(file))) << file;
         glm::dvec3 lo(INFINITY), hi(-INFINITY);
