@@ -31,9 +31,8 @@ struct Queued {
 
 // The queue orders triangles by their farthest sample's distance in buckets of a fraction of an
 // octave (GreedyOptions::buckets_per_octave; half by default), last in first out within a bucket,
-// not exactly: a binary heap took about twice the
-// time on N42E001 to 1 and 5 m (its pops miss the cache; a bucket's last entries are the triangles
-// just made, near each other) for 0.2-2.5 % fewer nodes (scratch runs at 1, 5 and 20 m).
+// not exactly: a heap's pops miss the cache, a bucket's last entries are the triangles just made,
+// near each other (docs/decisions/002-greedy-insertion.md).
 constexpr int k_buckets = 2048;
 
 struct Inserter {

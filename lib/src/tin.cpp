@@ -135,9 +135,8 @@ Mesh grid_vertices(const Heightfield &hf) {
     const std::size_t n = static_cast<std::size_t>(hf.size());
     mesh.reserve(n, 3 * n, 2 * n);
     auto origin = get_origin_property(mesh);
-    // One resize, then the points written in place: add_vertex per sample (a library call that
-    // grows every vertex property) took 46 ms on 1201², this 19 (most of it the kernel faulting
-    // the arrays in).
+    // One resize, then the points written in place: add_vertex grows every vertex property per
+    // sample (docs/decisions/003-grid-vertices.md).
     mesh.resize(n, 0, 0);
     for (int r = 0; r < hf.height; ++r)
         for (int c = 0; c < hf.width; ++c) {

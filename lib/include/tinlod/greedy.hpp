@@ -35,12 +35,13 @@ struct GreedyOptions {
     double slope_margin = 0.0;
     // The insertion starts from the nodes every seed_step samples along each row and column (and
     // the last row and column), not from the lattice's four corners (0): they spare it the scans
-    // of the first few levels, over the whole lattice each, for a few more nodes (N42E001 to 20 m,
-    // every 16th sample: a quarter less time, 1 % more nodes).
+    // of the first few levels, over the whole lattice each, for a few more nodes
+    // (docs/decisions/002-greedy-insertion.md).
     int seed_step = 0;
     // The queue's resolution: the next sample is within a factor 2^(1 / this) of the farthest
     // (2: fast, for a bound; a budget's output keeps that factor in its error, so 64 there). Over
-    // 2048 / this octaves above max_error the queue no longer orders.
+    // 2048 / this octaves above max_error the queue no longer orders
+    // (docs/decisions/002-greedy-insertion.md).
     int buckets_per_octave = 2;
 };
 
