@@ -159,7 +159,6 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         if (is_mesh_path(args->input)) {
             refiner.emplace(read_mesh(args->input), views.front(), options);
         } else {
-            const LoadOptions lo = args->raster.load_options();
             // A store's first retrieval reads the bounds it holds: no quad-tree is built.
             std::unique_ptr<TileStore> store;
             if (is_store_path(args->input)) {
@@ -168,7 +167,7 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
                 hf = store->heightfield();
                 store_tiles = store->tile_count();
             } else {
-                hf = load_heightfield(args->input, lo);
+                hf = load_heightfield(args->input, args->raster.load_options());
             }
             // Every keyframe, as well as every frame: a keyframe between two frames is flown
             // through all the same.
