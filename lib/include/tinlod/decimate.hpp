@@ -41,6 +41,10 @@ namespace tinlod {
 
 class QuadTree;
 
+namespace erase {
+struct EraserState; // the eraser's state (lib/src/erase/state.hpp)
+}
+
 // ---- Hole re-triangulation in the projection plane (paper steps 3-4) --------------------------
 
 // One triangle of a re-triangulated ring: three ring indices, counter-clockwise.
@@ -251,10 +255,8 @@ class NodeEraser {
     // Bytes held by the eraser beside the mesh: per-node state, records, rings, free lists.
     std::size_t history_bytes() const;
 
-    struct Impl; // the state, opaque (decimate.cpp)
-
   private:
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<erase::EraserState> state_;
 };
 
 // One-off: erases nodes of `mesh` in place from `view` (null for SpModel::vertical), then removes
