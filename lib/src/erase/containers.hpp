@@ -118,9 +118,9 @@ class NodeHeap {
 };
 
 // An append-only array in chunks of 2^20 entries. It grows without moving what it holds (the
-// history is most of a refiner's memory: a vector's reallocation copied all of it in one frame,
-// 0.7 s of a 4097² flight's worst frame), and the entries one append takes never straddle two
-// chunks, so run() sees them contiguous.
+// history is most of a refiner's memory, and a vector's reallocation copied all of it in one
+// frame: docs/decisions/005-chunked-history-pool.md), and the entries one append takes never
+// straddle two chunks, so run() sees them contiguous.
 template <class T> class ChunkedPool {
   public:
     static constexpr std::size_t k_shift = 20, k_chunk = std::size_t(1) << k_shift;

@@ -217,8 +217,7 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
         // triangle next to it must not read more than the bound there either. Each ring node is
         // weighed once, for its steepest triangle, and only when k / OD says that could matter (the
-        // margins are a few ulp): weighing every corner of every triangle took 6 % of a 4097²
-        // flight's update time, and the erase at 30 fps takes 7-17 % less without it.
+        // margins are a few ulp; docs/decisions/011-deferred-weighing.md).
         std::array<double, k_max_ring> steepest;
         std::fill_n(steepest.begin(), n, 0.0);
         for (int t = 0; t < h.ntri; ++t)

@@ -58,11 +58,10 @@ bool raise_pending(const EraserState &s, Hole &h, double limit);
 // sample whose deviation times the largest weight in its band's box (within the old fan's largest
 // deviation of its corners' heights) could raise the cost waits for the band's end
 // (raise_pending), which weighs few of them: raised one by one in scan order, each raise made the
-// next sample's weight look worth computing (45 % of an update's weights on the 4097² flights). A
-// sample whose bound exceeds `limit` settles the band's samples so far at once, so a failing
-// evaluation stops where it did (waiting for the band's end took 10 % more time than raising one by
-// one; settling early, 2-4 % less). Stops once the cost exceeds `limit`; sets h.deferred instead
-// when the hole holds more than `max_swallowed` samples.
+// next sample's weight look worth computing. A sample whose bound exceeds `limit` settles the
+// band's samples so far at once, so a failing evaluation stops where it did
+// (docs/decisions/011-deferred-weighing.md). Stops once the cost exceeds `limit`; sets h.deferred
+// instead when the hole holds more than `max_swallowed` samples.
 void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, double limit,
                std::size_t max_swallowed);
 

@@ -22,14 +22,8 @@ namespace {
 // Whether greedy insertion to options.max_error likely ends under options.max_nodes and pays: the
 // insertion on every k_probe_step-th sample of each row and column keeps at most k_probe_share of
 // those samples. The insertion's cost grows with its nodes where the erase's grows with the
-// samples, so only a bound coarse enough for the terrain pays. Scratch runs, the seeded insertion
-// and the erase after it against the erase from the grid (time ratio; the probe's share; the
-// insertion's share of all samples):
-//   N42E001  20 m 0.3x (64 %, 12 %), 10 m 0.5x (81 %, 26 %), 5 m 0.8x (90 %, 48 %),
-//            2 m 1.2x (96 %, 76 %), 1 m 1.8x (97 %, 90 %);
-//   Rainier  20 m (51 %, 9 %), 10 m (70 %, 20 %), 5 m 0.7x (84 %, 39 %), 2 m 1.1x (94 %, 69 %),
-//            1 m 1.5x (96 %, 86 %).
-// The probe takes 40-80 ms. One that misjudges costs the insertion up to max_nodes.
+// samples, so only a bound coarse enough for the terrain pays; a probe that misjudges costs the
+// insertion up to max_nodes (docs/decisions/019-erase-dem-first-stage.md).
 static bool greedy_pays(const Heightfield &hf, const GreedyOptions &options) {
     Heightfield probe;
     probe.width = (hf.width - 1) / k_probe_step + 1;
@@ -55,10 +49,9 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
     DemEraseStats out;
     const bool budget = options.max_nodes > 0;
     // With a budget: the retrieval's nodes, at most half of the samples, and then only when that
-    // leaves the erase at least 3/4 of budget_share times the budget to choose from. A retrieval
-    // cut to fewer is coarse where the erase cannot mend it: a 129² DEM to 23 % of its samples
-    // kept 2.2 times the budget at 2 px, which the output then showed (1.97 px, where the erase
-    // from the whole grid reaches 1.03).
+    // leaves the erase at least 3/4 of budget_share times the budget to choose from: a retrieval
+    // cut to fewer is coarse where the erase cannot mend it
+    // (docs/decisions/019-erase-dem-first-stage.md).
     const double target =
         std::min(dem.budget_share * double(options.max_nodes), 0.5 * double(hf.size()));
     const bool retrieve =
@@ -87,7 +80,8 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
             // budget and a bound: the bound holds). The node count falls about as a power of the
             // tolerance, so each step aims at 1.1 x the target along the slope of the last two
             // retrievals in log-log (the first along -1), and bisects the bracket on the log when
-            // a step would leave it: 3-5 retrievals where bisection from [1e-6, 1e6] took 10-15.
+            // a step would leave it: a few retrievals, where bisection took several times as many
+            // (docs/decisions/019-erase-dem-first-stage.md).
             double lo = 1e-6, hi = std::min(1e6, shared);
             double t = std::min(1.0, hi), slope = -1.0, last_t = 0.0, last_n = 0.0;
             for (int i = 0; i < 40; ++i) {

@@ -33,8 +33,9 @@ inline bool scan_lattice(
     const std::int64_t w = s.grid_w;
     const LatticeTriangle t(s.grid_w, a, b, c);
     const Samples g = samples(s);
-    // Left uninitialised (a std::pair would be zeroed on every call, 1 % of an erase's time): each
-    // band writes the spans of its rows before it reads them.
+    // Left uninitialised, as a std::pair would be zeroed on every call
+    // (docs/decisions/009-prefetching.md): each band writes the spans of its rows before it reads
+    // them.
     struct Span {
         std::int64_t first, second;
     };
@@ -58,9 +59,8 @@ inline bool scan_lattice(
         if (value < 0.0)
             continue;
         // The band's rows lie a lattice row apart in memory, too far for the hardware to guess:
-        // asking for all of them before the first is read overlaps their cache misses. The 4097²
-        // flight's updates at 30 frames per second took 4-16 % less (scratch runs, p50 of 300
-        // frames of each path); the 1201² erase, whose rows stay cached, the same.
+        // asking for all of them before the first is read overlaps their cache misses
+        // (docs/decisions/009-prefetching.md).
         for (std::int64_t y = y0; y <= y1; ++y)
             g.prefetch(y, spans[y - y0].first, spans[y - y0].second);
         for (std::int64_t y = y0; y <= y1; ++y)

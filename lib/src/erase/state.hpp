@@ -138,11 +138,10 @@ struct EraserState {
     Weigher weigher;          // pixels per unit deviation for the current view
     bool unit_weights = true; // no view, or the vertical model: every weight is 1
     // Per vertex while erase() runs (it asks for a node's weight again and again): the weigher at
-    // the node rounded up, all computed in one run over the vertices when the view is set. The
-    // erase asks for three of every four (N42E001 budget erase from the low view: 12 M look-ups of
-    // 1.05 M weights out of 1.44 M), and the run and a plain array took 3-6 % off its time against
-    // computing each on first use behind a per-vertex view stamp. An update computes each weight
-    // where it needs it (as fast there, and 4 bytes per node less to keep).
+    // the node rounded up, all computed in one run over the vertices when the view is set: the
+    // erase asks for most of them, many times each. An update computes each weight where it needs
+    // it (as fast there, and 4 bytes per node less to keep;
+    // docs/decisions/004-per-vertex-weights.md).
     std::vector<float> weight;
 
     // ---- The live set: the live nodes, their keys and flags ----
@@ -201,8 +200,8 @@ struct EraserState {
     // ---- The update's grid (refine/update_grid.hpp) ----
     // The live nodes' and cells' fan bounds (reach, fan_dev) are not kept: only an update reads
     // them, so the constructor and erase() leave them, and the first update after them builds them
-    // from the fans (rebuild_fans). Keeping them through a one-off erase cost 6 % of its time
-    // (N42E001 budget erase from the low view, scratch runs).
+    // from the fans (rebuild_fans), as keeping them cost a one-off erase time for nothing
+    // (docs/decisions/006-fan-bounds.md).
     bool fans_stale = true;
     // The update's grid: cells of side cell_side from grid_lo, grid_nx per row, over the input's
     // extent in xy (grid_lo to grid_hi), sized for grid_live live nodes (see regrid).
@@ -222,9 +221,9 @@ struct EraserState {
     // low bit of face_seen[f]: they lay inside the view cone then, see weight_growth). When the
     // eye moves by d and the axis turns by a, a node's weight k / distance * peripheral(angle to
     // the axis) grows by at most (1 + d / distance') * exp((a + asin(d / distance')) / falloff), so
-    // a face whose nodes were within the bound by that much is cleared without a scan (a still or
-    // slow observer's frame on 4097²: 40 ms -> 10 ms). The views of the last k_seen_views updates
-    // are kept; an older bound is dropped.
+    // a face whose nodes were within the bound by that much is cleared without a scan
+    // (docs/decisions/007-seen-bounds.md). The views of the last k_seen_views updates are kept; an
+    // older bound is dropped.
     std::vector<float> face_seen_dev;
     std::vector<std::uint32_t> face_seen;
     std::array<View, k_seen_views> seen_views;
@@ -255,8 +254,8 @@ struct EraserState {
 
 // ---- Node ids and vertices (see EraserState::lattice) ----
 
-// These three run for most nodes an update touches: inlined wherever they are called (as calls
-// they took 6 % of a 4097² fly-over's update time, scratch profile).
+// These three run for most nodes an update touches: inlined wherever they are called
+// (docs/decisions/008-inlined-node-lookups.md).
 
 // The vertex of node x: invalid for a sparse lattice's sample that is not live. A live node's is
 // in its LiveNode, not in an array over the samples (4 bytes each).

@@ -12,9 +12,8 @@ namespace tinlod::erase {
 // The fans of the live nodes among the points p[0..count) (node ids `ids`, a hole's or a face's)
 // now hold the triangles tri[0..ntri) over those points, whose swallowed nodes deviate at most
 // dev[t]: widens each corner's bounds to cover its own new triangles, as fan_extent would from them
-// (their farthest corner, plus their largest deviation). With bounds from the whole hole (its
-// diameter and its largest deviation for every ring node) the 4097² fly-over at 30 fps walked 20 %
-// more fans per update, 400-550 of them only to find the node's bounds clear it (scratch runs).
+// (their farthest corner, plus their largest deviation): bounds from the whole hole made the
+// updates walk fans that the node's own bounds clear (docs/decisions/006-fan-bounds.md).
 void widen_fans(EraserState &s, const glm::dvec3 *p, const std::uint32_t *ids, int count,
                 const RingTriangle *tri, const float *dev, int ntri);
 

@@ -66,8 +66,8 @@ std::int64_t erase_loop(EraserState &s) {
         s.flags[v] &= std::uint8_t(~k_dirty);
         // A dirty node is erased only if its cost is still the least: its evaluation stops once
         // the cost passes the next key, and it goes back with that lower bound as its key, dirty
-        // (the keys stay lower bounds of the costs, so the order is the one exact keys give).
-        // Half of the queue's scanning on N42E001 went to such nodes, scanned whole.
+        // (the keys stay lower bounds of the costs, so the order is the one exact keys give),
+        // not scanned whole (docs/decisions/013-sweep.md).
         const double second = double(s.heap.second_key());
         const bool by_cost = s.options.significance.model != SpModel::paper;
         bool erasable = evaluate(s, vh(s, v), dirty && by_cost ? std::min(tau, second) : tau);
@@ -161,9 +161,9 @@ static bool sweep_node(EraserState &s, std::uint32_t x, double limit,
     const bool fresh = node_stamp(s, x) == s.pass;
     if (fresh && s.options.shallow_history)
         return false;
-    // Over the cap by its area: left as it is without locating the first `cap` nodes (18 % of a
-    // 4097² flight update's locates went to such walks). The fan lies in the disc of its reach
-    // (an update keeps the live nodes' fan bounds), so most fans need no walk to pass.
+    // Over the cap by its area: left as it is without locating the first `cap` nodes
+    // (docs/decisions/015-chain-and-update-caps.md). The fan lies in the disc of its reach (an
+    // update keeps the live nodes' fan bounds), so most fans need no walk to pass.
     const auto over_cap = [&] {
         assert(!s.fans_stale);
         const double reach = double(live_node(s, x).reach);
@@ -204,9 +204,8 @@ static bool sweep_node(EraserState &s, std::uint32_t x, double limit,
 
 // One pass at `limit` over the nodes of `order` (ascending ids, those that were live and not locked
 // when the erase began), until `stop_at` live nodes remain. Drops from `order` the nodes it finds
-// erased: a pass costs the nodes still live, not the input's. The refiner's first erase on the
-// 4097² flight makes 20 passes, which each read the state of all 16.8 M ids before, 0.83 M of them
-// live at first: 0.35-0.5 s of its 6.9 s (scratch runs).
+// erased: a pass costs the nodes still live, not the input's (the refiner's first erase makes
+// dozens of passes; docs/decisions/013-sweep.md).
 static std::int64_t sweep_pass(EraserState &s, std::vector<std::uint32_t> &order, double limit,
                                std::int64_t stop_at, const std::function<void(double)> &report) {
     next_pass(s);

@@ -21,10 +21,9 @@ std::int64_t erase_loop(EraserState &s);
 double covered_estimate(const EraserState &s, std::uint32_t x);
 
 // The sweep over the nodes of `list` only, then over the rings their erases changed, at `limit`
-// alone, until `stop_at` live nodes remain: its cost follows the nodes that changed (in an update,
-// the full sweep's rungs below the limit cost a tenth of its erase time for no fewer nodes: N42E001
-// flights at 4 frames per second). Fans over `cap` swallowed nodes are left as they are (see
-// sweep_node). Returns the erases made.
+// alone, until `stop_at` live nodes remain: its cost follows the nodes that changed (an update's
+// rungs below the limit cost time for no fewer nodes: docs/decisions/013-sweep.md). Fans over
+// `cap` swallowed nodes are left as they are (see sweep_node). Returns the erases made.
 std::int64_t sweep_dirty(EraserState &s, double limit, std::vector<std::uint32_t> list,
                          std::size_t cap, std::int64_t stop_at = 0);
 

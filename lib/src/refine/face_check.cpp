@@ -18,9 +18,8 @@ namespace {
 // Puts the nodes of face f's list (`deviation(u)` gives node u's) in runs by the square of a grid
 // over the face's box in xy that holds them, and keeps each run as a block: its first node, its
 // length, its nodes' largest deviation and their box. A scan then skips a block whose deviation
-// times the largest weight in its box cannot matter (a face of ~10^5 nodes on a flat, in sight of
-// a low eye, was weighed node by node every frame: ~570 k weights per frame on the flight
-// benchmark's 2049² valley path).
+// times the largest weight in its box cannot matter: a face of ~10^5 nodes on a flat, in sight of
+// a low eye, was weighed node by node every frame (docs/decisions/010-large-faces.md).
 template <class Deviation>
 static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi,
                          const Deviation &deviation) {
@@ -181,8 +180,8 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
         });
         if (screen && worst.first < 0) {
             // The largest weighted deviation, for the updates that follow: a band, tile or sample
-            // that its bound shows cannot raise it is not weighed (weighing every sample took a
-            // third of a low observer's frames on 4097²; the maximum is the same).
+            // that its bound shows cannot raise it is not weighed (the maximum is the same;
+            // docs/decisions/007-seen-bounds.md).
             double seen = 0.0;
             scan(seen, [&](std::uint32_t, const glm::dvec3 &q, double dev, double bound) {
                 if (dev * bound > seen)

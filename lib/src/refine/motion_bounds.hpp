@@ -87,8 +87,8 @@ inline double log_shrink(const EraserState &s, const EraserState::Since &d, doub
 // 4/3 x (in the cone) or (4/3 + 1.0328 / falloff) x + a / falloff. Whether a bound of logarithmic
 // margin `slack` (after the turn's share a / falloff) holds for nodes within r of p, the eye having
 // moved by `moved`, with `per_x` the factor of x: slack > per_x x, with x <= 1/4, tested without a
-// division or a square root (the exact tests' cost the update's walk over the live nodes paid for
-// every node: 27 % of a low, slow observer's frames on N42E001).
+// division or a square root, as the update's walk over the live nodes pays it for every node
+// (docs/decisions/007-seen-bounds.md).
 inline constexpr double k_asin_quarter = 1.0329; // > 1 / sqrt(1 - 1/16)
 inline bool moved_within(const glm::dvec3 &eye, const glm::dvec3 &p, double r, double moved,
                          double slack, double per_x) {
@@ -125,9 +125,7 @@ void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_ring> &
 // After it: each ring node gets back a seen bound, which widen_fans dropped, made under this view:
 // its faces the erase left as they were are within their old bound (`old`), and the new ones
 // within the erase's cost, the exact largest weighted deviation of the samples in the hole. Else
-// the next update walked their fans again: on the 4097² valley drive at 30 frames per second,
-// 1,020 nodes per frame had their fans walked for want of a seen bound, 580 with it, and the frames
-// took 1-5 % less (scratch runs, the same nodes erased and recovered).
+// the next update walked their fans again (docs/decisions/007-seen-bounds.md).
 void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old);
 
 // The bound face f's seen bound gives under the current view for nodes in the box [lo, hi] (its

@@ -67,7 +67,7 @@ void NodeEraser::rebind(Mesh &mesh) {
     state_->mesh = &mesh;
     advise_huge(*state_);
     if (state_->fans_stale)
-        rebuild_fans(*state_); // here, not in the first update (23 ms of a 30 fps descent's frame)
+        rebuild_fans(*state_); // here, not in the first update (docs/decisions/006-fan-bounds.md)
     if (state_->grid_w > 0 && state_->tile_z.empty())
         build_tile_z(*state_); // and these (a pass over every sample)
 }
@@ -154,8 +154,8 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         // Re-evaluated by this update's erase: a node recovered only because a worse one depended
         // on it may cost little, and a key of "significant" would keep it forever. So are its ring
         // nodes: their fans gave x its faces back, so their erase costs changed and the bounds on
-        // them (LiveNode::star_dev, low_log) no longer hold. Left as they were, the 1201² valley
-        // drive at 30 frames per second kept 4 % more nodes than its erase bound asks for.
+        // them (LiveNode::star_dev, low_log) no longer hold: left as they were, the TIN kept more
+        // nodes than its erase bound asks for (docs/decisions/018-recovery-order.md).
         mark_dirty(s, x);
         for (auto r : m.vv_range(vh(s, x)))
             if (!(s.flags[node_of(s, r)] & k_locked))
@@ -194,8 +194,8 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         if (l.low_log > -INFINITY) {
             if (const EraserState::Since *d = since(s, l.low_at)) {
                 // The shrink outside the view cone bounds the one inside it: the cone test (a
-                // square root and a division per node, 15 % of a still observer's update) only
-                // when that bound does not settle the node.
+                // square root and a division per node) only when that bound does not settle the
+                // node (docs/decisions/007-seen-bounds.md).
                 const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
                 const double falloff = s.weigher.falloff();
                 if (moved_within(s.view.eye, p, r.x, d->moved,
@@ -212,8 +212,7 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         unsettled.push_back(&l);
     }
     // The nodes the bounds above did not settle, apart: their flags and their star's height are
-    // each a cache miss, asked for a few nodes ahead (the erase 2-5 % faster on the 4097² first
-    // flights at 30 frames per second, scratch runs).
+    // each a cache miss, asked for k_ahead nodes ahead (docs/decisions/009-prefetching.md).
     for (std::size_t i = 0; i < unsettled.size(); ++i) {
         if (i + k_ahead < unsettled.size()) {
             const LiveNode &ahead = *unsettled[i + k_ahead];

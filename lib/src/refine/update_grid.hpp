@@ -30,13 +30,12 @@ inline std::pair<glm::dvec3, glm::dvec3> cell_box(const EraserState &s, std::uin
 void regrid(EraserState &s);
 
 // The arrays an update reads at random, one entry per node (or edge, face), on huge pages: on a
-// 4097² grid they span hundreds of MB, and with 4 KiB pages most reads miss the TLB. The flight
-// benchmark's updates ran 10 % faster. Only for a refiner's mesh (see rebind): a single erase of
-// N42E001 gained nothing, as the collapse into huge pages costs what the erase saves.
+// 4097² grid they span hundreds of MB, and with 4 KiB pages most reads miss the TLB. Only for a
+// refiner's mesh (see rebind): a single erase gains nothing, as the collapse into huge pages costs
+// what the erase saves (docs/decisions/017-huge-pages.md).
 // The mesh's arrays move when they grow past their reserved room (a sparse lattice's vertices as
 // samples enter, edges and faces as the TIN grows): update() advises them again then (see
 // EraserState::advised). The heightfield of a sparse lattice, which its scans read, is advised too.
-// Without it the 4097² flights' frames ran 3-28 % slower than with every sample a vertex.
 void advise_huge(EraserState &s);
 
 } // namespace tinlod::refine
