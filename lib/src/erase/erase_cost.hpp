@@ -47,24 +47,6 @@ inline double swallowed_weight_bound(const EraserState &s, const glm::dvec3 &a, 
            k_rounded_weight;
 }
 
-// The cost and its node after the samples of h.pending, as raising the cost sample by sample in
-// scan order would leave them (the first node whose weighted deviation exceeds `limit`, else the
-// first of the largest above the cost), weighing fewer of them: by their bound, largest first, once
-// one exceeding the limit is ruled out. False when the cost exceeds `limit`.
-bool raise_pending(const EraserState &s, Hole &h, double limit);
-
-// evaluate's walk over the nodes a grid TIN's hole swallows (v at pv among them): each new
-// triangle's samples, with their largest deviation and worst sample kept for retriangulate. A
-// sample whose deviation times the largest weight in its band's box (within the old fan's largest
-// deviation of its corners' heights) could raise the cost waits for the band's end
-// (raise_pending), which weighs few of them: raised one by one in scan order, each raise made the
-// next sample's weight look worth computing. A sample whose bound exceeds `limit` settles the
-// band's samples so far at once, so a failing evaluation stops where it did
-// (docs/decisions/011-deferred-weighing.md). Stops once the cost exceeds `limit`; sets h.deferred
-// instead when the hole holds more than `max_swallowed` samples.
-void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, double limit,
-               std::size_t max_swallowed);
-
 // Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
 // it only as some value > limit); false when v cannot be erased without a fold-over, a
 // non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the fan it

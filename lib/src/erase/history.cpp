@@ -10,6 +10,38 @@
 
 namespace tinlod::erase {
 
+void record_absent_samples(EraserState &s, bool retrieval_tin) {
+    s.flags.assign(s.nodes, 0);
+    const auto height = s.nodes / s.grid_w;
+    s.regular = std::make_unique<RegularRings>(s.grid_w, height);
+    if (retrieval_tin && RegularRings::regular_for_retrievals(s.grid_w, height)) {
+        for (std::size_t x = 0; x < s.record_of.size(); ++x)
+            if (s.record_of[x] == k_absent) {
+                s.flags[x] = k_unread;
+                s.record_of[x] = k_regular_ring;
+            }
+        return;
+    }
+    absent_sample_rings(*s.mesh, s.grid_w, height, s.sample_of,
+                        [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                            s.flags[x] = k_unread;
+                            std::array<std::uint32_t, 4> regular;
+                            bool chain = false;
+                            if (s.regular->ring(x, regular.data(), chain) == n &&
+                                chain == boundary && std::equal(ring, ring + n, regular.data())) {
+                                s.record_of[x] = k_regular_ring;
+                                return;
+                            }
+                            const std::size_t k = s.records.append(1);
+                            EraseRecord &record = s.records[k];
+                            record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
+                            record.ring_size = record.ring_capacity = std::uint8_t(n);
+                            record.boundary = boundary;
+                            std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
+                            s.record_of[x] = std::int32_t(k);
+                        });
+}
+
 void swallow_absent(EraserState &s) {
     const Mesh &m = *s.mesh;
     for (auto f : m.faces()) {

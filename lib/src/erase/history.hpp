@@ -8,6 +8,12 @@
 
 namespace tinlod::erase {
 
+// The samples a grid TIN left out (k_absent), as if erases had taken them from the whole grid
+// (EraseOptions::absent_history): each gets its ring, the lattice's regular one (RegularRings) or
+// a record. `retrieval_tin`: the TIN is a quad-tree retrieval's, whose rings are all regular on a
+// 2^k + 1 grid.
+void record_absent_samples(EraserState &s, bool retrieval_tin);
+
 // A grid TIN that holds only some of its lattice's samples (a retrieval's): the faces swallowed the
 // others from the start, so each face gets its worst sample and deviation, and its corners' fan
 // bounds, as an erase would have left them.

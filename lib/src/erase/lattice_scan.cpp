@@ -1,8 +1,6 @@
 // Grid TINs' lattice scans (lattice_scan.hpp).
 #include "erase/lattice_scan.hpp"
 
-#include <numeric>
-
 namespace tinlod::erase {
 
 std::uint32_t grid_width(const Mesh &m) {
@@ -54,17 +52,6 @@ void build_tile_z(EraserState &s) {
             }
         }
     }
-}
-
-std::int64_t lattice_inside(const EraserState &s, const Hole &h) {
-    const std::int64_t w = s.grid_w;
-    std::int64_t twice = 0, on_ring = 0;
-    for (int i = 0; i < h.n; ++i) {
-        const std::int64_t a = node_of(s, h.r[i]), b = node_of(s, h.r[(i + 1) % h.n]);
-        twice += (a % w) * (b / w) - (b % w) * (a / w);
-        on_ring += std::gcd(std::abs(b % w - a % w), std::abs(b / w - a / w));
-    }
-    return (std::abs(twice) - on_ring) / 2 + 1;
 }
 
 std::pair<float, std::int32_t> face_worst(const EraserState &s, std::uint32_t a, std::uint32_t b,

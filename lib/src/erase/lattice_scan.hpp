@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -204,7 +205,16 @@ inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, 
 
 // The samples strictly inside a grid TIN's hole (the node itself among them), by Pick's theorem:
 // the ring's area in lattice cells less half the samples on it, plus one.
-std::int64_t lattice_inside(const EraserState &s, const Hole &h);
+inline std::int64_t lattice_inside(const EraserState &s, const Hole &h) {
+    const std::int64_t w = s.grid_w;
+    std::int64_t twice = 0, on_ring = 0;
+    for (int i = 0; i < h.n; ++i) {
+        const std::int64_t a = node_of(s, h.r[i]), b = node_of(s, h.r[(i + 1) % h.n]);
+        twice += (a % w) * (b / w) - (b % w) * (a / w);
+        on_ring += std::gcd(std::abs(b % w - a % w), std::abs(b / w - a / w));
+    }
+    return (std::abs(twice) - on_ring) / 2 + 1;
+}
 
 // The largest deviation (rounded up) of the samples a grid TIN's face with corner nodes a, b, c
 // (points pa, pb, pc, frame f) swallowed, and the sample that has it (-1 when none deviates).

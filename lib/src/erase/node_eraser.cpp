@@ -1,5 +1,7 @@
 // The NodeEraser facade (decimate.hpp): the constructor that reads the input, the view, erase(),
 // measure() and erase_cost(), and the one-off erase_nodes().
+#include "tinlod/decimate.hpp"
+
 #include "erase/edits.hpp"
 #include "erase/erase_cost.hpp"
 #include "erase/history.hpp"
@@ -20,51 +22,64 @@ namespace tinlod {
 using namespace erase;
 using refine::regrid;
 
-NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
-    : state_(std::make_unique<erase::EraserState>()) {
-    EraserState &s = *state_;
-    s.mesh = &mesh;
-    assert(s.mesh->is_trimesh());
-    std::int64_t absent = 0;
-    for (auto v : s.mesh->all_vertices())
-        if (s.mesh->status(v).deleted()) {
-            if (s.mesh->halfedge_handle(v).is_valid())
+namespace {
+
+// The vertices marked deleted (samples a grid TIN left out); throws for one that still has edges.
+std::int64_t deleted_vertices(const Mesh &m) {
+    std::int64_t deleted = 0;
+    for (auto v : m.all_vertices())
+        if (m.status(v).deleted()) {
+            if (m.halfedge_handle(v).is_valid())
                 throw std::invalid_argument("NodeEraser: a deleted vertex still has edges");
-            ++absent;
+            ++deleted;
         }
+    return deleted;
+}
+
+// Node ids: the mesh's vertices, or a sparse lattice's samples (EraseOptions::lattice), whose
+// columns' x and rows' y it reads, checking that each vertex is the sample its origin property
+// names. Returns each sample's vertex (-1: none; empty without a lattice) and sets `absent` to
+// the samples without one.
+std::vector<std::int32_t> bind_nodes(EraserState &s, const Heightfield *lattice,
+                                     std::int64_t &absent) {
     s.nodes = std::uint32_t(s.mesh->n_vertices());
-    std::vector<std::int32_t> vertex_of; // a sparse lattice's, while the constructor runs
-    if (options.lattice) {
-        const Heightfield &hf = *options.lattice;
-        if (absent > 0)
-            throw std::invalid_argument("NodeEraser: a sparse lattice TIN with deleted vertices");
-        s.origin = find_origin_property(*s.mesh);
-        if (!s.origin.is_valid())
-            throw std::invalid_argument("NodeEraser: a sparse lattice TIN without its samples");
-        s.lattice = &hf;
-        s.nodes = std::uint32_t(hf.size());
-        s.inverse_width = 1.0 / double(hf.width);
-        s.lattice_x.resize(std::size_t(hf.width));
-        s.lattice_y.resize(std::size_t(hf.height));
-        for (int c = 0; c < hf.width; ++c)
-            s.lattice_x[std::size_t(c)] = grid_point(hf, c, 0)[0];
-        for (int r = 0; r < hf.height; ++r)
-            s.lattice_y[std::size_t(r)] = grid_point(hf, 0, r)[1];
-        vertex_of.assign(s.nodes, -1);
-        s.sample_of.resize(s.mesh->n_vertices());
-        for (auto v : s.mesh->vertices()) {
-            const std::int64_t x = s.mesh->property(s.origin, v);
-            if (x < 0 || x >= hf.size() || vertex_of[std::size_t(x)] >= 0 ||
-                s.mesh->point(v) != node_point(s, std::uint32_t(x)))
-                throw std::invalid_argument("NodeEraser: a sparse lattice TIN's vertex is not "
-                                            "its sample");
-            vertex_of[std::size_t(x)] = v.idx();
-            s.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
-        }
-        absent = std::int64_t(s.nodes) - std::int64_t(s.mesh->n_vertices());
+    std::vector<std::int32_t> vertex_of;
+    if (!lattice)
+        return vertex_of;
+    const Heightfield &hf = *lattice;
+    if (absent > 0)
+        throw std::invalid_argument("NodeEraser: a sparse lattice TIN with deleted vertices");
+    s.origin = find_origin_property(*s.mesh);
+    if (!s.origin.is_valid())
+        throw std::invalid_argument("NodeEraser: a sparse lattice TIN without its samples");
+    s.lattice = &hf;
+    s.nodes = std::uint32_t(hf.size());
+    s.inverse_width = 1.0 / double(hf.width);
+    s.lattice_x.resize(std::size_t(hf.width));
+    s.lattice_y.resize(std::size_t(hf.height));
+    for (int c = 0; c < hf.width; ++c)
+        s.lattice_x[std::size_t(c)] = grid_point(hf, c, 0)[0];
+    for (int r = 0; r < hf.height; ++r)
+        s.lattice_y[std::size_t(r)] = grid_point(hf, 0, r)[1];
+    vertex_of.assign(s.nodes, -1);
+    s.sample_of.resize(s.mesh->n_vertices());
+    for (auto v : s.mesh->vertices()) {
+        const std::int64_t x = s.mesh->property(s.origin, v);
+        if (x < 0 || x >= hf.size() || vertex_of[std::size_t(x)] >= 0 ||
+            s.mesh->point(v) != node_point(s, std::uint32_t(x)))
+            throw std::invalid_argument("NodeEraser: a sparse lattice TIN's vertex is not "
+                                        "its sample");
+        vertex_of[std::size_t(x)] = v.idx();
+        s.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
     }
-    s.live = std::int64_t(s.nodes) - absent;
-    s.live_faces = std::int64_t(s.mesh->n_faces());
+    absent = std::int64_t(s.nodes) - std::int64_t(s.mesh->n_vertices());
+    return vertex_of;
+}
+
+// The projection plane (xy for a TIN: every face counter-clockwise seen from above, or as the
+// options say) and whether the mesh is a grid TIN, whose faces' swallowed nodes are scanned from
+// the lattice (grid_width).
+void choose_projection(EraserState &s, Projection projection, std::int64_t absent) {
     bool all_ccw = true;
     for (auto f : s.mesh->faces()) {
         auto he = s.mesh->halfedge_handle(f);
@@ -76,14 +91,17 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
             break;
         }
     }
-    s.xy = options.projection == Projection::xy ||
-           (options.projection == Projection::automatic && all_ccw);
+    s.xy = projection == Projection::xy || (projection == Projection::automatic && all_ccw);
     s.grid_w = !s.xy ? 0 : s.lattice ? std::uint32_t(s.lattice->width) : grid_width(*s.mesh);
     if (s.lattice && s.grid_w == 0)
         throw std::invalid_argument("NodeEraser: a sparse lattice TIN is not counter-clockwise");
     if (absent > 0 && s.grid_w == 0)
         throw std::invalid_argument(
             "NodeEraser: deleted vertices in a mesh that is not a grid TIN");
+}
+
+// The per-face and per-node arrays: the face index (empty lists), the records, the live list.
+void allocate(EraserState &s) {
     if (s.grid_w == 0) {
         s.next_swallowed.assign(s.nodes, -1);
         s.swallowed_by.assign(s.nodes, -1);
@@ -95,7 +113,10 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
     s.face_seen.assign(s.mesh->n_faces(), 0);
     s.record_of.resize(s.nodes);
     s.live_list.reserve(std::size_t(s.live));
-    // The update's grid, over the input's extent, sized for its live nodes.
+}
+
+// The update's grid, over the input's extent, sized for its live nodes.
+void place_grid(EraserState &s) {
     glm::dvec2 lo(INFINITY), hi(-INFINITY);
     for (auto v : s.mesh->vertices()) {
         const glm::dvec3 p = to_glm(s.mesh->point(v));
@@ -109,6 +130,11 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
         s.grid_hi = hi;
     }
     regrid(s);
+}
+
+// Every node with a live vertex enters the live set; the others are absent (k_absent). Takes
+// bind_nodes' vertex_of, freed on return (before the absent samples' rings are made).
+void build_live_set(EraserState &s, std::vector<std::int32_t> vertex_of) {
     for (std::uint32_t x = 0; x < s.nodes; ++x) {
         const VH v = s.lattice ? VH(vertex_of[x]) : VH(int(x));
         if (!v.is_valid() || s.mesh->status(v).deleted())
@@ -116,40 +142,26 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
         else
             add_live(s, x, -1, v);
     }
-    std::vector<std::int32_t>().swap(vertex_of);
+}
+
+} // namespace
+
+NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
+    : state_(std::make_unique<erase::EraserState>()) {
+    EraserState &s = *state_;
+    s.mesh = &mesh;
+    assert(s.mesh->is_trimesh());
+    std::int64_t absent = deleted_vertices(*s.mesh);
+    std::vector<std::int32_t> vertex_of = bind_nodes(s, options.lattice, absent);
+    s.live = std::int64_t(s.nodes) - absent;
+    s.live_faces = std::int64_t(s.mesh->n_faces());
+    choose_projection(s, options.projection, absent);
+    allocate(s);
+    place_grid(s);
+    build_live_set(s, std::move(vertex_of));
     s.absent_for_good = absent > 0 && !options.absent_history;
-    if (absent > 0 && options.absent_history) {
-        s.flags.assign(s.nodes, 0);
-        const auto height = s.nodes / s.grid_w;
-        s.regular = std::make_unique<RegularRings>(s.grid_w, height);
-        if (options.retrieval_tin && RegularRings::regular_for_retrievals(s.grid_w, height)) {
-            for (std::size_t x = 0; x < s.record_of.size(); ++x)
-                if (s.record_of[x] == k_absent) {
-                    s.flags[x] = k_unread;
-                    s.record_of[x] = k_regular_ring;
-                }
-        } else {
-            absent_sample_rings(
-                *s.mesh, s.grid_w, height, s.sample_of,
-                [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
-                    s.flags[x] = k_unread;
-                    std::array<std::uint32_t, 4> regular;
-                    bool chain = false;
-                    if (s.regular->ring(x, regular.data(), chain) == n && chain == boundary &&
-                        std::equal(ring, ring + n, regular.data())) {
-                        s.record_of[x] = k_regular_ring;
-                        return;
-                    }
-                    const std::size_t k = s.records.append(1);
-                    EraseRecord &record = s.records[k];
-                    record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
-                    record.ring_size = record.ring_capacity = std::uint8_t(n);
-                    record.boundary = boundary;
-                    std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
-                    s.record_of[x] = std::int32_t(k);
-                });
-        }
-    }
+    if (absent > 0 && options.absent_history)
+        record_absent_samples(s, options.retrieval_tin);
     if (absent > 0)
         swallow_absent(s);
     set_view(view, options);
@@ -174,6 +186,31 @@ void NodeEraser::set_view(const View *view, const EraseOptions &options) {
     classify_nodes(s);
 }
 
+namespace {
+
+// Back to the per-vertex stamps (and keys, which the erase resets) from the live nodes, where
+// compact() moved them.
+void per_vertex_keys(EraserState &s) {
+    if (!s.node_keys)
+        return;
+    s.stamp.assign(s.nodes, 0);
+    for (const LiveNode &l : s.live_list)
+        s.stamp[l.node] = l.stamp;
+    s.node_keys = false;
+}
+
+// The sweep (sweep.hpp) where the key is the cost (not the paper model) and a bound or a budget
+// stops it, else the queue: rank every node, then pop the least.
+std::int64_t erase_by_model(EraserState &s) {
+    if (s.options.significance.model != SpModel::paper &&
+        (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance)))
+        return sweep_erase(s);
+    rank_nodes(s);
+    return erase_loop(s);
+}
+
+} // namespace
+
 EraseStats NodeEraser::erase() {
     EraserState &s = *state_;
     s.fans_stale = true;
@@ -182,19 +219,8 @@ EraseStats NodeEraser::erase() {
     stats.input_nodes = s.live;
     stats.input_triangles = s.live_faces;
     const std::int64_t evaluations = s.evaluations;
-    if (s.node_keys) { // back to the per-vertex keys (reset below) and stamps
-        s.stamp.assign(s.nodes, 0);
-        for (const LiveNode &l : s.live_list)
-            s.stamp[l.node] = l.stamp;
-        s.node_keys = false;
-    }
-    if (s.options.significance.model != SpModel::paper &&
-        (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance))) {
-        stats.erased = sweep_erase(s);
-    } else {
-        rank_nodes(s);
-        stats.erased = erase_loop(s);
-    }
+    per_vertex_keys(s);
+    stats.erased = erase_by_model(s);
     if (s.live_list.capacity() > 2 * s.live_list.size())
         s.live_list.shrink_to_fit(); // an update keeps the live nodes only
     forget_nodes(s);

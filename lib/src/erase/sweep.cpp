@@ -297,9 +297,12 @@ static std::int64_t fine_rungs(EraserState &s, double limit, double tau, std::in
 
 } // namespace
 
-std::int64_t sweep_erase(EraserState &s) {
-    const double tau = erase_limit(s);
-    s.heap.reset(s.nodes); // keys only: 0 until a node is first measured
+namespace {
+
+// The nodes a sweep visits, in ascending ids: the live, unlocked ones. Their keys are reset (0
+// until a node is first measured) and none is dirty.
+std::vector<std::uint32_t> sweep_order(EraserState &s) {
+    s.heap.reset(s.nodes); // keys only
     for (auto v : s.mesh->vertices())
         s.flags[node_of(s, v)] &= std::uint8_t(~k_dirty);
     std::vector<std::uint32_t> order;
@@ -307,72 +310,121 @@ std::int64_t sweep_erase(EraserState &s) {
     for (std::uint32_t x = 0; x < s.nodes; ++x)
         if (!(s.flags[x] & k_locked) && s.record_of[x] < 0)
             order.push_back(x);
-    const std::function<void(double)> &progress = s.options.progress;
-    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
-    const std::int64_t first_live = s.live;
-    // Progress: with a budget, the erases made over those it needs; with a bound alone, pass k
-    // (from 0) spans [1 - 0.1^k, 1 - 0.1^(k+1)).
-    double pass_share = 1.0;
-    const auto by_erases = [&] {
-        progress(
-            first_live > budget
-                ? std::clamp(double(first_live - s.live) / double(first_live - budget), 0.0, 1.0)
-                : 1.0);
-    };
-    const auto report = [&](double within) {
-        if (s.options.max_nodes > 0)
-            by_erases();
-        else
-            progress(1.0 - pass_share + 0.9 * pass_share * within);
-    };
-    auto sweep = [&](double limit, std::int64_t stop_at) {
-        const std::int64_t made = sweep_pass(
-            s, order, limit, stop_at, progress ? std::function<void(double)>(report) : nullptr);
-        pass_share *= 0.1;
-        return made;
-    };
+    return order;
+}
+
+// EraseOptions::progress for a sweep: with a budget, the erases made over those it needs; with a
+// bound alone, pass k (from 0) spans [1 - 0.1^k, 1 - 0.1^(k+1)).
+class SweepProgress {
+  public:
+    SweepProgress(const EraserState &s, std::int64_t budget)
+        : s_(s), progress_(s.options.progress), budget_(budget), first_live_(s.live) {}
+    // The report within a pass (null without a progress callback), and the step to the next pass.
+    std::function<void(double)> within_pass() {
+        if (!progress_)
+            return nullptr;
+        return [this](double within) {
+            if (s_.options.max_nodes > 0)
+                by_erases();
+            else
+                progress_(1.0 - pass_share_ + 0.9 * pass_share_ * within);
+        };
+    }
+    void next_pass() { pass_share_ *= 0.1; }
+    // The report by erases made (null without a progress callback), for the fine rungs.
+    std::function<void()> erases() {
+        if (!progress_)
+            return nullptr;
+        return [this] { by_erases(); };
+    }
+
+  private:
+    void by_erases() const {
+        progress_(first_live_ > budget_
+                      ? std::clamp(double(first_live_ - s_.live) / double(first_live_ - budget_),
+                                   0.0, 1.0)
+                      : 1.0);
+    }
+    const EraserState &s_;
+    const std::function<void(double)> &progress_;
+    std::int64_t budget_, first_live_;
+    double pass_share_ = 1.0;
+};
+
+// One pass of the sweep at `limit` (sweep_pass), reported.
+std::int64_t sweep(EraserState &s, std::vector<std::uint32_t> &order, double limit,
+                   std::int64_t stop_at, SweepProgress &progress) {
+    const std::int64_t made = sweep_pass(s, order, limit, stop_at, progress.within_pass());
+    progress.next_pass();
+    return made;
+}
+
+// A bound alone: the passes at tau / ratio^k, k = tau_rungs(s) .. 1, then passes at tau until one
+// erases nothing. Returns the erases made.
+std::int64_t tolerance_passes(EraserState &s, std::vector<std::uint32_t> &order, double tau,
+                              SweepProgress &progress) {
     std::int64_t erased = 0;
-    if (s.options.max_nodes <= 0) {
-        for (int rung = tau_rungs(s); rung > 0; --rung)
-            erased += sweep(tau * std::pow(tau_rung_ratio(s), -rung), 0);
-        for (std::int64_t made = 1; made > 0;) {
-            made = sweep(tau, 0);
-            erased += made;
-        }
-        return erased;
+    for (int rung = tau_rungs(s); rung > 0; --rung)
+        erased += sweep(s, order, tau * std::pow(tau_rung_ratio(s), -rung), 0, progress);
+    for (std::int64_t made = 1; made > 0;) {
+        made = sweep(s, order, tau, 0, progress);
+        erased += made;
     }
-    const std::int64_t far = k_coarse_share * budget;
-    double limit = 0.0; // the last rung's
-    if (s.live > far) {
-        // The first rung: at least live - far erases are needed before the fine rungs, and an erase
-        // rarely costs less than the node's cost on the input, so the (live - far)-th smallest
-        // first cost (estimated on every k_sample_stride-th node) is about the least bound the
-        // output can reach; rungs below it only add passes.
-        std::vector<float> costs;
-        for (std::uint32_t x = 0; x < s.nodes; x += k_sample_stride) {
-            if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
-                continue;
-            const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.hole.cost) : INFINITY;
-            s.heap.store_key(x, cost);
-            costs.push_back(cost);
-        }
-        const auto nth = costs.begin() + std::ptrdiff_t(double(costs.size()) *
-                                                        double(s.live - far) / double(s.live));
-        if (nth != costs.end()) {
-            std::nth_element(costs.begin(), nth, costs.end());
-            double highest = 0.0;
-            for (const float c : costs)
-                if (std::isfinite(c))
-                    highest = std::max(highest, double(c));
-            for (limit = std::max(double(*nth), 1e-30);
-                 s.live > far && limit < tau && limit <= 2.0 * highest;
-                 limit *= k_budget_rung_ratio)
-                erased += sweep(limit, far);
-            limit /= k_budget_rung_ratio;
-        }
+    return erased;
+}
+
+// The coarse rungs of a budget and the limit of the last (0 when none ran).
+struct CoarseRungs {
+    std::int64_t erased = 0;
+    double limit = 0.0;
+};
+
+// A budget's coarse rungs, one pass each at limits k_budget_rung_ratio apart, until `far` live
+// nodes remain or a rung reaches tau. The first rung: at least live - far erases are needed before
+// the fine rungs, and an erase rarely costs less than the node's cost on the input, so the
+// (live - far)-th smallest first cost (estimated on every k_sample_stride-th node) is about the
+// least bound the output can reach; rungs below it only add passes.
+CoarseRungs coarse_rungs(EraserState &s, std::vector<std::uint32_t> &order, double tau,
+                         std::int64_t far, SweepProgress &progress) {
+    CoarseRungs out;
+    if (!(s.live > far))
+        return out;
+    std::vector<float> costs;
+    for (std::uint32_t x = 0; x < s.nodes; x += k_sample_stride) {
+        if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
+            continue;
+        const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.hole.cost) : INFINITY;
+        s.heap.store_key(x, cost);
+        costs.push_back(cost);
     }
-    return erased +
-           fine_rungs(s, limit, tau, budget, progress ? std::function<void()>(by_erases) : nullptr);
+    const auto nth = costs.begin() +
+                     std::ptrdiff_t(double(costs.size()) * double(s.live - far) / double(s.live));
+    if (nth == costs.end())
+        return out;
+    std::nth_element(costs.begin(), nth, costs.end());
+    double highest = 0.0;
+    for (const float c : costs)
+        if (std::isfinite(c))
+            highest = std::max(highest, double(c));
+    double &limit = out.limit;
+    for (limit = std::max(double(*nth), 1e-30);
+         s.live > far && limit < tau && limit <= 2.0 * highest; limit *= k_budget_rung_ratio)
+        out.erased += sweep(s, order, limit, far, progress);
+    limit /= k_budget_rung_ratio;
+    return out;
+}
+
+} // namespace
+
+std::int64_t sweep_erase(EraserState &s) {
+    const double tau = erase_limit(s);
+    std::vector<std::uint32_t> order = sweep_order(s);
+    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
+    SweepProgress progress(s, budget);
+    if (s.options.max_nodes <= 0)
+        return tolerance_passes(s, order, tau, progress);
+    const CoarseRungs coarse = coarse_rungs(s, order, tau, k_coarse_share * budget, progress);
+    return coarse.erased + fine_rungs(s, coarse.limit, tau, budget, progress.erases());
 }
 
 } // namespace tinlod::erase

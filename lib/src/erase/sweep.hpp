@@ -1,5 +1,31 @@
-// The erase's drivers: the sweep (passes over the nodes in storage order, in rungs of rising
-// limits), and the queue of the paper model.
+// The erase's drivers: the sweep, and the queue of the paper model.
+//
+// The sweep (screen and vertical models, with a bound tau or a node budget N) passes over the
+// nodes in storage order, which is spatially coherent, so the half-edge arrays and the swallowed
+// lists stay in cache (a queue jumps across the terrain; docs/decisions/013-sweep.md):
+//
+//   order = the live, unlocked nodes by id
+//   sweep(limit):                                   one pass (sweep_pass)
+//       for x in order, while more than the pass's stop remain live:
+//           if x is dirty or key(x) <= limit:       key(x): a lower bound of x's cost
+//               cost = evaluate(x)                  the SP of the erase (erase_cost.hpp)
+//               if cost <= limit: retriangulate(x), mark x's ring dirty (edits.hpp)
+//               else key(x) = cost
+//   tau alone:                                      tolerance passes
+//       for k = tau_rungs .. 1: sweep(tau / ratio^k)      cheap erases first (meshes, refiner)
+//       repeat sweep(tau) until it erases nothing
+//   budget N:                                       rungs (docs/decisions/014-budget-rungs.md)
+//       limit = the (live - 2N)-th smallest first cost, sampled
+//       while live > 2N and limit < tau: sweep(limit) once, limit *= 2     coarse rungs
+//       while live > N and limit <= tau:                                   fine rungs
+//           sweep the dirty nodes and those with key <= limit, then the rings their erases
+//           changed, until none is left (sweep_dirty)
+//           limit = max(1.05 limit, the least key)
+//
+// The queue (the paper model, whose key is not a cost, or no bound at all): rank every node by
+// its key, then pop the least while its erase stays within tau; a dirty node is re-evaluated at the
+// top and goes back with its new cost. An update (refine/update.hpp) sweeps only the nodes that
+// changed, at its bound alone (sweep_dirty).
 #pragma once
 
 #include "erase/state.hpp"

@@ -5,25 +5,6 @@ namespace tinlod::refine {
 
 using namespace erase;
 
-void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_ring> &old) {
-    const bool kept = !s.fans_stale && keeps_bounds(s);
-    for (int i = 0; i < h.n; ++i)
-        old[std::size_t(i)] = kept ? seen_now(s, live_node(s, node_of(s, h.r[i]))) : INFINITY;
-}
-
-void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old) {
-    const double cost = h.cost > 0.0 ? std::log(h.cost * (1.0 + 1e-6)) : -INFINITY;
-    for (int i = 0; i < h.n; ++i) {
-        if (!(old[std::size_t(i)] < INFINITY))
-            continue;
-        LiveNode &l = live_node(s, node_of(s, h.r[i]));
-        const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
-        l.seen_log = float_up(std::max(old[std::size_t(i)], cost) + 1e-6);
-        l.seen_at = s.updates;
-        l.seen_cone = s.weigher.in_cone(p - r, p + r);
-    }
-}
-
 double seen_bound(const EraserState &s, FH f, const glm::dvec3 &lo, const glm::dvec3 &hi) {
     if (s.face_seen_dev[f.idx()] < 0.0f)
         return INFINITY;

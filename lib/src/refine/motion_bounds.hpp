@@ -120,13 +120,28 @@ inline double seen_now(const EraserState &s, const LiveNode &l) {
 
 // Before an update's erase of h.v: its ring nodes' seen bounds carried to this view (+inf: none),
 // for carry_seen.
-void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_ring> &old);
+inline void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_ring> &old) {
+    const bool kept = !s.fans_stale && keeps_bounds(s);
+    for (int i = 0; i < h.n; ++i)
+        old[std::size_t(i)] = kept ? seen_now(s, live_node(s, node_of(s, h.r[i]))) : INFINITY;
+}
 
 // After it: each ring node gets back a seen bound, which widen_fans dropped, made under this view:
 // its faces the erase left as they were are within their old bound (`old`), and the new ones
 // within the erase's cost, the exact largest weighted deviation of the samples in the hole. Else
 // the next update walked their fans again (docs/decisions/007-seen-bounds.md).
-void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old);
+inline void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old) {
+    const double cost = h.cost > 0.0 ? std::log(h.cost * (1.0 + 1e-6)) : -INFINITY;
+    for (int i = 0; i < h.n; ++i) {
+        if (!(old[std::size_t(i)] < INFINITY))
+            continue;
+        LiveNode &l = live_node(s, node_of(s, h.r[i]));
+        const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
+        l.seen_log = float_up(std::max(old[std::size_t(i)], cost) + 1e-6);
+        l.seen_at = s.updates;
+        l.seen_cone = s.weigher.in_cone(p - r, p + r);
+    }
+}
 
 // The bound face f's seen bound gives under the current view for nodes in the box [lo, hi] (its
 // swallowed nodes' box), or infinity when it has none that carries over.

@@ -1,6 +1,7 @@
 // The refiner (refine.hpp): a NodeEraser kept alive between frames, moved view to view.
-#include "tinlod/quadtree.hpp"
 #include "tinlod/refine.hpp"
+
+#include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
 
 #include <cassert>

@@ -72,26 +72,23 @@ void NodeEraser::rebind(Mesh &mesh) {
         build_tile_z(*state_); // and these (a pass over every sample)
 }
 
-UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
-    EraserState &s = *state_;
-    assert(s.options.significance.model != SpModel::vertical && erase_below <= recover_above);
-    Mesh &m = *s.mesh;
-    if (s.absent_for_good)
-        throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
-                               "EraseOptions::absent_history to follow a view");
-    UpdateStats stats;
-    const std::int64_t entered = s.entered, fans_kept = s.fans_kept;
+namespace {
+
+// The update's grid sized for the live nodes, and their fan bounds built, if need be.
+void prepare(EraserState &s) {
     if (s.live > k_regrid_ratio * s.grid_live || k_regrid_ratio * s.live < s.grid_live)
         regrid(s);
     if (s.fans_stale)
         rebuild_fans(s);
+}
 
-    // New weights; the old ones tell how far each node's significance fell.
-    Stopwatch clock;
+// The new view's weigher, and how far the eye has moved and the axis turned since each kept view
+// (EraserState::since), for the bounds carried over.
+void new_view(EraserState &s, const View &view) {
     s.view = view;
     s.has_view = true;
     if (s.options.significance.model == SpModel::paper)
-        s.focal_distance = std::max(focal_point(m, view).distance, 1e-9);
+        s.focal_distance = std::max(focal_point(*s.mesh, view).distance, 1e-9);
     s.weigher = Weigher(&s.view, s.options.significance);
     new_weights(s, false);
     s.seen_views[++s.updates % k_seen_views] = view;
@@ -103,15 +100,13 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         d.moved = glm::length(view.eye - then.eye);
         d.turn = std::acos(std::clamp(glm::dot(then.axis(), view.axis()), -1.0, 1.0));
     }
-    stats.ms_weights = clock.ms();
+}
 
-    // recover: a worklist of faces, seeded with every face whose swallowed nodes may exceed the
-    // bound (their largest deviation over the distance to the box they lie in says so, without
-    // visiting them); a face that gets its worst node back is replaced by the fans of the nodes
-    // re-inserted.
-    // The grid skips the cells whose bounds clear every node in them; the walk over the live
-    // nodes rebuilds those bounds (widen_fans raises them as the update changes fans).
-    clock.reset();
+// The recover worklist: every face whose swallowed nodes may exceed `recover_above` (their
+// largest deviation over the distance to the box they lie in says so, without visiting them). The
+// grid skips the cells whose bounds clear every node in them; the walk over the live nodes
+// rebuilds those bounds (widen_fans raises them as the update changes fans).
+std::vector<FH> seed_recover(EraserState &s, double recover_above) {
     std::vector<std::uint8_t> &visit = s.cell_visit;
     visit.resize(s.cells.size());
     for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
@@ -124,8 +119,6 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         cell.reach = 0.0f;
     }
     std::vector<FH> work;
-    std::vector<std::uint32_t> recovered;
-    s.chain.clear(); // the erases since the last update may have changed any choice
     const double log_recover = std::log(recover_above);
     for (LiveNode &l : s.live_list) {
         if (visit[l.cell] && !fan_cleared(s, l, recover_above, log_recover))
@@ -134,6 +127,20 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
         cell.reach = std::max(cell.reach, l.reach);
     }
+    return work;
+}
+
+// Recovers top down until no face of the worklist exceeds `recover_above`: a face whose worst node
+// does gets back the erase that node's recovery waits for that can be undone now, alone, and is
+// checked again with the faces of the node re-inserted. The new fan often brings the worst node
+// within the bound before its whole closure is back (bottom up, most of a closure was erased again
+// by the same update). Returns the nodes recovered.
+std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, double recover_above,
+                                         UpdateStats &stats) {
+    const Mesh &m = *s.mesh;
+    const std::int64_t entered = s.entered, fans_kept = s.fans_kept;
+    std::vector<std::uint32_t> recovered;
+    s.chain.clear(); // the erases since the last update may have changed any choice
     while (!work.empty()) {
         const FH f = work.back();
         work.pop_back();
@@ -143,9 +150,6 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         const std::int32_t u = worst_swallowed(s, f, recover_above).first;
         if (u < 0)
             continue;
-        // Top down: the erase u's recovery waits for that can be undone now comes back alone, and f
-        // is checked again. The new fan often brings u within the bound before its whole closure
-        // is back (bottom up, most of a closure was erased again by the same update).
         const std::uint32_t x = ready_dependency(s, std::uint32_t(u));
         reinsert(s, x);
         ++stats.recovered;
@@ -167,19 +171,21 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     }
     stats.entered = s.entered - entered;
     stats.fans_kept = s.fans_kept - fans_kept;
-    stats.ms_recover = clock.ms();
+    return recovered;
+}
 
-    // erase: only nodes whose cost may have fallen to the bound are re-evaluated.
-    // The grid skips the cells where no node is dirty and every node's cost is over the bound: the
-    // least star deviation times the least weight in the box the stars lie in says so.
-    clock.reset();
+// The live nodes whose cost may have fallen to `erase_below`: the grid skips the cells where no
+// node is dirty and every node's cost is over the bound (the least star deviation times the least
+// weight in the box the stars lie in says so), and each node's lower bound on its cost, carried
+// from the view it was made under, settles most of the rest without a weight.
+std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
+    std::vector<std::uint8_t> &visit = s.cell_visit;
     for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
         Cell &cell = s.cells[c];
         const auto [lo, hi] = cell_box(s, c, double(cell.reach));
         visit[c] = cell.dirty || !(double(cell.star_dev) * s.weigher.lower(lo, hi) > erase_below);
         cell.star_dev = INFINITY;
     }
-    std::vector<std::uint32_t> candidates;
     std::vector<LiveNode *> unsettled;
     const double log_below = std::log(erase_below);
     for (LiveNode &l : s.live_list) {
@@ -211,8 +217,17 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         }
         unsettled.push_back(&l);
     }
-    // The nodes the bounds above did not settle, apart: their flags and their star's height are
-    // each a cache miss, asked for k_ahead nodes ahead (docs/decisions/009-prefetching.md).
+    return unsettled;
+}
+
+// The candidates of the update's erase among the unsettled nodes: those whose star's deviation
+// times its weight now (a lower bound of the cost) does not keep them over `erase_below`, marked
+// dirty; the others keep that bound as their key.
+std::vector<std::uint32_t> pick_candidates(EraserState &s, const std::vector<LiveNode *> &unsettled,
+                                           double erase_below, UpdateStats &stats) {
+    std::vector<std::uint32_t> candidates;
+    // Their flags and their star's height are each a cache miss, asked for k_ahead nodes ahead
+    // (docs/decisions/009-prefetching.md).
     for (std::size_t i = 0; i < unsettled.size(); ++i) {
         if (i + k_ahead < unsettled.size()) {
             const LiveNode &ahead = *unsettled[i + k_ahead];
@@ -240,19 +255,54 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
         s.flags[x] |= k_dirty;
         candidates.push_back(x);
     }
+    return candidates;
+}
+
+// The sweep over the candidates and the rings their erases change, at `erase_below`.
+void erase_candidates(EraserState &s, std::vector<std::uint32_t> candidates, double erase_below,
+                      UpdateStats &stats) {
     s.reerased = 0;
     const std::int64_t evaluations = s.evaluations;
     stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_cap);
     stats.evaluations = s.evaluations - evaluations;
     stats.reerased = s.reerased;
+}
+
+// The update's flags go (the sweep left no live node dirty), and the mesh's arrays are advised
+// again if one grew out of its room.
+void finish(EraserState &s, const std::vector<std::uint32_t> &recovered) {
+    const Mesh &m = *s.mesh;
     for (const std::uint32_t x : recovered)
         s.flags[x] &= std::uint8_t(~k_recovered);
     for (Cell &cell : s.cells)
-        cell.dirty = false; // the sweep left no live node dirty
+        cell.dirty = false;
     if (s.advised[0] &&
         (s.advised[0] != m.points() || (m.n_edges() > 0 && s.advised[1] != &m.edge(EH(0))) ||
          (m.n_faces() > 0 && s.advised[2] != &m.face(FH(0)))))
-        advise_huge(s); // an array grew out of its room
+        advise_huge(s);
+}
+
+} // namespace
+
+UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
+    EraserState &s = *state_;
+    assert(s.options.significance.model != SpModel::vertical && erase_below <= recover_above);
+    if (s.absent_for_good)
+        throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
+                               "EraseOptions::absent_history to follow a view");
+    UpdateStats stats;
+    prepare(s);
+    Stopwatch clock;
+    new_view(s, view);
+    stats.ms_weights = clock.ms();
+    clock.reset();
+    const std::vector<std::uint32_t> recovered =
+        recover_faces(s, seed_recover(s, recover_above), recover_above, stats);
+    stats.ms_recover = clock.ms();
+    clock.reset();
+    erase_candidates(s, pick_candidates(s, unsettled_nodes(s, erase_below), erase_below, stats),
+                     erase_below, stats);
+    finish(s, recovered);
     stats.ms_erase = clock.ms();
     return stats;
 }
