@@ -1,5 +1,5 @@
 // The weight of a deviation seen from one view, k / OD * peripheral(OA), with bounds over boxes:
-// shared by the node erase (decimate.cpp) and the quad-tree retrieval when it bounds the same
+// shared by the node erase (lib/src/erase) and the quad-tree retrieval when it bounds the same
 // weighted error (RetrieveOptions::peripheral).
 #pragma once
 

@@ -41,6 +41,10 @@ namespace tinlod {
 
 class QuadTree;
 
+namespace erase {
+struct EraserState; // the eraser's state (lib/src/erase/state.hpp)
+}
+
 // ---- Hole re-triangulation in the projection plane (paper steps 3-4) --------------------------
 
 // One triangle of a re-triangulated ring: three ring indices, counter-clockwise.
@@ -97,9 +101,9 @@ struct EraseOptions {
     // With absent_history: the TIN is a quad-tree retrieval's (to_lattice_mesh of retrieve). On a
     // square 2^k + 1 grid every ring of a sample it left out is then the regular one (each leaf's
     // fan holds its centre, and each sample enters on the edge RegularRings names), so the
-    // constructor takes them from the lattice without replaying the insertions: 3.4 s of the
-    // refiner's 11 s first frame on 4097², and the replay's 32 bytes per sample while it runs.
-    // Other sizes replay as without it.
+    // constructor takes them from the lattice without replaying the insertions, which took a third
+    // of the refiner's first frame and 32 bytes per sample while they ran
+    // (docs/decisions/019-erase-dem-first-stage.md). Other sizes replay as without it.
     bool retrieval_tin = false;
     // A sparse grid TIN: the mesh's vertices are some of this lattice's samples (the origin
     // property names each, its point as grid_vertices has it), triangulated over the lattice's
@@ -251,10 +255,8 @@ class NodeEraser {
     // Bytes held by the eraser beside the mesh: per-node state, records, rings, free lists.
     std::size_t history_bytes() const;
 
-    struct Impl; // the state, opaque (decimate.cpp)
-
   private:
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<erase::EraserState> state_;
 };
 
 // One-off: erases nodes of `mesh` in place from `view` (null for SpModel::vertical), then removes
@@ -305,7 +307,7 @@ struct DemEraseStats {
 // erase would do node by node where the terrain is smooth. Only the screen model retrieves: the
 // paper model's SP is not a screen error a retrieval could share, and for the vertical model the
 // quad-tree's bounds (any subset of side midpoints) are too loose to spare the erase any work
-// (N42E001 at 1, 5 and 20 m: 0.7-1.3x the time): it starts from greedy insertion instead, where
+// (docs/decisions/019-erase-dem-first-stage.md): it starts from greedy insertion instead, where
 // that keeps few samples (DemEraseOptions::greedy_cap), and erases from there. The others erase
 // from the full grid. Returns the TIN's live nodes and faces (live_copy: the nodes and triangles
 // erase_nodes leaves, in sample order; origin = sample id).

@@ -18,6 +18,10 @@ namespace tinlod {
 
 class NodeSource;
 
+namespace refine {
+struct RefinerState; // the refiner's state (lib/src/refine/refiner.cpp)
+}
+
 struct RefineOptions {
     double tol_px = 1.0;      // tau: screen-space error every frame may show, pixels
     double hysteresis = 0.25; // erase only down to (1 - hysteresis) * tau, recover above tau, so a
@@ -86,10 +90,8 @@ class Refiner {
     // Bytes of the whole structure: the mesh's arrays and the erase history.
     std::size_t bytes() const;
 
-    struct Impl; // the state, opaque (refine.cpp)
-
   private:
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<refine::RefinerState> state_;
 };
 
 } // namespace tinlod
