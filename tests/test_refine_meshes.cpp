@@ -91,8 +91,8 @@ Flight fly_and_check(const Mesh &input, const std::vector<double> &distances) {
         const View view = view_at(distances[i]);
         const FrameStats f = i == 0 ? refiner.first_frame() : refiner.update(view);
         if (i > 0) {
-            flight.recovered += f.recovered;
-            flight.erased += f.erased;
+            flight.recovered += f.update.recovered;
+            flight.erased += f.update.erased;
         }
         Mesh out = refiner.mesh();
         out.garbage_collection();
@@ -107,7 +107,7 @@ Flight fly_and_check(const Mesh &input, const std::vector<double> &distances) {
         every_vertex.samples = 0;
         every_vertex.view = &view;
         EXPECT_LE(hausdorff(input, out, every_vertex).max_screen_px_a_to_b,
-                  options.tol_px * (1.0 + 1e-9));
+                  options.tolerance * (1.0 + 1e-9));
         (i == 0 ? flight.first_nodes : flight.last_nodes) = f.nodes;
     }
     return flight;
@@ -120,14 +120,14 @@ TEST_P(RefineMeshes, FlightTowardKeepsEveryFrameValidAndWithinTau) {
     const Flight f = fly_and_check(input, {2.2, 1.975, 1.75, 1.525, 1.3});
     EXPECT_LT(f.first_nodes, std::int64_t(input.n_vertices())) << "the far frame erased";
     EXPECT_GT(f.last_nodes, f.first_nodes) << "approaching brings nodes back";
-    EXPECT_GT(f.recovered, 0);
+    EXPECT_GT(f.update.recovered, 0);
 }
 
 TEST_P(RefineMeshes, FlightAwayKeepsEveryFrameValidAndWithinTau) {
     const Mesh input = read_mesh(asset(GetParam()));
     const Flight f = fly_and_check(input, {1.3, 1.525, 1.75, 1.975, 2.2});
     EXPECT_LT(f.last_nodes, f.first_nodes) << "receding erases";
-    EXPECT_GT(f.erased, 0);
+    EXPECT_GT(f.update.erased, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scans, RefineMeshes,
