@@ -6,7 +6,7 @@ PKGS="cmake g++ make pkg-config libopenmesh-dev libglm-dev libopenimageio-dev op
 libgeotiff-dev libtiff-dev libproj-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev
 libbenchmark-dev libmeshoptimizer-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
 libosmesa6-dev libgbm-dev libglfw3-dev libimgui-dev xvfb xauth unzip clang-format dpkg-dev file
-binutils $*"
+binutils zlib1g-dev $*"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
