@@ -43,6 +43,8 @@ function ecef (lonDeg, latDeg, h) {
 function readHgt (file) {
   const buf = fs.readFileSync(file)
   const n = Math.round(Math.sqrt(buf.length / 2))
+  const z = new Int16Array(n * n)
+  for (let i = 0; i < n * n; ++i) z[i] = buf.readInt16BE(2 * i)
   const m = /([NS])(\d\d)([EW])(\d\d\d)/i.exec(path.basename(file))
   const lat0 = Number(m[2]) * (m[1].toUpperCase() === 'S' ? -1 : 1)
   const lon0 = Number(m[4]) * (m[3].toUpperCase() === 'W' ? -1 : 1)
@@ -52,7 +54,7 @@ function readHgt (file) {
     lat: (r) => lat0 + 1 - r / (n - 1),
     col: (lon) => (lon - lon0) * (n - 1),
     row: (lat) => (lat0 + 1 - lat) * (n - 1),
-    height: (c, r) => buf.readInt16BE(2 * (r * n + c)) // -32768: a void, no sample
+    height: (c, r) => z[r * n + c] // -32768: a void, no sample
   }
 }
 
@@ -172,7 +174,7 @@ for (const [key, t] of tiles) {
 
   if (!checkError) continue
   // The error at every DEM sample inside the tile: its triangle found through a grid of buckets.
-  const B = 64; const cell = 32768 / B
+  const B = Math.max(4, Math.min(128, Math.ceil(Math.sqrt(tri.length / 3)))); const cell = 32768 / B
   const buckets = Array.from({ length: B * B }, () => [])
   for (let i = 0; i < tri.length; i += 3) {
     const us = [t.u[tri[i]], t.u[tri[i + 1]], t.u[tri[i + 2]]]; const vs = [t.v[tri[i]], t.v[tri[i + 1]], t.v[tri[i + 2]]]
