@@ -80,7 +80,7 @@ GeoRect footprint(const Heightfield &d, const std::string &path) {
                                     glm::dvec2(0, r), glm::dvec2(d.width - 1, r)})
             outline.emplace_back(d.native_x0 + p.x * d.native_dx, d.native_y0 + p.y * d.native_dy);
     }
-    const auto geo = tiles::transform_points(d.native_epsg, 4326, outline, path);
+    const auto geo = tiles::CrsTransform(d.native_epsg, 4326, path).apply(outline);
     GeoRect box{INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (const glm::dvec2 &p : geo) {
         if (std::isnan(p.x))
@@ -102,7 +102,7 @@ glm::dvec2 spacing_degrees(const Heightfield &d, const std::string &path) {
     const glm::dvec2 c(d.native_x0 + 0.5 * (d.width - 1) * d.native_dx,
                        d.native_y0 + 0.5 * (d.height - 1) * d.native_dy);
     const std::vector<glm::dvec2> pts{c, c + glm::dvec2(d.native_dx, 0), c + glm::dvec2(0, d.native_dy)};
-    const auto geo = tiles::transform_points(d.native_epsg, 4326, pts, path);
+    const auto geo = tiles::CrsTransform(d.native_epsg, 4326, path).apply(pts);
     const glm::dvec2 s(glm::length(geo[1] - geo[0]), glm::length(geo[2] - geo[0]));
     if (!(s.x > 0.0) || !(s.y > 0.0))
         throw Error(path, "its spacing does not transform to degrees");
@@ -122,9 +122,8 @@ GeoLattice warp(const std::vector<Heightfield> &dems, const std::vector<std::str
         all.north = std::max(all.north, boxes[k].north);
     }
     // Aligned to the first DEM's south-west sample, so a geographic DEM keeps its own grid.
-    const auto sw = tiles::transform_points(
-        dems[0].native_epsg, 4326, std::vector{glm::dvec2(dems[0].native_x0, dems[0].native_y0)},
-        paths[0])[0];
+    const auto sw = tiles::CrsTransform(dems[0].native_epsg, 4326, paths[0])
+                        .apply(std::vector{glm::dvec2(dems[0].native_x0, dems[0].native_y0)})[0];
     GeoLattice g;
     g.resampled = true;
     g.dlon = step.x, g.dlat = step.y;
@@ -141,12 +140,13 @@ GeoLattice warp(const std::vector<Heightfield> &dems, const std::vector<std::str
         const auto i1 = std::min<std::int64_t>(w - 1, std::int64_t(std::ceil((boxes[k].east - g.lon0) / g.dlon)));
         const auto j0 = std::max<std::int64_t>(0, std::int64_t(std::floor((boxes[k].south - g.lat0) / g.dlat)));
         const auto j1 = std::min<std::int64_t>(h - 1, std::int64_t(std::ceil((boxes[k].north - g.lat0) / g.dlat)));
+        const tiles::CrsTransform to_dem(4326, d.native_epsg, paths[k]);
         std::vector<glm::dvec2> row;
         for (std::int64_t j = j0; j <= j1; ++j) {
             row.clear();
             for (std::int64_t i = i0; i <= i1; ++i)
                 row.emplace_back(g.lon(i), g.lat(j));
-            const auto native = tiles::transform_points(4326, d.native_epsg, row, paths[k]);
+            const auto native = to_dem.apply(row);
             for (std::int64_t i = i0; i <= i1; ++i) {
                 float &post = g.z[std::size_t(j) * std::size_t(w) + std::size_t(i)];
                 const glm::dvec2 p = native[std::size_t(i - i0)];

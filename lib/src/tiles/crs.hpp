@@ -3,16 +3,29 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace tinlod::tiles {
 
-// Transforms `points` (x east / longitude first, y north / latitude second, whatever the CRS's own
-// axis order) from EPSG:from to EPSG:to; a point PROJ cannot transform comes back as NaN. Throws
-// Error(subject, ...) when PROJ knows no transformation between the two.
-std::vector<glm::dvec2> transform_points(int from, int to, std::span<const glm::dvec2> points,
-                                         const std::string &subject);
+// A transformation from EPSG:from to EPSG:to, made once (PROJ's set-up reads its database) and
+// applied to many points. Points are x east / longitude first, y north / latitude second, whatever
+// the CRS's own axis order.
+class CrsTransform {
+  public:
+    // Throws Error(subject, ...) when PROJ knows no transformation between the two.
+    CrsTransform(int from, int to, const std::string &subject);
+    ~CrsTransform();
+    CrsTransform(const CrsTransform &) = delete;
+    CrsTransform &operator=(const CrsTransform &) = delete;
+    // The points transformed; one PROJ cannot transform comes back as NaN.
+    std::vector<glm::dvec2> apply(std::span<const glm::dvec2> points) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 } // namespace tinlod::tiles

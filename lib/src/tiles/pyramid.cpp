@@ -95,12 +95,14 @@ std::vector<TileRange> rectangles(const std::vector<TileId> &tiles) {
     return out;
 }
 
-void write_bytes(const std::string &path, const std::vector<std::uint8_t> &bytes) {
+// Writes a tile to `path`; an error names `shown`, its place in the tile set.
+void write_bytes(const std::string &path, const std::vector<std::uint8_t> &bytes,
+                 const std::string &shown) {
     std::ofstream out(path, std::ios::binary);
     out.write(reinterpret_cast<const char *>(bytes.data()), std::streamsize(bytes.size()));
     out.close();
     if (!out)
-        throw Error(path, "cannot write the tile");
+        throw Error(shown, "cannot write the tile");
 }
 
 } // namespace
@@ -180,10 +182,11 @@ PyramidStats write_pyramid(const GeoLattice &g, const std::string &dir,
                     try {
                         const TileMesh m = build_tile(g, t, options.tile, range_of);
                         const std::vector<std::uint8_t> bytes = gzip_bytes(encode_quantized_mesh(m));
-                        write_bytes((fs::path(path) / std::to_string(t.x) /
-                                     (std::to_string(t.y) + ".terrain"))
-                                        .string(),
-                                    bytes);
+                        const fs::path name = fs::path(std::to_string(t.z)) /
+                                              std::to_string(t.x) /
+                                              (std::to_string(t.y) + ".terrain");
+                        write_bytes((fs::path(path).parent_path() / name).string(), bytes,
+                                    (fs::path(dir) / name).string());
                         const std::lock_guard<std::mutex> guard(lock);
                         ++ls.tiles;
                         ls.triangles += std::int64_t(m.triangles.size() / 3);
