@@ -43,7 +43,8 @@ std::string quoted(const std::string &path) {
 std::pair<int, nlohmann::json> check_tiles(const std::string &dir, const std::string &dems) {
     const std::string script = std::string(TINLOD_MESHES_DIR) + "/../tests/tiles/check_tiles.mjs";
     const std::string out = dir + ".check.json";
-    const int rc = std::system(("node '" + script + "' '" + dir + "' " + dems + " > '" + out + "'").c_str());
+    const int rc =
+        std::system(("node '" + script + "' '" + dir + "' " + dems + " > '" + out + "'").c_str());
     nlohmann::json report;
     try {
         report = nlohmann::json::parse(slurp(out));
@@ -167,8 +168,7 @@ TEST_F(SrtmPyramid, TileBuiltAloneIsByteIdenticalToTheSameTileOfTheWholeRun) {
             continue;
         const TileMesh m = build_tile(lattice, {z, x, y}, options);
         const std::vector<std::uint8_t> bytes = gzip_bytes(encode_quantized_mesh(m));
-        EXPECT_EQ(std::string(bytes.begin(), bytes.end()), slurp(f.path().string()))
-            << f.path();
+        EXPECT_EQ(std::string(bytes.begin(), bytes.end()), slurp(f.path().string())) << f.path();
         ++compared;
     }
     EXPECT_GT(compared, 100);
@@ -187,8 +187,8 @@ TEST(Tiles, AdjacentSrtmTilesFormOneCoverageWithNoSeam) {
     const auto stats = nlohmann::json::parse(slurp(dir + "/s.json"));
     EXPECT_EQ(stats["input"]["posts"], 2401 * 1201);
     EXPECT_FALSE(stats["input"]["resampled"].get<bool>());
-    const auto [rc, report] =
-        check_tiles(dir + "/set", quoted(asset("N42E001.hgt")) + " " + quoted(dir + "/N42E002.hgt"));
+    const auto [rc, report] = check_tiles(dir + "/set", quoted(asset("N42E001.hgt")) + " " +
+                                                            quoted(dir + "/N42E002.hgt"));
     EXPECT_EQ(rc, 0) << report.dump();
     EXPECT_TRUE(report["failures"].empty()) << report["failures"].dump(1);
     EXPECT_LE(report["worst_ratio"].get<double>(), 1.0);
@@ -230,8 +230,7 @@ TEST(Tiles, UndergeoreferencedDemIsRefusedAndNoTileSetIsLeft) {
     const std::string dir = temp_dir() + "/set";
     expect_refused(run_cli("tiles '" + asset("crater_u16.png") + "' -o '" + dir + "'"), 1,
                    "crater_u16.png", dir);
-    expect_refused(run_cli("tiles '" + dir + ".missing.hgt' -o '" + dir + "'"), 1, "missing",
-                   dir);
+    expect_refused(run_cli("tiles '" + dir + ".missing.hgt' -o '" + dir + "'"), 1, "missing", dir);
 }
 
 TEST(Tiles, LevelsBeyondTheDemOrOutOfOrderAreUsageErrors) {

@@ -70,7 +70,8 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         if (last > finest)
             throw UsageError("--max-zoom", "level " + std::to_string(last) +
                                                " has tiles narrower than 4 DEM spacings: the "
-                                               "DEMs reach level " + std::to_string(finest));
+                                               "DEMs reach level " +
+                                               std::to_string(finest));
         if (args->min_zoom > last)
             throw UsageError("--min-zoom", "is past the last level, " + std::to_string(last));
         PyramidOptions po;
@@ -108,31 +109,30 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                               {"rebuilt", l.rebuilt}});
         }
         if (!args->stats.empty())
-            write_json(args->stats,
-                       {{"input",
-                         {{"files", args->inputs},
-                          {"posts", std::int64_t(lattice.width) * lattice.height},
-                          {"covered", lattice.covered},
-                          {"resampled", lattice.resampled},
-                          {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
-                        {"output",
-                         {{"dir", args->output},
-                          {"tiles", tiles},
-                          {"triangles", triangles},
-                          {"bytes", bytes},
-                          {"min_zoom", args->min_zoom},
-                          {"max_zoom", last}}},
-                        {"levels", levels},
-                        {"error", {{"worst_ratio", worst}}},
-                        {"time_ms", times.json()},
-                        {"tiles_per_s", double(tiles) / (ps.ms / 1000.0)},
-                        {"threads", max_threads()},
-                        {"peak_rss_mb", peak_rss_mb()}});
+            write_json(args->stats, {{"input",
+                                      {{"files", args->inputs},
+                                       {"posts", std::int64_t(lattice.width) * lattice.height},
+                                       {"covered", lattice.covered},
+                                       {"resampled", lattice.resampled},
+                                       {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
+                                     {"output",
+                                      {{"dir", args->output},
+                                       {"tiles", tiles},
+                                       {"triangles", triangles},
+                                       {"bytes", bytes},
+                                       {"min_zoom", args->min_zoom},
+                                       {"max_zoom", last}}},
+                                     {"levels", levels},
+                                     {"error", {{"worst_ratio", worst}}},
+                                     {"time_ms", times.json()},
+                                     {"tiles_per_s", double(tiles) / (ps.ms / 1000.0)},
+                                     {"threads", max_threads()},
+                                     {"peak_rss_mb", peak_rss_mb()}});
         std::printf("%s: %lld tiles on levels %d to %d, %lld triangles, %.1f MB in %s; worst "
                     "error %.3g of the level's bound\n",
                     args->output.c_str(), static_cast<long long>(tiles), args->min_zoom, last,
-                    static_cast<long long>(triangles), double(bytes) / 1e6,
-                    times.summary().c_str(), worst);
+                    static_cast<long long>(triangles), double(bytes) / 1e6, times.summary().c_str(),
+                    worst);
     };
 });
 

@@ -1,7 +1,7 @@
 // Checks a quantized-mesh tile set with code tinlod's writer does not share: every tile is read by
 // @here/quantized-mesh-decoder (npm), and the DEM (an SRTM .hgt) by the few lines below.
 //
-//   node check_tiles.mjs DIR DEM.hgt [--no-error]
+//   node check_tiles.mjs DIR [DEM.hgt...] [--no-error]
 //
 // Prints one JSON object: counts, the worst error over the level's bound, and `failures` (empty
 // when every check holds). Checks: layer.json's fields and that `available` lists exactly the
@@ -9,15 +9,17 @@
 // hold exactly the vertices on their edges, every vertex inside the bounding sphere, the horizon
 // occlusion point as CesiumJS computes one (EllipsoidalOccluder) or farther; neighbours of a level
 // share their common edge vertex for vertex (the same place, the same decoded height); and every
-// DEM sample inside a tile is within the level's error of the decoded TIN.
+// DEM sample inside a tile is within the level's error of the decoded TIN (where DEMs overlap, the
+// first one's samples, as tinlod takes them).
 import decoder from '@here/quantized-mesh-decoder'
 import fs from 'node:fs'
 import path from 'node:path'
 import zlib from 'node:zlib'
 
 const decode = decoder.default
-const [dir, demPath, ...flags] = process.argv.slice(2)
-const checkError = !flags.includes('--no-error')
+const [dir, ...rest] = process.argv.slice(2)
+const checkError = !rest.includes('--no-error')
+const demPaths = rest.filter((a) => !a.startsWith('--'))
 const failures = []
 const fail = (what) => { if (failures.length < 50) failures.push(what) }
 
@@ -54,7 +56,8 @@ function readHgt (file) {
     lat: (r) => lat0 + 1 - r / (n - 1),
     col: (lon) => (lon - lon0) * (n - 1),
     row: (lat) => (lat0 + 1 - lat) * (n - 1),
-    height: (c, r) => z[r * n + c] // -32768: a void, no sample
+    height: (c, r) => z[r * n + c], // -32768: a void, no sample
+    covers: (lon, lat) => lon >= lon0 && lon <= lon0 + 1 && lat >= lat0 && lat <= lat0 + 1
   }
 }
 
@@ -98,7 +101,7 @@ for (const k of listed) if (!onDisk.has(k)) fail(`${k}: in available, not on dis
 const tiles = new Map()
 for (const k of onDisk) tiles.set(k, readTile(path.join(dir, `${k}.terrain`)))
 
-const dem = checkError ? readHgt(demPath) : null
+const dems = checkError ? demPaths.map(readHgt) : []
 const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, levels: {} }
 
 // CesiumJS's EllipsoidalOccluder.computeMagnitude, for the occlusion point's check.
@@ -198,21 +201,24 @@ for (const [key, t] of tiles) {
   }
   const bound = levelError(z)
   let worst = 0
-  const c0 = Math.max(0, Math.ceil(dem.col(rect.west))); const c1 = Math.min(dem.n - 1, Math.floor(dem.col(rect.east)))
-  const r0 = Math.max(0, Math.ceil(dem.row(rect.north))); const r1 = Math.min(dem.n - 1, Math.floor(dem.row(rect.south)))
-  for (let r = r0; r <= r1; ++r) {
-    const pv = ((dem.lat(r) - rect.south) / (rect.north - rect.south)) * 32767
-    if (pv < 0 || pv > 32767) continue
-    for (let c = c0; c <= c1; ++c) {
-      const pu = ((dem.lon(c) - rect.west) / (rect.east - rect.west)) * 32767
-      const sample = dem.height(c, r)
-      if (pu < 0 || pu > 32767 || sample === -32768) continue
-      const h = heightAt(pu, pv)
-      summary.samples++
-      if (Number.isNaN(h)) { fail(`${key}: sample (${c}, ${r}) under no triangle`); continue }
-      worst = Math.max(worst, Math.abs(h - sample) / bound)
+  dems.forEach((dem, k) => {
+    const c0 = Math.max(0, Math.ceil(dem.col(rect.west))); const c1 = Math.min(dem.n - 1, Math.floor(dem.col(rect.east)))
+    const r0 = Math.max(0, Math.ceil(dem.row(rect.north))); const r1 = Math.min(dem.n - 1, Math.floor(dem.row(rect.south)))
+    for (let r = r0; r <= r1; ++r) {
+      const pv = ((dem.lat(r) - rect.south) / (rect.north - rect.south)) * 32767
+      if (pv < 0 || pv > 32767) continue
+      for (let c = c0; c <= c1; ++c) {
+        const pu = ((dem.lon(c) - rect.west) / (rect.east - rect.west)) * 32767
+        const sample = dem.height(c, r)
+        if (pu < 0 || pu > 32767 || sample === -32768) continue
+        if (dems.slice(0, k).some((d) => d.covers(dem.lon(c), dem.lat(r)))) continue
+        const h = heightAt(pu, pv)
+        summary.samples++
+        if (Number.isNaN(h)) { fail(`${key}: sample (${c}, ${r}) under no triangle`); continue }
+        worst = Math.max(worst, Math.abs(h - sample) / bound)
+      }
     }
-  }
+  })
   if (worst > 1) fail(`${key}: error ${(worst * bound).toFixed(3)} m over the level's ${bound.toFixed(3)} m`)
   lv.worst_ratio = Math.max(lv.worst_ratio, worst)
   summary.worst_ratio = Math.max(summary.worst_ratio, worst)

@@ -33,9 +33,9 @@ namespace tinlod {
 // ---- The tiling scheme ------------------------------------------------------------------------
 
 struct TileId {
-    int z = 0;           // level
-    std::int64_t x = 0;  // column from the west (-180 degrees), 0 .. 2^(z+1) - 1
-    std::int64_t y = 0;  // row from the south (-90 degrees, TMS), 0 .. 2^z - 1
+    int z = 0;          // level
+    std::int64_t x = 0; // column from the west (-180 degrees), 0 .. 2^(z+1) - 1
+    std::int64_t y = 0; // row from the south (-90 degrees, TMS), 0 .. 2^z - 1
     bool operator==(const TileId &) const = default;
 };
 
@@ -98,11 +98,11 @@ struct TileOptions {
 
 struct TileMesh {
     TileId id;
-    std::vector<std::uint16_t> u, v, h;  // quantized vertices (0 .. 32767)
+    std::vector<std::uint16_t> u, v, h;   // quantized vertices (0 .. 32767)
     std::vector<std::uint32_t> triangles; // 3 vertex indices each, counter-clockwise in u/v
     std::vector<std::uint32_t> west, south, east, north; // edge vertices, in CesiumJS's order
-    float min_height = 0, max_height = 0; // the header's height range
-    std::vector<std::uint8_t> normals;    // 2 bytes per vertex, or empty
+    float min_height = 0, max_height = 0;                // the header's height range
+    std::vector<std::uint8_t> normals;                   // 2 bytes per vertex, or empty
     // Measured as a decoder reads the tile: the largest |TIN - sample| over the covered posts
     // inside the tile, and that over level_error(z).
     double max_error = 0.0;

@@ -33,8 +33,7 @@ bool on_one_grid(const std::vector<Heightfield> &dems) {
 
 void check_size(const std::string &subject, std::int64_t w, std::int64_t h) {
     if (w <= 0 || h <= 0 || w > k_max_raster_samples / h)
-        throw Error(subject, "the DEMs' union is " + std::to_string(w) + " x " +
-                                 std::to_string(h) +
+        throw Error(subject, "the DEMs' union is " + std::to_string(w) + " x " + std::to_string(h) +
                                  " posts, beyond the supported maximum of 2^31");
 }
 
@@ -76,8 +75,8 @@ GeoRect footprint(const Heightfield &d, const std::string &path) {
     const int steps = 64;
     for (int k = 0; k <= steps; ++k) {
         const double c = double(d.width - 1) * k / steps, r = double(d.height - 1) * k / steps;
-        for (const glm::dvec2 &p : {glm::dvec2(c, 0), glm::dvec2(c, d.height - 1),
-                                    glm::dvec2(0, r), glm::dvec2(d.width - 1, r)})
+        for (const glm::dvec2 &p : {glm::dvec2(c, 0), glm::dvec2(c, d.height - 1), glm::dvec2(0, r),
+                                    glm::dvec2(d.width - 1, r)})
             outline.emplace_back(d.native_x0 + p.x * d.native_dx, d.native_y0 + p.y * d.native_dy);
     }
     const auto geo = tiles::CrsTransform(d.native_epsg, 4326, path).apply(outline);
@@ -101,7 +100,8 @@ glm::dvec2 spacing_degrees(const Heightfield &d, const std::string &path) {
         return {d.native_dx, d.native_dy};
     const glm::dvec2 c(d.native_x0 + 0.5 * (d.width - 1) * d.native_dx,
                        d.native_y0 + 0.5 * (d.height - 1) * d.native_dy);
-    const std::vector<glm::dvec2> pts{c, c + glm::dvec2(d.native_dx, 0), c + glm::dvec2(0, d.native_dy)};
+    const std::vector<glm::dvec2> pts{c, c + glm::dvec2(d.native_dx, 0),
+                                      c + glm::dvec2(0, d.native_dy)};
     const auto geo = tiles::CrsTransform(d.native_epsg, 4326, path).apply(pts);
     const glm::dvec2 s(glm::length(geo[1] - geo[0]), glm::length(geo[2] - geo[0]));
     if (!(s.x > 0.0) || !(s.y > 0.0))
@@ -136,10 +136,14 @@ GeoLattice warp(const std::vector<Heightfield> &dems, const std::vector<std::str
     g.z.assign(std::size_t(w) * std::size_t(h), NAN);
     for (std::size_t k = 0; k < dems.size(); ++k) {
         const Heightfield &d = dems[k];
-        const auto i0 = std::max<std::int64_t>(0, std::int64_t(std::floor((boxes[k].west - g.lon0) / g.dlon)));
-        const auto i1 = std::min<std::int64_t>(w - 1, std::int64_t(std::ceil((boxes[k].east - g.lon0) / g.dlon)));
-        const auto j0 = std::max<std::int64_t>(0, std::int64_t(std::floor((boxes[k].south - g.lat0) / g.dlat)));
-        const auto j1 = std::min<std::int64_t>(h - 1, std::int64_t(std::ceil((boxes[k].north - g.lat0) / g.dlat)));
+        const auto i0 =
+            std::max<std::int64_t>(0, std::int64_t(std::floor((boxes[k].west - g.lon0) / g.dlon)));
+        const auto i1 = std::min<std::int64_t>(
+            w - 1, std::int64_t(std::ceil((boxes[k].east - g.lon0) / g.dlon)));
+        const auto j0 =
+            std::max<std::int64_t>(0, std::int64_t(std::floor((boxes[k].south - g.lat0) / g.dlat)));
+        const auto j1 = std::min<std::int64_t>(
+            h - 1, std::int64_t(std::ceil((boxes[k].north - g.lat0) / g.dlat)));
         const tiles::CrsTransform to_dem(4326, d.native_epsg, paths[k]);
         std::vector<glm::dvec2> row;
         for (std::int64_t j = j0; j <= j1; ++j) {

@@ -11,9 +11,9 @@
 
 namespace tinlod::tiles {
 
-inline constexpr double k_wgs84_a = 6378137.0;            // equatorial radius, metres
-inline constexpr double k_wgs84_b = 6356752.3142451793;   // polar radius, metres
-inline constexpr int k_quantized_max = 32767;             // u, v and height run 0 .. this
+inline constexpr double k_wgs84_a = 6378137.0;          // equatorial radius, metres
+inline constexpr double k_wgs84_b = 6356752.3142451793; // polar radius, metres
+inline constexpr int k_quantized_max = 32767;           // u, v and height run 0 .. this
 
 // Earth-centred, Earth-fixed position of longitude/latitude (degrees) at height h (metres).
 glm::dvec3 ecef(double lon, double lat, double h);

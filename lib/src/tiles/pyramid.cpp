@@ -34,9 +34,11 @@ void candidate_span(const GeoLattice &g, int z, std::int64_t &x0, std::int64_t &
     const double size = 180.0 / std::ldexp(1.0, z);
     const std::int64_t nx = std::int64_t(2) << z, ny = std::int64_t(1) << z;
     x0 = std::clamp<std::int64_t>(std::int64_t(std::floor((g.lon(-1) + 180.0) / size)), 0, nx - 1);
-    x1 = std::clamp<std::int64_t>(std::int64_t(std::floor((g.lon(g.width) + 180.0) / size)), 0, nx - 1);
+    x1 = std::clamp<std::int64_t>(std::int64_t(std::floor((g.lon(g.width) + 180.0) / size)), 0,
+                                  nx - 1);
     y0 = std::clamp<std::int64_t>(std::int64_t(std::floor((g.lat(-1) + 90.0) / size)), 0, ny - 1);
-    y1 = std::clamp<std::int64_t>(std::int64_t(std::floor((g.lat(g.height) + 90.0) / size)), 0, ny - 1);
+    y1 = std::clamp<std::int64_t>(std::int64_t(std::floor((g.lat(g.height) + 90.0) / size)), 0,
+                                  ny - 1);
 }
 
 LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options) {
@@ -138,8 +140,8 @@ nlohmann::json layer_json(const GeoLattice &g, const std::vector<std::vector<Til
         {"minzoom", 0},
         {"maxzoom", int(available.size()) - 1},
         {"available", levels},
-        {"extensions", normals ? nlohmann::json::array({"octvertexnormals"})
-                               : nlohmann::json::array()}};
+        {"extensions",
+         normals ? nlohmann::json::array({"octvertexnormals"}) : nlohmann::json::array()}};
     return layer;
 }
 
@@ -181,9 +183,9 @@ PyramidStats write_pyramid(const GeoLattice &g, const std::string &dir,
                     const TileId &t = lr.written[k];
                     try {
                         const TileMesh m = build_tile(g, t, options.tile, range_of);
-                        const std::vector<std::uint8_t> bytes = gzip_bytes(encode_quantized_mesh(m));
-                        const fs::path name = fs::path(std::to_string(t.z)) /
-                                              std::to_string(t.x) /
+                        const std::vector<std::uint8_t> bytes =
+                            gzip_bytes(encode_quantized_mesh(m));
+                        const fs::path name = fs::path(std::to_string(t.z)) / std::to_string(t.x) /
                                               (std::to_string(t.y) + ".terrain");
                         write_bytes((fs::path(path).parent_path() / name).string(), bytes,
                                     (fs::path(dir) / name).string());

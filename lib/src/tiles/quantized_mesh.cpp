@@ -63,8 +63,8 @@ std::vector<std::uint8_t> encode_quantized_mesh(const TileMesh &tile) {
         points.push_back(tiles::ecef(lon(tile.u[v]), lat(tile.v[v]), h));
     }
     const tiles::Sphere sphere = tiles::bounding_sphere(points);
-    const glm::dvec3 centre =
-        tiles::ecef(0.5 * (rect.west + rect.east), 0.5 * (rect.south + rect.north), 0.5 * (vmin + vmax));
+    const glm::dvec3 centre = tiles::ecef(0.5 * (rect.west + rect.east),
+                                          0.5 * (rect.south + rect.north), 0.5 * (vmin + vmax));
     const glm::dvec3 occlusion = tiles::horizon_occlusion_point(points, sphere.centre, lo);
 
     Writer w;
@@ -103,7 +103,8 @@ std::vector<std::uint8_t> encode_quantized_mesh(const TileMesh &tile) {
         if (k == highest)
             ++highest;
     }
-    for (const std::vector<std::uint32_t> *edge : {&tile.west, &tile.south, &tile.east, &tile.north}) {
+    for (const std::vector<std::uint32_t> *edge :
+         {&tile.west, &tile.south, &tile.east, &tile.north}) {
         w.put(std::uint32_t(edge->size()));
         for (const std::uint32_t v : *edge)
             put_index(index[v]);

@@ -120,13 +120,15 @@ std::vector<EdgePoint> edge_profile(const Surface &s, bool vertical, double at, 
     const GeoLattice &g = s.g;
     const double origin = vertical ? g.lat0 : g.lon0, step = vertical ? g.dlat : g.dlon;
     const std::int64_t count = vertical ? g.height : g.width;
-    const LineSpec across = vertical ? line_spec(g.lon0, g.dlon, at, z)
-                                     : line_spec(g.lat0, g.dlat, at, z);
+    const LineSpec across =
+        vertical ? line_spec(g.lon0, g.dlon, at, z) : line_spec(g.lat0, g.dlat, at, z);
     const double start = vertical ? corner_height(s, at, from, z) : corner_height(s, from, at, z);
     const double end = vertical ? corner_height(s, at, to, z) : corner_height(s, to, at, z);
     std::vector<EdgePoint> out{{0.0, start}};
-    const std::int64_t lo = std::max<std::int64_t>(-1, std::int64_t(std::floor((from - origin) / step)));
-    const std::int64_t hi = std::min<std::int64_t>(count, std::int64_t(std::ceil((to - origin) / step)));
+    const std::int64_t lo =
+        std::max<std::int64_t>(-1, std::int64_t(std::floor((from - origin) / step)));
+    const std::int64_t hi =
+        std::min<std::int64_t>(count, std::int64_t(std::ceil((to - origin) / step)));
     for (std::int64_t k = lo; k <= hi; ++k) {
         const double a = offset_units(origin, step, k, from, z);
         const double b = offset_units(origin, step, k, to, z);
@@ -144,8 +146,8 @@ std::vector<EdgePoint> edge_profile(const Surface &s, bool vertical, double at, 
 // A sample that rounds to the place of an end of its span is never kept (two vertices at one
 // place).
 struct EdgeVertex {
-    int t = 0;       // place along the edge, u/v units
-    double h = 0.0;  // height, a multiple of the edge's step
+    int t = 0;      // place along the edge, u/v units
+    double h = 0.0; // height, a multiple of the edge's step
 };
 std::vector<EdgeVertex> simplify_edge(const std::vector<EdgePoint> &p, double bound, double step,
                                       double start_step, double end_step) {
@@ -199,10 +201,12 @@ AxisLines interior_lines(double origin, double step, std::int64_t posts, double 
     std::int64_t b = std::int64_t(std::ceil((hi - origin) / step)) + 1;
     while (!(offset_units(origin, step, b, hi, z) <= -k_snap_units))
         --b;
-    const auto up = [&](std::int64_t x) { return x >= 0 ? (x + stride - 1) / stride * stride
-                                                        : -((-x) / stride * stride); };
-    const auto down = [&](std::int64_t x) { return x >= 0 ? x / stride * stride
-                                                          : -((-x + stride - 1) / stride * stride); };
+    const auto up = [&](std::int64_t x) {
+        return x >= 0 ? (x + stride - 1) / stride * stride : -((-x) / stride * stride);
+    };
+    const auto down = [&](std::int64_t x) {
+        return x >= 0 ? x / stride * stride : -((-x + stride - 1) / stride * stride);
+    };
     const std::int64_t in_lo = up(a), in_hi = down(b);
     AxisLines l;
     l.stride = stride;
@@ -245,7 +249,7 @@ struct InteriorTin {
 InteriorTin interior_tin(const Heightfield &win, double bound) {
     GreedyOptions go;
     go.max_error = bound;
-    go.seed_step = 16; // the erase drops the seed's nodes the insertion did not need
+    go.seed_step = 16;                // the erase drops the seed's nodes the insertion did not need
     go.slope_margin = std::sqrt(0.5); // a vertex moves by up to half a unit in u and v
     const GreedyTin greedy = greedy_tin(win, go);
     Mesh mesh = to_sparse_lattice_mesh(greedy.tin, win);
@@ -278,7 +282,8 @@ void zip(const std::vector<std::uint32_t> &outer, const std::vector<std::uint32_
     std::size_t i = 0, j = 0;
     while (i + 1 < outer.size() || j + 1 < inner.size()) {
         std::array<std::uint32_t, 3> t{};
-        if (j + 1 == inner.size() || (i + 1 < outer.size() && key(outer[i + 1]) <= key(inner[j + 1]))) {
+        if (j + 1 == inner.size() ||
+            (i + 1 < outer.size() && key(outer[i + 1]) <= key(inner[j + 1]))) {
             t = {outer[i], outer[i + 1], inner[j]};
             ++i;
         } else {
@@ -286,8 +291,8 @@ void zip(const std::vector<std::uint32_t> &outer, const std::vector<std::uint32_
             ++j;
         }
         const Vertex &p = a.vertices[t[0]], &q = a.vertices[t[1]], &r = a.vertices[t[2]];
-        const std::int64_t area2 = std::int64_t(q.u - p.u) * (r.v - p.v) -
-                                   std::int64_t(q.v - p.v) * (r.u - p.u);
+        const std::int64_t area2 =
+            std::int64_t(q.u - p.u) * (r.v - p.v) - std::int64_t(q.v - p.v) * (r.u - p.u);
         if (area2 < 0)
             std::swap(t[1], t[2]);
         a.triangles.insert(a.triangles.end(), t.begin(), t.end());
@@ -338,11 +343,16 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
                 const Quantized &q, const std::vector<std::uint32_t> &triangles) {
     const GeoRect rect = tile_rect(id);
     const int z = id.z;
-    // Posts inside the tile, clipped to the lattice; their u/v places, exactly as the edges see them.
-    std::int64_t i0 = std::max<std::int64_t>(0, std::int64_t(std::floor((rect.west - g.lon0) / g.dlon)));
-    std::int64_t i1 = std::min<std::int64_t>(g.width - 1, std::int64_t(std::ceil((rect.east - g.lon0) / g.dlon)));
-    std::int64_t j0 = std::max<std::int64_t>(0, std::int64_t(std::floor((rect.south - g.lat0) / g.dlat)));
-    std::int64_t j1 = std::min<std::int64_t>(g.height - 1, std::int64_t(std::ceil((rect.north - g.lat0) / g.dlat)));
+    // Posts inside the tile, clipped to the lattice; their u/v places, exactly as the edges see
+    // them.
+    std::int64_t i0 =
+        std::max<std::int64_t>(0, std::int64_t(std::floor((rect.west - g.lon0) / g.dlon)));
+    std::int64_t i1 =
+        std::min<std::int64_t>(g.width - 1, std::int64_t(std::ceil((rect.east - g.lon0) / g.dlon)));
+    std::int64_t j0 =
+        std::max<std::int64_t>(0, std::int64_t(std::floor((rect.south - g.lat0) / g.dlat)));
+    std::int64_t j1 = std::min<std::int64_t>(
+        g.height - 1, std::int64_t(std::ceil((rect.north - g.lat0) / g.dlat)));
     Measure m;
     if (i1 < i0 || j1 < j0)
         return m;
@@ -358,9 +368,11 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
         std::array<glm::dvec3, 3> c;
         for (int k = 0; k < 3; ++k) {
             const Vertex &v = vs[triangles[t + std::size_t(k)]];
-            c[std::size_t(k)] = {double(v.u), double(v.v), decoded_height(q, q.codes[triangles[t + std::size_t(k)]])};
+            c[std::size_t(k)] = {double(v.u), double(v.v),
+                                 decoded_height(q, q.codes[triangles[t + std::size_t(k)]])};
         }
-        const double area2 = (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
+        const double area2 =
+            (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
         if (area2 < 0.0)
             ++m.flipped;
         if (area2 <= 0.0)
@@ -368,7 +380,8 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
         // The plane z = a u + b v + d through the three corners.
         const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
         const double a = -n.x / n.z, b = -n.y / n.z, d = c[0].z - a * c[0].x - b * c[0].y;
-        const double vlo = std::min({c[0].y, c[1].y, c[2].y}), vhi = std::max({c[0].y, c[1].y, c[2].y});
+        const double vlo = std::min({c[0].y, c[1].y, c[2].y}),
+                     vhi = std::max({c[0].y, c[1].y, c[2].y});
         const auto jl = std::lower_bound(pv.begin(), pv.end(), vlo - k_eps) - pv.begin();
         const auto jh = std::upper_bound(pv.begin(), pv.end(), vhi + k_eps) - pv.begin();
         for (auto jr = jl; jr < jh; ++jr) {
@@ -385,7 +398,9 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
                     ulo = std::min({ulo, p.x, r.x}), uhi = std::max({uhi, p.x, r.x});
                     continue;
                 }
-                const double x = p.x + (std::clamp(y, std::min(p.y, r.y), std::max(p.y, r.y)) - p.y) / (r.y - p.y) * (r.x - p.x);
+                const double x =
+                    p.x + (std::clamp(y, std::min(p.y, r.y), std::max(p.y, r.y)) - p.y) /
+                              (r.y - p.y) * (r.x - p.x);
                 ulo = std::min(ulo, x), uhi = std::max(uhi, x);
             }
             const auto il = std::lower_bound(pu.begin(), pu.end(), ulo - k_eps) - pu.begin();
@@ -402,7 +417,8 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
     }
     for (std::size_t jr = 0; jr < pv.size(); ++jr)
         for (std::size_t ir = 0; ir < pu.size(); ++ir)
-            if (inside(pu[ir]) && inside(pv[jr]) && !std::isnan(g.at(i0 + std::int64_t(ir), j0 + std::int64_t(jr)))) {
+            if (inside(pu[ir]) && inside(pv[jr]) &&
+                !std::isnan(g.at(i0 + std::int64_t(ir), j0 + std::int64_t(jr)))) {
                 ++m.samples;
                 m.missed += seen[jr * pu.size() + ir] ? 0 : 1;
             }
@@ -416,7 +432,8 @@ glm::dvec3 dem_normal(const Surface &s, double lon, double lat) {
     const auto i = std::int64_t(std::llround((lon - g.lon0) / g.dlon));
     const auto j = std::int64_t(std::llround((lat - g.lat0) / g.dlat));
     const double p = lat * M_PI / 180.0;
-    const double e2 = 1.0 - (tiles::k_wgs84_b * tiles::k_wgs84_b) / (tiles::k_wgs84_a * tiles::k_wgs84_a);
+    const double e2 =
+        1.0 - (tiles::k_wgs84_b * tiles::k_wgs84_b) / (tiles::k_wgs84_a * tiles::k_wgs84_a);
     const double w = 1.0 - e2 * std::sin(p) * std::sin(p);
     const double east = g.dlon * M_PI / 180.0 * tiles::k_wgs84_a / std::sqrt(w) * std::cos(p);
     const double north = g.dlat * M_PI / 180.0 * tiles::k_wgs84_a * (1.0 - e2) / (w * std::sqrt(w));
@@ -436,8 +453,10 @@ HeightRange tile_height_range(const GeoLattice &g, const TileId &tile, const Til
     const std::int64_t j1 = std::int64_t(std::floor((rect.north - g.lat0) / g.dlat)) + 1;
     HeightRange r{INFINITY, -INFINITY, false};
     bool fill = i0 < 0 || j0 < 0 || i1 >= g.width || j1 >= g.height;
-    for (std::int64_t j = std::max<std::int64_t>(j0, 0); j <= std::min<std::int64_t>(j1, g.height - 1); ++j)
-        for (std::int64_t i = std::max<std::int64_t>(i0, 0); i <= std::min<std::int64_t>(i1, g.width - 1); ++i) {
+    for (std::int64_t j = std::max<std::int64_t>(j0, 0);
+         j <= std::min<std::int64_t>(j1, g.height - 1); ++j)
+        for (std::int64_t i = std::max<std::int64_t>(i0, 0);
+             i <= std::min<std::int64_t>(i1, g.width - 1); ++i) {
             const float h = g.z[std::size_t(j) * std::size_t(g.width) + std::size_t(i)];
             if (std::isnan(h)) {
                 fill = true;
@@ -482,13 +501,14 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
     struct EdgeDef {
         bool vertical;
         double at, from, to;
-        std::pair<int, int> across; // the neighbour sharing it
+        std::pair<int, int> across;                   // the neighbour sharing it
         std::pair<int, int> start_corner, end_corner; // the diagonal neighbours at its ends
     };
-    const std::array<EdgeDef, 4> defs{{{true, rect.west, rect.south, rect.north, {-1, 0}, {-1, -1}, {-1, 1}},
-                                       {false, rect.south, rect.west, rect.east, {0, -1}, {-1, -1}, {1, -1}},
-                                       {true, rect.east, rect.south, rect.north, {1, 0}, {1, -1}, {1, 1}},
-                                       {false, rect.north, rect.west, rect.east, {0, 1}, {-1, 1}, {1, 1}}}};
+    const std::array<EdgeDef, 4> defs{
+        {{true, rect.west, rect.south, rect.north, {-1, 0}, {-1, -1}, {-1, 1}},
+         {false, rect.south, rect.west, rect.east, {0, -1}, {-1, -1}, {1, -1}},
+         {true, rect.east, rect.south, rect.north, {1, 0}, {1, -1}, {1, 1}},
+         {false, rect.north, rect.west, rect.east, {0, 1}, {-1, 1}, {1, 1}}}};
     std::array<std::vector<EdgeVertex>, 4> edge_vertices;
     for (std::size_t e = 0; e < 4; ++e) {
         const EdgeDef &d = defs[e];
@@ -521,9 +541,10 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             stride /= 2;
         }
         if (cols.count < 2 || rows.count < 2)
-            throw Error("tile " + std::to_string(z) + "/" + std::to_string(id.x) + "/" +
-                            std::to_string(id.y),
-                        "narrower than 2 DEM posts inside: the level is beyond the DEM's resolution");
+            throw Error(
+                "tile " + std::to_string(z) + "/" + std::to_string(id.x) + "/" +
+                    std::to_string(id.y),
+                "narrower than 2 DEM posts inside: the level is beyond the DEM's resolution");
         Heightfield win;
         win.width = int(cols.count), win.height = int(rows.count);
         win.dx = double(stride) * g.dlon * u_per_lon;
@@ -536,16 +557,19 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
 
         Assembly a;
         // Corners first (SW, SE, NE, NW), then each edge's inner vertices.
-        const std::array<std::array<int, 2>, 4> corner_uv{{{0, 0}, {k_quantized_max, 0},
-                                                            {k_quantized_max, k_quantized_max},
-                                                            {0, k_quantized_max}}};
+        const std::array<std::array<int, 2>, 4> corner_uv{{{0, 0},
+                                                           {k_quantized_max, 0},
+                                                           {k_quantized_max, k_quantized_max},
+                                                           {0, k_quantized_max}}};
         const std::array<double, 4> corner_h{edge_vertices[0].front().h, edge_vertices[2].front().h,
                                              edge_vertices[2].back().h, edge_vertices[0].back().h};
         for (int k = 0; k < 4; ++k)
-            a.vertices.push_back({corner_uv[std::size_t(k)][0], corner_uv[std::size_t(k)][1], corner_h[std::size_t(k)], true});
+            a.vertices.push_back({corner_uv[std::size_t(k)][0], corner_uv[std::size_t(k)][1],
+                                  corner_h[std::size_t(k)], true});
         // Corner ids at each edge's start and end (west: SW..NW, south: SW..SE, east: SE..NE,
         // north: NW..NE).
-        const std::array<std::pair<std::uint32_t, std::uint32_t>, 4> ends{{{0, 3}, {0, 1}, {1, 2}, {3, 2}}};
+        const std::array<std::pair<std::uint32_t, std::uint32_t>, 4> ends{
+            {{0, 3}, {0, 1}, {1, 2}, {3, 2}}};
         std::array<std::vector<std::uint32_t>, 4> outer;
         for (std::size_t e = 0; e < 4; ++e) {
             outer[e].push_back(ends[e].first);
@@ -595,7 +619,8 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         const Quantized q = quantize(a.vertices, own, step);
         const Measure m = measure(g, id, a.vertices, q, a.triangles);
         const double ratio = m.missed > 0 ? INFINITY : m.max_error / bound;
-        const bool better = m.flipped < best_flipped || (m.flipped == best_flipped && ratio < best.error_ratio);
+        const bool better =
+            m.flipped < best_flipped || (m.flipped == best_flipped && ratio < best.error_ratio);
         if (better || attempt == 0) {
             best = TileMesh{};
             best.id = id;
@@ -647,8 +672,10 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
 
     if (options.normals) {
         for (std::size_t k = 0; k < best.u.size(); ++k) {
-            const double lon = rect.west + double(best.u[k]) / k_quantized_max * (rect.east - rect.west);
-            const double lat = rect.south + double(best.v[k]) / k_quantized_max * (rect.north - rect.south);
+            const double lon =
+                rect.west + double(best.u[k]) / k_quantized_max * (rect.east - rect.west);
+            const double lat =
+                rect.south + double(best.v[k]) / k_quantized_max * (rect.north - rect.south);
             const auto oct = tiles::oct_encode(dem_normal(surface, lon, lat));
             best.normals.push_back(oct[0]);
             best.normals.push_back(oct[1]);
