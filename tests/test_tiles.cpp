@@ -17,6 +17,10 @@
 #include <fstream>
 #include <iterator>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 using namespace tinlod;
 using tinlod::test::asset;
@@ -248,4 +252,38 @@ TEST(Tiles, FailedWriteLeavesNoPartialTileSet) {
     // Files are limited to 100 bytes: the first tile larger than that fails to write.
     const auto r = run_cli("tiles '" + asset("dem_srtm30.tif") + "' -o '" + dir + "'", 100);
     expect_refused(r, 1, dir, dir);
+}
+
+TEST(Tiles, InterruptedRunLeavesNoTileSet) {
+    const std::string dir = temp_dir() + "/set";
+    int interrupted = 0;
+    for (int attempt = 0; attempt < 5 && interrupted == 0; ++attempt) {
+        const pid_t pid = tinlod::test::start_cli({"tiles", asset("N42E001.hgt"), "-o", dir});
+        ASSERT_GT(pid, 0);
+        // Once the tiles are being staged in the folder it created, Ctrl-C.
+        bool staging = false;
+        int status = 0;
+        for (int i = 0; i < 20000 && !staging; ++i) {
+            std::error_code ec;
+            for (const auto &e : fs::directory_iterator(dir, ec))
+                staging |= e.path().filename().string().rfind(".staged", 0) == 0;
+            if (!staging && waitpid(pid, &status, WNOHANG) == pid)
+                break;
+            usleep(500);
+        }
+        if (!staging) { // it finished first (or never staged): start again
+            fs::remove_all(dir);
+            continue;
+        }
+        kill(pid, SIGINT);
+        waitpid(pid, &status, 0);
+        if (WIFEXITED(status) && WEXITSTATUS(status) == 0) { // it finished first
+            fs::remove_all(dir);
+            continue;
+        }
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << status;
+        EXPECT_FALSE(fs::exists(dir)) << "the interrupted run left its tile set";
+        ++interrupted;
+    }
+    EXPECT_EQ(interrupted, 1) << "no run could be interrupted while it staged tiles";
 }

@@ -189,6 +189,11 @@ GeoLattice load_coverage(const std::vector<std::string> &paths, const LoadOption
             throw Error(path, "needs at least 2 x 2 samples");
     }
     GeoLattice g = on_one_grid(dems) ? mosaic(dems) : warp(dems, paths);
+    // Longitudes run -180..180 in the tiling scheme (a file in 0..360 is not moved).
+    constexpr double k_slack = 1e-9;
+    if (g.lon(0) < -180.0 - k_slack || g.lon(g.width - 1) > 180.0 + k_slack ||
+        g.lat(0) < -90.0 - k_slack || g.lat(g.height - 1) > 90.0 + k_slack)
+        throw Error(paths[0], "the DEMs reach beyond longitudes -180..180 or latitudes -90..90");
     for (const float h : g.z)
         g.covered += std::isnan(h) ? 0 : 1;
     if (g.covered == 0)
