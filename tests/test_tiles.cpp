@@ -287,3 +287,25 @@ TEST(Tiles, InterruptedRunLeavesNoTileSet) {
     }
     EXPECT_EQ(interrupted, 1) << "no run could be interrupted while it staged tiles";
 }
+
+TEST(Tiles, ProjectedDemIsWarpedWithProj) {
+    if (!decoder_installed())
+        FAIL() << "tests/tiles has no node_modules: run scripts/setup.sh (npm ci there)";
+    const std::string dir = temp_dir();
+    // 2 x 2 samples 30 m apart in UTM zone 31N (EPSG:32631), south-west of (500000, 4e6).
+    std::ofstream(dir + "/utm.tif", std::ios::binary)
+        << test::geotiff_bytes({{33550, {30.0, 30.0, 0.0}}, {33922, {0, 0, 0, 500000.0, 4e6, 0}}},
+                               {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32631});
+    const auto r =
+        run_cli("tiles '" + dir + "/utm.tif' -o '" + dir + "/set' --stats '" + dir + "/s.json'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto stats = nlohmann::json::parse(slurp(dir + "/s.json"));
+    EXPECT_TRUE(stats["input"]["resampled"].get<bool>());
+    EXPECT_GT(stats["input"]["covered"].get<int>(), 0);
+    // 30 m is about 1/3700 of a degree of latitude.
+    EXPECT_NEAR(stats["input"]["spacing_deg"][1].get<double>(), 30.0 / 111000.0, 2e-5);
+    EXPECT_LE(stats["error"]["worst_ratio"].get<double>(), 1.0);
+    const auto [rc, report] = check_tiles(dir + "/set", "--no-error");
+    EXPECT_EQ(rc, 0) << report.dump();
+    EXPECT_TRUE(report["failures"].empty()) << report["failures"].dump(1);
+}
