@@ -185,23 +185,35 @@ for (const [key, t] of tiles) {
       for (let bx = Math.floor(Math.min(...us) / cell); bx <= Math.floor(Math.max(...us) / cell); ++bx) buckets[by * B + bx].push(i)
     }
   }
+  // The height of the triangle holding (pu, pv), or NaN; the last triangle found is tried first
+  // (samples come row by row, most in the triangle of the one before).
+  let last = -1
+  const inTriangle = (i, pu, pv) => {
+    const a = tri[i]; const b = tri[i + 1]; const c = tri[i + 2]
+    const d = (t.v[b] - t.v[c]) * (t.u[a] - t.u[c]) + (t.u[c] - t.u[b]) * (t.v[a] - t.v[c])
+    if (d === 0) return NaN
+    const l1 = ((t.v[b] - t.v[c]) * (pu - t.u[c]) + (t.u[c] - t.u[b]) * (pv - t.v[c])) / d
+    const l2 = ((t.v[c] - t.v[a]) * (pu - t.u[c]) + (t.u[a] - t.u[c]) * (pv - t.v[c])) / d
+    const l3 = 1 - l1 - l2
+    const eps = -1e-9
+    return l1 >= eps && l2 >= eps && l3 >= eps ? l1 * t.h[a] + l2 * t.h[b] + l3 * t.h[c] : NaN
+  }
   const heightAt = (pu, pv) => {
+    if (last >= 0) {
+      const h = inTriangle(last, pu, pv)
+      if (!Number.isNaN(h)) return h
+    }
     const bx = Math.min(B - 1, Math.floor(pu / cell)); const by = Math.min(B - 1, Math.floor(pv / cell))
     for (const i of buckets[by * B + bx]) {
-      const [a, b, c] = [tri[i], tri[i + 1], tri[i + 2]]
-      const d = (t.v[b] - t.v[c]) * (t.u[a] - t.u[c]) + (t.u[c] - t.u[b]) * (t.v[a] - t.v[c])
-      if (d === 0) continue
-      const l1 = ((t.v[b] - t.v[c]) * (pu - t.u[c]) + (t.u[c] - t.u[b]) * (pv - t.v[c])) / d
-      const l2 = ((t.v[c] - t.v[a]) * (pu - t.u[c]) + (t.u[a] - t.u[c]) * (pv - t.v[c])) / d
-      const l3 = 1 - l1 - l2
-      const eps = -1e-9
-      if (l1 >= eps && l2 >= eps && l3 >= eps) return l1 * t.h[a] + l2 * t.h[b] + l3 * t.h[c]
+      const h = inTriangle(i, pu, pv)
+      if (!Number.isNaN(h)) { last = i; return h }
     }
     return NaN
   }
   const bound = levelError(z)
   let worst = 0
   dems.forEach((dem, k) => {
+    const earlier = dems.slice(0, k)
     const c0 = Math.max(0, Math.ceil(dem.col(rect.west))); const c1 = Math.min(dem.n - 1, Math.floor(dem.col(rect.east)))
     const r0 = Math.max(0, Math.ceil(dem.row(rect.north))); const r1 = Math.min(dem.n - 1, Math.floor(dem.row(rect.south)))
     for (let r = r0; r <= r1; ++r) {
@@ -211,7 +223,7 @@ for (const [key, t] of tiles) {
         const pu = ((dem.lon(c) - rect.west) / (rect.east - rect.west)) * 32767
         const sample = dem.height(c, r)
         if (pu < 0 || pu > 32767 || sample === -32768) continue
-        if (dems.slice(0, k).some((d) => d.covers(dem.lon(c), dem.lat(r)))) continue
+        if (earlier.length && earlier.some((d) => d.covers(dem.lon(c), dem.lat(r)))) continue
         const h = heightAt(pu, pv)
         summary.samples++
         if (Number.isNaN(h)) { fail(`${key}: sample (${c}, ${r}) under no triangle`); continue }
