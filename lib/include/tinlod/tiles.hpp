@@ -80,9 +80,9 @@ struct GeoLattice {
 // position transformed into that DEM's CRS with PROJ. Throws Error naming the file at fault.
 GeoLattice load_coverage(const std::vector<std::string> &paths, const LoadOptions &options);
 
-// The default deepest level: the first whose tiles are at least 64 lattice spacings across in both
-// directions (the 65-post heightmap tile CesiumJS's error estimate assumes, at the DEM's
-// resolution), at most k_max_tile_level.
+// The default deepest level: the first whose tiles are at most 64 of the lattice's finer spacing
+// across (the 65-post heightmap tile CesiumJS's error estimate assumes is then as fine as the
+// DEM), at most finest_zoom().
 int default_max_zoom(const GeoLattice &lattice);
 
 // Deepest level whose tiles still hold 4 lattice spacings across (a level deeper has no DEM
