@@ -4,10 +4,10 @@
 // covered post inside the tile as a decoder reads it.
 //
 // Heights are quantized on a grid every tile of a level shares: a step of 2^j times the level's
-// (a power of two near 1/64 of its error), j the smallest that spans the tile's height range
-// with room to spare, and a header range of D steps with D a divisor of 32767, so a height on the
-// step is an exact code. An edge vertex takes the coarser step of the tiles that share it (two,
-// four at a corner), so both decode it to the same height.
+// base step (a power of two near 1/512 of its error), j chosen from the tile's heights, and a
+// header range of D steps with D a divisor of 32767, so a height on the step is an exact code. An
+// edge vertex takes the coarser step of the tiles that share it (two, four at a corner), so both
+// decode it to the same height.
 #include "geodesy.hpp"
 
 #include "tinlod/decimate.hpp"
@@ -40,16 +40,44 @@ constexpr double k_max_posts_across = 1024.0;
 
 double tile_size(int z) { return 180.0 / std::ldexp(1.0, z); }
 
-// The height step of level z: a power of two at most error / 64 (exact in float, as the header's
-// heights must be).
-double level_step(int z) { return std::exp2(std::floor(std::log2(level_error(z) / 64.0))); }
+// The height step of level z: a power of two at most error / 512 (exact in float, as the
+// header's heights must be).
+double level_step(int z) { return std::exp2(std::floor(std::log2(level_error(z) / 512.0))); }
 
-// The smallest j whose step 2^j * level_step spans the range in half the codes.
+// A header's range is a divisor of 32767 of steps, so that every whole step is an exact code.
+constexpr std::array<int, 8> k_divisors{1, 7, 31, 151, 217, 1057, 4681, 32767};
+
+// The smallest divisor of 32767 at least n, or 0.
+int divisor_at_least(double n) {
+    for (const int d : k_divisors)
+        if (d >= n)
+            return d;
+    return 0;
+}
+
+// The tile's step exponent j (step 2^j * level_step): among those whose step spans its heights
+// in half the codes (room for the edges' coarser rounding) and is at most error / 64 (unless the
+// first that spans them is coarser), the one whose header range is the tightest (the divisors of
+// 32767 are sparse: a finer step can need a far wider range). A function of the range alone: the
+// neighbours compute it too.
 int range_exponent(const HeightRange &r, int z) {
-    int j = 0;
-    while ((r.hi - r.lo) > 16383.0 * std::ldexp(level_step(z), j) && j < 60)
-        ++j;
-    return j;
+    const auto steps = [&](int j) {
+        const double s = std::ldexp(level_step(z), j);
+        return std::ceil(r.hi / s) - std::floor(r.lo / s);
+    };
+    int first = 0;
+    while (steps(first) > 16383.0 && first < 60)
+        ++first;
+    int best = first;
+    double tightest = INFINITY;
+    for (int j = first; j <= std::max(first, 3); ++j) {
+        // Two steps of room for the edges' rounding.
+        const int d = divisor_at_least(steps(j) + 2.0);
+        const double span = std::ldexp(double(d), j);
+        if (d > 0 && span < tightest)
+            tightest = span, best = j;
+    }
+    return best;
 }
 
 // A height of the lattice's surface: the post's, or the fill height outside the coverage.
@@ -310,14 +338,10 @@ Quantized quantize(const std::vector<Vertex> &vs, const HeightRange &range, doub
         lo = std::min(lo, v.h), hi = std::max(hi, v.h);
     Quantized q;
     q.min_h = std::floor(lo / step) * step;
-    const double needed = std::max(1.0, std::ceil((hi - q.min_h) / step));
-    static constexpr std::array<int, 8> k_divisors{1, 7, 31, 151, 217, 1057, 4681, 32767};
-    int d = k_quantized_max;
-    for (const int x : k_divisors)
-        if (x >= needed) {
-            d = x;
-            break;
-        }
+    // Past 32767 steps (an edge rounded to a far coarser neighbour's step) the codes clamp, and
+    // the measure sees it.
+    const int needed = divisor_at_least(std::ceil((hi - q.min_h) / step));
+    const int d = needed > 0 ? needed : k_quantized_max;
     q.max_h = q.min_h + double(d) * step;
     for (const Vertex &v : vs) {
         double code = v.exact ? std::round((v.h - q.min_h) / step) * double(k_quantized_max / d)
@@ -594,7 +618,10 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             Vertex v;
             v.u = int(std::llround(offset_units(g.lon0, g.dlon, cols.at(c), rect.west, z)));
             v.v = int(std::llround(offset_units(g.lat0, g.dlat, rows.at(r), rect.south, z)));
-            v.h = win.at(c, r);
+            // On the tile's step too: the codes then take fewer values (and gzip better), within
+            // the half step the interior's bound leaves for it.
+            v.h = std::floor(win.at(c, r) / step + 0.5) * step;
+            v.exact = true;
             const std::uint32_t idx = first_inner + std::uint32_t(k);
             if (c == 0)
                 sides[0].emplace_back(r, idx);
