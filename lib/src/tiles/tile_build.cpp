@@ -20,7 +20,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 
 namespace tinlod {
 
@@ -253,18 +252,16 @@ AxisLines interior_lines(double origin, double step, std::int64_t posts, double 
     return l;
 }
 
-// A vertex of the tile as it is assembled: its u/v place and its height, either on the edge grid
-// already (`exact`: a multiple of the tile's step) or quantized with the tile's codes.
+// A vertex of the tile as it is assembled: its u/v place and its height, a whole multiple of the
+// tile's step (an edge's, of a coarser one).
 struct Vertex {
     int u = 0, v = 0;
     double h = 0.0;
-    bool exact = false;
 };
 
 struct Assembly {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> triangles;
-    std::array<std::vector<std::uint32_t>, 4> edges; // west, south, east, north, each in order
 };
 
 // The interior TIN over the window: greedy insertion to the bound, then the node erase (vertical
@@ -344,8 +341,7 @@ Quantized quantize(const std::vector<Vertex> &vs, const HeightRange &range, doub
     const int d = needed > 0 ? needed : k_quantized_max;
     q.max_h = q.min_h + double(d) * step;
     for (const Vertex &v : vs) {
-        double code = v.exact ? std::round((v.h - q.min_h) / step) * double(k_quantized_max / d)
-                              : std::round((v.h - q.min_h) / (q.max_h - q.min_h) * k_quantized_max);
+        const double code = std::round((v.h - q.min_h) / step) * double(k_quantized_max / d);
         q.codes.push_back(std::uint16_t(std::clamp(code, 0.0, double(k_quantized_max))));
     }
     return q;
@@ -589,7 +585,7 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
                                              edge_vertices[2].back().h, edge_vertices[0].back().h};
         for (int k = 0; k < 4; ++k)
             a.vertices.push_back({corner_uv[std::size_t(k)][0], corner_uv[std::size_t(k)][1],
-                                  corner_h[std::size_t(k)], true});
+                                  corner_h[std::size_t(k)]});
         // Corner ids at each edge's start and end (west: SW..NW, south: SW..SE, east: SE..NE,
         // north: NW..NE).
         const std::array<std::pair<std::uint32_t, std::uint32_t>, 4> ends{
@@ -600,7 +596,6 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             const auto &ev = edge_vertices[e];
             for (std::size_t k = 1; k + 1 < ev.size(); ++k) {
                 Vertex v;
-                v.exact = true;
                 v.h = ev[k].h;
                 const int fixed = e == 2 || e == 3 ? k_quantized_max : 0;
                 v.u = defs[e].vertical ? fixed : ev[k].t;
@@ -618,10 +613,8 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             Vertex v;
             v.u = int(std::llround(offset_units(g.lon0, g.dlon, cols.at(c), rect.west, z)));
             v.v = int(std::llround(offset_units(g.lat0, g.dlat, rows.at(r), rect.south, z)));
-            // On the tile's step too: the codes then take fewer values (and gzip better), within
-            // the half step the interior's bound leaves for it.
+            // On the tile's step, within the half step the interior's bound leaves for it.
             v.h = std::floor(win.at(c, r) / step + 0.5) * step;
-            v.exact = true;
             const std::uint32_t idx = first_inner + std::uint32_t(k);
             if (c == 0)
                 sides[0].emplace_back(r, idx);
