@@ -296,3 +296,12 @@ TEST(Tiles, ProjectedDemIsWarpedWithProj) {
     EXPECT_EQ(rc, 0) << report.dump();
     EXPECT_TRUE(report["failures"].empty()) << report["failures"].dump(1);
 }
+
+TEST(Tiles, OutputThatIsAFileIsRefusedAndKept) {
+    const std::string file = temp_dir() + "/taken";
+    std::ofstream(file) << "not a folder";
+    const auto r = run_cli("tiles '" + asset("dem_srtm30.tif") + "' -o '" + file + "'");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(file), "not a folder");
+}
