@@ -176,7 +176,7 @@ TEST(Tiles, AdjacentSrtmTilesFormOneCoverageWithNoSeam) {
                            dir + "/set' --min-zoom 9 --max-zoom 9 --stats '" + dir + "/s.json'");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto stats = nlohmann::json::parse(slurp(dir + "/s.json"));
-    EXPECT_EQ(stats["input"]["posts"], 2401 * 1201);
+    EXPECT_EQ(stats["input"]["nodes"], 2401 * 1201);
     EXPECT_FALSE(stats["input"]["resampled"].get<bool>());
     const auto [rc, report] = check_tiles(dir + "/set", quoted(asset("N42E001.hgt")) + " " +
                                                             quoted(dir + "/N42E002.hgt"));

@@ -115,7 +115,6 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                          {{"files", args->inputs},
                           {"nodes", std::int64_t(lattice.width) * lattice.height},
                           {"triangles", 2 * std::int64_t(lattice.width - 1) * (lattice.height - 1)},
-                          {"posts", std::int64_t(lattice.width) * lattice.height},
                           {"covered", lattice.covered},
                           {"resampled", lattice.resampled},
                           {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
