@@ -145,7 +145,7 @@ TEST(Tiles, TileBuiltAloneIsByteIdenticalToTheSameTileOfTheWholeRun) {
     const std::string dir = temp_dir() + "/set";
     // Two threads: tiles finish in any order in the run.
     const auto r = run_cli("--threads 2 tiles '" + asset("N42E001.hgt") + "' -o '" + dir +
-                           "' --normals --min-zoom 5 --max-zoom 11");
+                           "' --normals --min-zoom 5 --max-zoom 10");
     ASSERT_EQ(r.status, 0) << r.err;
     const GeoLattice lattice = load_coverage({asset("N42E001.hgt")}, {});
     TileOptions options;
@@ -162,7 +162,7 @@ TEST(Tiles, TileBuiltAloneIsByteIdenticalToTheSameTileOfTheWholeRun) {
         EXPECT_EQ(std::string(bytes.begin(), bytes.end()), slurp(f.path().string())) << f.path();
         ++compared;
     }
-    EXPECT_GT(compared, 200);
+    EXPECT_GT(compared, 60);
 }
 
 TEST(Tiles, AdjacentSrtmTilesFormOneCoverageWithNoSeam) {
