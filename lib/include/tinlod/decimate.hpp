@@ -161,9 +161,9 @@ struct UpdateStats {
     std::int64_t evaluations = 0; // erases tried: the candidates, then the ring nodes of the erases
                                   // made (an erase that fails keeps its node)
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
-    double ms_weights = 0.0;        // the new view's weigher (node weights follow on demand)
-    double ms_recover = 0.0;        // the recover pass
-    double ms_erase = 0.0;          // the erase pass
+    double weights_ms = 0.0;        // the new view's weigher (node weights follow on demand)
+    double recover_ms = 0.0;        // the recover pass
+    double erase_ms = 0.0;          // the erase pass
 };
 
 // An update (NodeEraser::update) does not erase a node whose fan covers more input nodes than

@@ -222,7 +222,7 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         LiveNode &l = live_node(s, x);
         l.star = h.star;
         l.star_dev = float_down(h.star_dev);
-        Cell &cell = s.cells[l.cell];
+        Cell &cell = s.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
         return true;
     };

@@ -109,8 +109,8 @@ void allocate(EraserState &s) {
     s.face_head.assign(s.mesh->n_faces(), -1);
     s.face_blocked.assign(s.mesh->n_faces(), 0);
     s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
-    s.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
-    s.face_seen.assign(s.mesh->n_faces(), 0);
+    s.seen.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
+    s.seen.face_seen.assign(s.mesh->n_faces(), 0);
     s.record_of.resize(s.nodes);
     s.live_list.reserve(std::size_t(s.live));
 }
@@ -126,8 +126,8 @@ void place_grid(EraserState &s) {
     if (s.nodes > 0) {
         const glm::dvec2 extent = hi - lo;
         s.area_per_node = extent.x * extent.y / double(s.nodes);
-        s.grid_lo = lo;
-        s.grid_hi = hi;
+        s.grid.grid_lo = lo;
+        s.grid.grid_hi = hi;
     }
     regrid(s);
 }
@@ -176,7 +176,8 @@ void NodeEraser::set_view(const View *view, const EraseOptions &options) {
     assert(view || options.significance.model == SpModel::vertical);
     s.options = options;
     s.has_view = view != nullptr;
-    std::fill(s.face_seen_dev.begin(), s.face_seen_dev.end(), -1.0f); // the model may change
+    std::fill(s.seen.face_seen_dev.begin(), s.seen.face_seen_dev.end(),
+              -1.0f); // the model may change
     forget_nodes(s);
     if (view) {
         s.view = *view;

@@ -33,7 +33,7 @@ inline void remember_fan(const EraserState &s, LiveNode &l, double bound) {
     if (keeps_bounds(s)) {
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::log(bound) + 1e-6);
-        l.seen_at = s.updates;
+        l.seen_at = s.seen.updates;
         l.seen_cone = s.weigher.in_cone(p - r, p + r);
     }
 }
@@ -44,7 +44,7 @@ inline void remember_fan(const EraserState &s, LiveNode &l, double bound) {
 inline bool fan_cleared(const EraserState &s, LiveNode &l, double recover_above,
                         double log_recover) {
     if (l.seen_log < INFINITY) {
-        if (const EraserState::Since *d = since(s, l.seen_at)) {
+        if (const ViewBounds::Since *d = since(s, l.seen_at)) {
             const double falloff = s.weigher.falloff();
             if (moved_within(s.view.eye, to_glm(l.p), double(l.reach), d->moved,
                              log_recover - double(l.seen_log) -
