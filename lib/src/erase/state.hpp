@@ -8,8 +8,8 @@
 #include "lattice_rings.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/view.hpp"
-#include "weigher.hpp"
 
 #include <array>
 #include <cassert>
