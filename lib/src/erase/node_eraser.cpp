@@ -252,7 +252,7 @@ NodeEraser::Cost NodeEraser::erase_cost(Mesh::VertexHandle v) {
         return out;
     const std::int64_t evaluations = s.evaluations;
     if (evaluate(s, v, INFINITY)) {
-        out.cost = s.hole.cost;
+        out.cost = s.hole.sp;
         if (s.grid_w > 0)
             out.covered = std::max(out.covered, double(lattice_inside(s, s.hole)));
     }
@@ -314,7 +314,7 @@ EraseStats NodeEraser::measure() const {
                 const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / area;
                 dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z));
             } else {
-                dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
+                dev = triangle_distance(p, a, b, c); // as locate() measures what the erase bounds
             }
             stats.max_vertical = std::max(stats.max_vertical, dev);
             stats.max_weighted =

@@ -9,8 +9,8 @@
 #include "refine/frame_state.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/view.hpp"
-#include "weigher.hpp"
 
 #include <array>
 #include <cassert>

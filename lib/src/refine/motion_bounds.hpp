@@ -132,7 +132,7 @@ inline void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_
 // within the erase's cost, the exact largest weighted deviation of the samples in the hole. Else
 // the next update walked their fans again (docs/decisions/007-seen-bounds.md).
 inline void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old) {
-    const double cost = h.cost > 0.0 ? std::log(h.cost * (1.0 + 1e-6)) : -INFINITY;
+    const double cost = h.sp > 0.0 ? std::log(h.sp * (1.0 + 1e-6)) : -INFINITY;
     for (int i = 0; i < h.n; ++i) {
         if (!(old[std::size_t(i)] < INFINITY))
             continue;
