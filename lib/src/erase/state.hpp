@@ -37,7 +37,7 @@ struct EraseRecord {
     bool boundary = false;
 };
 
-// What an update needs to know of a live node without walking its fan (see update()).
+// What an update needs to know of a live node without walking its fan (see NodeEraser::update).
 struct LiveNode {
     std::uint32_t node;
     std::int32_t vertex; // its vertex (the node id itself unless EraserState::lattice)

@@ -11,16 +11,6 @@
 
 namespace tinlod::refine {
 
-using erase::EraserState;
-using erase::FH;
-using erase::float_down;
-using erase::float_up;
-using erase::Hole;
-using erase::k_rounded_weight;
-using erase::k_seen_views;
-using erase::LiveNode;
-using erase::to_glm;
-
 // A bound on the weighted deviation of the swallowed nodes of live node l's fan under the current
 // view, from its bounds alone: the largest deviation times the largest weight in the cube they lie
 // in.

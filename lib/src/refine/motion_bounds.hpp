@@ -13,6 +13,7 @@
 
 namespace tinlod::refine {
 
+// The eraser's names the refiner's stages use (they work on the eraser's state).
 using erase::EraserState;
 using erase::FH;
 using erase::float_down;
