@@ -42,11 +42,7 @@ void classify_nodes(EraserState &s) {
     new_weights(s, true);
 }
 
-// The SP and its node after the samples of h.pending, as raising the SP sample by sample in
-// scan order would leave them (the first node whose weighted deviation exceeds `limit`, else the
-// first of the largest above the SP), weighing fewer of them: by their bound, largest first, once
-// one exceeding the limit is ruled out. False when the SP exceeds `limit`.
-static bool raise_pending(const EraserState &s, Hole &h, double limit) {
+bool raise_pending(const EraserState &s, Hole &h, double limit) {
     std::vector<Hole::Pending> &p = h.pending;
     for (Hole::Pending &q : p)
         if (q.upper > limit) {

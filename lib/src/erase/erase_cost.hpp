@@ -49,6 +49,12 @@ inline double swallowed_weight_bound(const EraserState &s, const glm::dvec3 &a, 
            k_rounded_weight;
 }
 
+// The SP and its node after the samples of h.pending, as raising the SP sample by sample in
+// scan order would leave them (the first node whose weighted deviation exceeds `limit`, else the
+// first of the largest above the SP), weighing fewer of them: by their bound, largest first, once
+// one exceeding the limit is ruled out. False when the SP exceeds `limit`. Empties h.pending.
+bool raise_pending(const EraserState &s, Hole &h, double limit);
+
 // Re-triangulates v's hole into s.hole and computes the erase's SP into s.hole.sp (exactly up to
 // `limit`, beyond it only as some value > limit); false when v cannot be erased without a
 // fold-over, a non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the
