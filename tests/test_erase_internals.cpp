@@ -193,7 +193,7 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
 }
 
 // raise_pending, which weighs the pending samples largest bound first and stops early, leaves the
-// cost, its node and its deviation as raising the cost by each sample in scan order would, and
+// SP, its node and its deviation as raising the SP by each sample in scan order would, and
 // fails exactly when that raise would pass the limit.
 TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
     std::mt19937 rng(11);
@@ -209,7 +209,7 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
         for (float &x : s.weight)
             x = float(1 + pick(rng));
         Hole h;
-        h.cost = pick(rng) * 2.0;
+        h.sp = pick(rng) * 2.0;
         h.star = 1000;
         h.star_dev = 0.5;
         const int n = count(rng);
@@ -221,10 +221,10 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
             h.pending.push_back({u, dev, dev * bound, -1.0});
         }
         // evaluate raises the cost only while it is within the limit.
-        const double limit = pick(rng) == 0 ? INFINITY : h.cost + 16.0 * unit(rng);
+        const double limit = pick(rng) == 0 ? INFINITY : h.sp + 16.0 * unit(rng);
 
         // One by one, in scan order.
-        double cost = h.cost, star_dev = h.star_dev;
+        double cost = h.sp, star_dev = h.star_dev;
         std::uint32_t star = h.star;
         bool within = true;
         for (const Hole::Pending &q : h.pending) {
@@ -242,7 +242,7 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
 
         const bool ok = raise_pending(s, h, limit);
         ASSERT_EQ(ok, within) << "trial " << trial;
-        EXPECT_EQ(h.cost, cost) << "trial " << trial;
+        EXPECT_EQ(h.sp, cost) << "trial " << trial;
         EXPECT_EQ(h.star, star) << "trial " << trial;
         EXPECT_EQ(h.star_dev, star_dev) << "trial " << trial;
         EXPECT_TRUE(h.pending.empty());
