@@ -31,8 +31,8 @@ glm::dvec3 random_unit(std::mt19937 &rng) {
 }
 
 // The eye's move and the axis's turn from `then` to `now`, as the update measures them.
-EraserState::Since since_views(const View &then, const View &now) {
-    EraserState::Since d;
+refine::ViewBounds::Since since_views(const View &then, const View &now) {
+    refine::ViewBounds::Since d;
     d.moved = glm::length(now.eye - then.eye);
     d.turn = std::acos(std::clamp(glm::dot(then.axis(), now.axis()), -1.0, 1.0));
     d.ok = true;
@@ -67,7 +67,7 @@ TEST(MotionBounds, BoundTheExactWeightAtBothViews) {
         const glm::dvec3 p = now.eye + random_unit(rng) * (scale * (0.5 + 20.0 * unit(rng)));
         const double w_then = screen_weight(then, p, options),
                      w_now = screen_weight(now, p, options);
-        const EraserState::Since d = since_views(then, now);
+        const refine::ViewBounds::Since d = since_views(then, now);
         EraserState s;
         s.options.significance = options;
         s.weigher = Weigher(&now, options);
