@@ -722,10 +722,9 @@ Mesh to_mesh(const Retrieval &retrieval, const GridFrame &frame) {
 }
 
 // Adds the triangles t (3 vertex indices each, over `vertices` vertices) in the order of their
-// first vertex, so the half-edges of nearby nodes lie near each other in memory: an erase sweeping
-// the nodes row by row walked the retrieval's level order before, 16 % slower on N42E001. A
-// counting sort on the first vertex, stable (ties keep the retrieval's order): a comparison sort of
-// the keys took 24 ms of N42E001's 352 k-node budget retrieval.
+// first vertex, so the half-edges of nearby nodes lie near each other in memory for an erase that
+// sweeps the nodes row by row: a stable counting sort on the first vertex (ties keep the
+// retrieval's order; docs/decisions/022-row-order-triangles.md).
 static void add_in_row_order(Mesh &mesh, const std::vector<std::uint32_t> &t,
                              std::size_t vertices) {
     const std::size_t faces = t.size() / 3;
