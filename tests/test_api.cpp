@@ -147,7 +147,7 @@ TEST(ApiOptions, DemSharesOutOfRangeAreErrors) {
         d.greedy_cap = bad;
         expect_error_naming([&] { erase_dem(bumps(), &v, EraseOptions{}, d); }, "greedy_cap");
     }
-    for (double bad : {-1.0, nan, INFINITY}) {
+    for (double bad : {-1.0, nan, double(INFINITY)}) {
         DemEraseOptions d;
         d.budget_share = bad;
         expect_error_naming([&] { erase_dem(bumps(), &v, EraseOptions{}, d); }, "budget_share");
