@@ -152,7 +152,7 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         std::optional<Refiner> refiner;
         std::int64_t store_tiles = 0;
         RefineOptions options;
-        options.tol_px = args->tol;
+        options.tolerance = args->tol;
         options.hysteresis = args->hysteresis;
         options.retrieve_share = args->retrieve_share;
         options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
@@ -222,16 +222,17 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         std::int64_t evaluations_all = 0, erased_after_first = 0;
         Progress progress("fly", frames);
         for (int i = 0; i < frames; ++i) {
-            FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
+            const FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
+            const UpdateStats &u = f.update;
             if (i > 0)
-                totals.push_back(f.ms_total);
-            recovered_all += f.recovered;
-            erased_all += f.erased;
-            reerased_all += f.reerased;
-            entered_all += f.entered;
+                totals.push_back(f.total_ms);
+            recovered_all += u.recovered;
+            erased_all += u.erased;
+            reerased_all += u.reerased;
+            entered_all += u.entered;
             if (i > 0) {
-                evaluations_all += f.evaluations;
-                erased_after_first += f.erased;
+                evaluations_all += u.evaluations;
+                erased_after_first += u.erased;
             }
             double max_px = -1.0; // not measured
             if (args->check) {
@@ -258,11 +259,11 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             char line[256];
             std::snprintf(line, sizeof line,
                           "%.3f,%lld,%lld,%lld,%lld,%lld,%.3f,%.3f,%.3f,%.3f,%s,%lld,%lld", t,
-                          (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
-                          (long long)f.recovered, (long long)(i == 0 ? store_tiles : 0),
-                          f.ms_retrieve, f.ms_erase + f.ms_weights, f.ms_recover, f.ms_total,
-                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered,
-                          (long long)(i == 0 ? 0 : f.evaluations));
+                          (long long)f.nodes, (long long)f.triangles, (long long)u.erased,
+                          (long long)u.recovered, (long long)(i == 0 ? store_tiles : 0),
+                          f.retrieve_ms, u.erase_ms + u.weights_ms, u.recover_ms, f.total_ms,
+                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)u.entered,
+                          (long long)(i == 0 ? 0 : u.evaluations));
             csv << line << '\n';
             progress.update(i + 1);
         }

@@ -4,9 +4,10 @@
 // paper's method 1), kept restricted as in Röttger et al. 1998 / Pajarola 1998 so the per-node
 // triangle fans meet without cracks.
 #include "tinlod/quadtree.hpp"
-#include "weigher.hpp"
 
+#include "float_rounding.hpp"
 #include "tinlod/error.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/util.hpp"
 
 #include <algorithm>
@@ -100,13 +101,6 @@ struct Plane {
         gr = (e1c * d2 - e2c * d1) / det;
     }
 };
-
-float round_up(double e) {
-    float f = static_cast<float>(e);
-    if (static_cast<double>(f) < e)
-        f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-}
 
 struct OwnBound {
     double error = 0.0;
@@ -295,7 +289,7 @@ void QuadTree::build(const Heightfield &hf, Progress *progress) {
                                 own.box(child.zmax);
                             }
                     }
-                    level[std::size_t{j} * nx + i] = {std::max(round_up(own.error), children),
+                    level[std::size_t{j} * nx + i] = {std::max(float_up(own.error), children),
                                                       own.zmin, own.zmax};
                 }
         };
@@ -403,10 +397,7 @@ struct QuadTreeLod::Impl {
         weigh = options.peripheral != nullptr;
         if (weigh)
             weigher = Weigher(&view, *options.peripheral);
-        const glm::dvec3 f = view.axis();
-        const glm::dvec3 up = std::abs(f.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-        const glm::dvec3 r = glm::normalize(glm::cross(f, up));
-        const glm::dvec3 u = glm::cross(r, f);
+        const auto [f, r, u] = view.frame();
         const double hw = view.viewport_w / 2.0, hh = view.viewport_h / 2.0;
         planes[0] = k * r - hw * f;
         planes[1] = -k * r - hw * f;

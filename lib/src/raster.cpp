@@ -791,6 +791,12 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
     // Centre of the SW sample in CRS units.
     const double sw_x = geo.west + geo.sx / 2;
     const double sw_y = geo.north - (g.height - 0.5) * geo.sy;
+    hf.native_epsg = geo.epsg ? geo.epsg : geo.geographic ? 4326 : 0;
+    hf.native_geographic = geo.geographic;
+    hf.native_x0 = sw_x;
+    hf.native_y0 = sw_y;
+    hf.native_dx = geo.sx;
+    hf.native_dy = geo.sy;
     if (!geo.geographic) {
         hf.dx = geo.sx;
         hf.dy = geo.sy;

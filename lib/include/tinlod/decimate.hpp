@@ -9,8 +9,10 @@
 //
 // The bound. Every erased node stays attached to the face that covers it (in the projection
 // plane), so a face's error is the largest weighted deviation of the nodes it has swallowed;
-// deviation = vertical distance to the face (TINs) or distance to its plane (general meshes);
-// weight = screen_weight (k / OD * peripheral, significance.hpp), or 1 in the vertical model. An
+// deviation = vertical distance to the face (TINs) or distance to the face, the triangle itself
+// (general meshes); weight = the screen weight (k / OD * peripheral, tinlod/screen_weight.hpp), or
+// 1 in the vertical model. The SP of an erase, the largest weighted deviation its new triangles
+// swallow, is computed in lib/src/erase/erase_cost.cpp (evaluate). An
 // erase is made only when every new triangle keeps all the nodes it covers within `tolerance`, so
 // the output's error over every input node is <= tolerance: in pixels inside the view frustum, and
 // relaxed by 1 / peripheral outside it.
@@ -162,9 +164,9 @@ struct UpdateStats {
     std::int64_t evaluations = 0; // erases tried: the candidates, then the ring nodes of the erases
                                   // made (an erase that fails keeps its node)
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
-    double ms_weights = 0.0;        // the new view's weigher (node weights follow on demand)
-    double ms_recover = 0.0;        // the recover pass
-    double ms_erase = 0.0;          // the erase pass
+    double weights_ms = 0.0;        // the new view's weigher (node weights follow on demand)
+    double recover_ms = 0.0;        // the recover pass
+    double erase_ms = 0.0;          // the erase pass
 };
 
 // An update (NodeEraser::update) does not erase a node whose fan covers more input nodes than

@@ -164,8 +164,8 @@ static FH take_face(EraserState &s) {
         s.face_head.push_back(-1);
         s.face_blocked.push_back(0);
         s.face_maxdev.push_back(0.0f);
-        s.face_seen_dev.push_back(-1.0f);
-        s.face_seen.push_back(0);
+        s.seen.face_seen_dev.push_back(-1.0f);
+        s.seen.face_seen.push_back(0);
         return s.mesh->new_face();
     }
     const FH f = s.free_faces.back();

@@ -42,17 +42,13 @@ void classify_nodes(EraserState &s) {
     new_weights(s, true);
 }
 
-// The cost and its node after the samples of h.pending, as raising the cost sample by sample in
-// scan order would leave them (the first node whose weighted deviation exceeds `limit`, else the
-// first of the largest above the cost), weighing fewer of them: by their bound, largest first, once
-// one exceeding the limit is ruled out. False when the cost exceeds `limit`.
-static bool raise_pending(const EraserState &s, Hole &h, double limit) {
+bool raise_pending(const EraserState &s, Hole &h, double limit) {
     std::vector<Hole::Pending> &p = h.pending;
     for (Hole::Pending &q : p)
         if (q.upper > limit) {
             q.weighted = weighted(s, q.node, q.dev);
             if (q.weighted > limit) {
-                h.cost = q.weighted;
+                h.sp = q.weighted;
                 h.star = q.node;
                 h.star_dev = q.dev;
                 p.clear();
@@ -65,8 +61,8 @@ static bool raise_pending(const EraserState &s, Hole &h, double limit) {
         order[i] = i;
     std::sort(order.begin(), order.end(),
               [&](std::uint32_t a, std::uint32_t b) { return p[a].upper > p[b].upper; });
-    double best = h.cost;
-    std::int64_t best_at = -1; // -1: the cost before the band
+    double best = h.sp;
+    std::int64_t best_at = -1; // -1: the SP before the band
     for (const std::uint32_t i : order) {
         Hole::Pending &q = p[i];
         if (q.upper < best)
@@ -79,7 +75,7 @@ static bool raise_pending(const EraserState &s, Hole &h, double limit) {
         }
     }
     if (best_at >= 0) {
-        h.cost = best;
+        h.sp = best;
         h.star = p[std::size_t(best_at)].node;
         h.star_dev = p[std::size_t(best_at)].dev;
     }
@@ -90,11 +86,11 @@ static bool raise_pending(const EraserState &s, Hole &h, double limit) {
 // evaluate's walk over the nodes a grid TIN's hole swallows (v at pv among them): each new
 // triangle's samples, with their largest deviation and worst sample kept for retriangulate. A
 // sample whose deviation times the largest weight in its band's box (within the old fan's largest
-// deviation of its corners' heights) could raise the cost waits for the band's end
+// deviation of its corners' heights) could raise the SP waits for the band's end
 // (raise_pending), which weighs few of them: raised one by one in scan order, each raise made the
 // next sample's weight look worth computing. A sample whose bound exceeds `limit` settles the
 // band's samples so far at once, so a failing evaluation stops where it did
-// (docs/decisions/011-deferred-weighing.md). Stops once the cost exceeds `limit`; sets h.deferred
+// (docs/decisions/011-deferred-weighing.md). Stops once the SP exceeds `limit`; sets h.deferred
 // instead when the hole holds more than `max_swallowed` samples.
 static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, double limit,
                       std::size_t max_swallowed) {
@@ -131,7 +127,7 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
                     worst = std::int32_t(u);
                 }
                 const double upper = dev * bound;
-                if (!(upper > h.cost))
+                if (!(upper > h.sp))
                     return true;
                 h.pending.push_back({u, dev, upper, -1.0});
                 return !(upper > limit) || raise_pending(s, h, limit);
@@ -206,23 +202,23 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     const std::uint32_t x = node_of(s, v);
     s.assign.push_back({x, own, float(dev)});
     h.delta = dev;
-    h.cost = weighted(s, x, dev);
+    h.sp = weighted(s, x, dev);
     h.star = x;
     h.star_dev = dev;
     auto raise = [&](std::uint32_t node, double d) {
         const double w = weighted(s, node, d);
-        if (w > h.cost) {
-            h.cost = w;
+        if (w > h.sp) {
+            h.sp = w;
             h.star = node;
             h.star_dev = d;
         }
     };
-    // The cost so far is a lower bound of the erase's cost under any view: remembered for update().
+    // The SP so far is a lower bound of the erase's SP under any view: remembered for update().
     auto remember = [&] {
         LiveNode &l = live_node(s, x);
         l.star = h.star;
         l.star_dev = float_down(h.star_dev);
-        Cell &cell = s.cells[l.cell];
+        Cell &cell = s.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
         return true;
     };
@@ -239,47 +235,47 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         for (int i = 0; i < n; ++i) {
             const double margin =
                 rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);
-            if (margin * s.weigher.upper(h.p[i]) * k_rounded_weight > h.cost)
+            if (margin * s.weigher.upper(h.p[i]) * k_rounded_weight > h.sp)
                 raise(node_of(s, h.r[i]), margin);
         }
     }
-    // The node whose deviation gave this node's last cost is tried first: when it still lies under
+    // The node whose deviation gave this node's last SP is tried first: when it still lies under
     // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
     // deviation settles most evaluations that fail without walking the fan.
     const std::uint32_t last_star = live_node(s, x).star;
-    if (s.xy && h.cost <= limit && last_star != x && s.record_of[last_star] >= k_absent) {
+    if (s.xy && h.sp <= limit && last_star != x && s.record_of[last_star] >= k_absent) {
         bool inside = false;
         locate(h, s.xy, to_glm(node_point(s, last_star)), dev, &inside);
         if (inside) {
             raise(last_star, dev);
-            if (h.cost > limit)
+            if (h.sp > limit)
                 return remember();
         }
     }
     // Then each fan face's worst node (its list's head, see push_swallowed): one of them is most
     // often what breaks the limit, found before any list is walked.
-    for (int i = 0; i < fans && h.cost <= limit; ++i) {
+    for (int i = 0; i < fans && h.sp <= limit; ++i) {
         const std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()];
         if (u >= 0 && std::uint32_t(u) != last_star) {
             locate(h, s.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
             raise(std::uint32_t(u), dev);
         }
     }
-    if (h.cost > limit)
+    if (h.sp > limit)
         return remember();
-    // A scan that finds the cost over the limit goes on to k_scan_reach times the limit. Stopped
-    // at the first sample over it, the scan left a cost (the node's key and lower bound) barely
+    // A scan that finds the SP over the limit goes on to k_scan_reach times the limit. Stopped
+    // at the first sample over it, the scan left an SP (the node's key and lower bound) barely
     // over the limit, which the next frame's motion took back below it: the node turned candidate
     // frame after frame as the eye drew away, each time scanning its hole again.
     if (s.grid_w > 0) {
         scan_hole(s, h, pv, k_scan_reach * limit, max_swallowed);
         return remember();
     }
-    for (int i = 0; i < fans && h.cost <= limit; ++i) {
+    for (int i = 0; i < fans && h.sp <= limit; ++i) {
         const FH f = m.face_handle(h.h[i]);
         // A node's weight is looked up only when its deviation times the largest weight where the
         // face's swallowed nodes lie (its corners' box, within their largest deviation in z) could
-        // raise the cost: each update asks for fresh weights.
+        // raise the SP: each update asks for fresh weights.
         const double weight_bound =
             s.xy && !s.unit_weights && s.face_head[f.idx()] >= 0
                 ? swallowed_weight_bound(s, pv, h.p[i], h.p[(i + 1) % n], s.face_maxdev[f.idx()])
@@ -291,10 +287,10 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
             }
             const std::uint8_t t = locate(h, s.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
             s.assign.push_back({std::uint32_t(u), t, float(dev)});
-            if (!(dev * weight_bound > h.cost))
+            if (!(dev * weight_bound > h.sp))
                 continue;
             raise(std::uint32_t(u), dev);
-            if (h.cost > limit)
+            if (h.sp > limit)
                 break; // over the bound: the exact excess does not matter
         }
     }
@@ -303,7 +299,7 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
 
 float key_of(const EraserState &s, const Hole &h) {
     if (s.options.significance.model != SpModel::paper || !s.has_view)
-        return float(h.cost);
+        return float(h.sp);
     const glm::dvec3 p = to_glm(s.mesh->point(h.v));
     NodeTerms terms;
     terms.od = glm::length(p - s.view.eye);

@@ -1,9 +1,10 @@
-// The SP of an erase: SP of an erase = the largest weighted deviation of the nodes the new
-// triangles swallow (the node itself, the nodes its fan had swallowed, and on a grid TIN every
-// sample in the hole), weighted by the node's screen weight under the view (significance.hpp's
-// SP, screen_weight), or 1 in the vertical model. evaluate() re-triangulates a node's hole and
-// measures it; an erase is made when it is within the tolerance, so the output's error over every
-// input node is within it. The paper model orders its queue by the paper's SP instead (key_of).
+// The SP of an erase (Hole::sp): the largest weighted deviation of the nodes the new triangles
+// swallow (the node itself, the nodes its fan had swallowed, and on a grid TIN every sample in the
+// hole), each deviation weighted by the node's screen weight under the view (significance.hpp's
+// screen model, tinlod/screen_weight.hpp), or 1 in the vertical model. evaluate() re-triangulates
+// a node's hole and computes it; an erase is made when it is within the tolerance, so the output's
+// error over every input node is within it. The queue's key is derived from it (key_of); the paper
+// model orders its queue by the paper's SP instead.
 #pragma once
 
 #include "erase/state.hpp"
@@ -26,6 +27,7 @@ inline double weight_of(const EraserState &s, std::uint32_t node) {
     return double(float_up(s.weigher(to_glm(node_point(s, node)))));
 }
 
+// A swallowed node's term of the SP: its deviation times its weight.
 inline double weighted(const EraserState &s, std::uint32_t node, double dev) {
     return dev > 0.0 ? dev * weight_of(s, node) : 0.0;
 }
@@ -47,14 +49,21 @@ inline double swallowed_weight_bound(const EraserState &s, const glm::dvec3 &a, 
            k_rounded_weight;
 }
 
-// Re-triangulates v's hole into s.hole and measures the erase's cost (exactly up to `limit`, beyond
-// it only as some value > limit); false when v cannot be erased without a fold-over, a
-// non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the fan it
-// stops and sets hole.deferred.
+// The SP and its node after the samples of h.pending, as raising the SP sample by sample in
+// scan order would leave them (the first node whose weighted deviation exceeds `limit`, else the
+// first of the largest above the SP), weighing fewer of them: by their bound, largest first, once
+// one exceeding the limit is ruled out. False when the SP exceeds `limit`. Empties h.pending.
+bool raise_pending(const EraserState &s, Hole &h, double limit);
+
+// Re-triangulates v's hole into s.hole and computes the erase's SP into s.hole.sp (exactly up to
+// `limit`, beyond it only as some value > limit); false when v cannot be erased without a
+// fold-over, a non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the
+// fan it stops and sets hole.deferred.
 bool evaluate(EraserState &s, VH v, double limit,
               std::size_t max_swallowed = std::numeric_limits<std::size_t>::max());
 
-// The queue key of the evaluated hole: its cost, or the paper's SP in the paper model.
+// The queue key of the evaluated hole: its SP rounded to float, or the paper's SP in the paper
+// model.
 float key_of(const EraserState &s, const Hole &h);
 
 } // namespace tinlod::erase

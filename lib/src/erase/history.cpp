@@ -193,10 +193,10 @@ void NodeEraser::compact() {
     // The blocks name faces by index: they go (the next scans build them again).
     s.face_blocked.assign(s.face_head.size(), 0);
     s.face_blocked.shrink_to_fit();
-    s.face_seen_dev.assign(s.face_head.size(), -1.0f);
-    s.face_seen_dev.shrink_to_fit();
-    s.face_seen.assign(s.face_head.size(), 0);
-    s.face_seen.shrink_to_fit();
+    s.seen.face_seen_dev.assign(s.face_head.size(), -1.0f);
+    s.seen.face_seen_dev.shrink_to_fit();
+    s.seen.face_seen.assign(s.face_head.size(), 0);
+    s.seen.face_seen.shrink_to_fit();
     s.face_blocks.clear();
     s.face_tiles.clear();
     for (LiveNode &l : s.live_list) {
@@ -219,11 +219,10 @@ std::size_t NodeEraser::history_bytes() const {
            s.face_head.capacity() * 4 + s.face_blocked.capacity() + s.block_scratch.capacity() * 4 +
            block_bytes(s) + s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() +
            s.heap.bytes() + s.weight.capacity() * sizeof(float) +
-           s.live_list.capacity() * sizeof(LiveNode) + s.cells.capacity() * sizeof(Cell) +
-           s.cell_visit.capacity() + s.records.bytes() + s.ring_pool.bytes() +
-           (s.regular ? s.regular->bytes() : 0) + s.free_edges.capacity() * sizeof(EH) +
-           s.free_faces.capacity() * sizeof(FH) + s.free_vertices.capacity() * sizeof(VH) +
-           s.face_seen_dev.capacity() * 4 + s.face_seen.capacity() * 4 + sizeof(s.seen_views) +
+           s.live_list.capacity() * sizeof(LiveNode) + s.grid.bytes() + s.records.bytes() +
+           s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
+           s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
+           s.free_vertices.capacity() * sizeof(VH) + s.seen.bytes() +
            s.sample_of.capacity() * sizeof(std::uint32_t) +
            (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float) +
            s.swallowed_by.capacity() * 4;

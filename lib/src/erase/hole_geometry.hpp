@@ -4,6 +4,7 @@
 #pragma once
 
 #include "erase/ring_triangulation.hpp"
+#include "float_rounding.hpp"
 #include "tinlod/closest_point.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/tin.hpp"
@@ -25,17 +26,9 @@ using FH = Mesh::FaceHandle;
 
 inline glm::dvec3 to_glm(const Mesh::Point &p) { return {p[0], p[1], p[2]}; }
 
-// The nearest float at or above (below) d: a bound stored as float is never understated
-// (overstated).
-inline float float_up(double d) {
-    const float f = float(d);
-    return double(f) < d ? std::nextafter(f, INFINITY) : f;
-}
-
-inline float float_down(double d) {
-    const float f = float(d);
-    return double(f) > d ? std::nextafter(f, -INFINITY) : f;
-}
+using tinlod::float_down; // float_rounding.hpp, named here for the erase and the refiner
+using tinlod::float_up;
+using tinlod::rounding_margin;
 
 // A new triangle's barycentric weights and height as affine functions of the projected point.
 struct TriangleFrame {
@@ -57,16 +50,17 @@ struct Hole {
     std::array<TriangleFrame, k_max_ring> frame;
     int ntri = 0;
     glm::dvec3 origin{0.0}, ex{1, 0, 0}, ey{0, 1, 0}; // projection frame (xy: the world frame)
-    double delta = 0.0;     // the node's own deviation from the new triangles
-    double cost = 0.0;      // max weighted deviation over the node and the fan's swallowed nodes
-    std::uint32_t star = 0; // the node that gave the cost, and its (unweighted) deviation
+    double delta = 0.0; // the node's own deviation from the new triangles
+    double sp =
+        0.0; // the SP of the erase: max weighted deviation of the nodes the new faces swallow
+    std::uint32_t star = 0; // the node that gave the SP, and its (unweighted) deviation
     double star_dev = 0.0;
     bool deferred = false; // the fan swallowed more nodes than the evaluation may visit
     // A grid TIN's evaluation (see scan_lattice): per new triangle, the largest deviation of the
     // samples it swallows and the sample that has it (-1 when none deviates).
     std::array<float, k_max_ring> tri_maxdev;
     std::array<std::int32_t, k_max_ring> tri_worst;
-    // A band's samples whose weighted deviation may raise the cost (see scan_hole), in scan order:
+    // A band's samples whose weighted deviation may raise the SP (see scan_hole), in scan order:
     // the sample, its deviation, that times the band's weight bound, and its weighted deviation
     // (-1 until computed).
     struct Pending {
@@ -101,14 +95,6 @@ inline TriangleFrame triangle_frame(const glm::dvec2 &qa, const glm::dvec2 &qb,
 
 // Fills the affine frames of the hole's new triangles.
 void frame_triangles(Hole &h, bool xy);
-
-// What rounding every corner of a TIN triangle of this slope (|grad z|) to float can move its
-// interpolant at a point whose largest coordinate magnitude is `coord`: a few ulp of it. The mesh
-// holds float coordinates of exact grid positions, so deviations are widened by this.
-inline double rounding_margin(double coord, double slope) {
-    const double ulp = 1.2e-7 * std::max(coord, 1.0);
-    return 4.0 * ulp * slope;
-}
 
 // A TIN point's vertical deviation from the triangle of frame f, widened by the rounding margin.
 inline double vertical_dev(const TriangleFrame &f, double x, double y, double z) {

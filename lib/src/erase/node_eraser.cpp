@@ -111,8 +111,8 @@ void allocate(EraserState &s) {
     s.face_head.assign(s.mesh->n_faces(), -1);
     s.face_blocked.assign(s.mesh->n_faces(), 0);
     s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
-    s.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
-    s.face_seen.assign(s.mesh->n_faces(), 0);
+    s.seen.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
+    s.seen.face_seen.assign(s.mesh->n_faces(), 0);
     s.record_of.resize(s.nodes);
     s.live_list.reserve(std::size_t(s.live));
 }
@@ -128,8 +128,8 @@ void place_grid(EraserState &s) {
     if (s.nodes > 0) {
         const glm::dvec2 extent = hi - lo;
         s.area_per_node = extent.x * extent.y / double(s.nodes);
-        s.grid_lo = lo;
-        s.grid_hi = hi;
+        s.grid.grid_lo = lo;
+        s.grid.grid_hi = hi;
     }
     regrid(s);
 }
@@ -197,7 +197,8 @@ void NodeEraser::set_view(const View *view, const EraseOptions &options) {
     EraserState &s = *state_;
     s.options = options;
     s.has_view = view != nullptr;
-    std::fill(s.face_seen_dev.begin(), s.face_seen_dev.end(), -1.0f); // the model may change
+    std::fill(s.seen.face_seen_dev.begin(), s.seen.face_seen_dev.end(),
+              -1.0f); // the model may change
     forget_nodes(s);
     if (view) {
         s.view = *view;
@@ -272,7 +273,7 @@ NodeEraser::Cost NodeEraser::erase_cost(Mesh::VertexHandle v) {
         return out;
     const std::int64_t evaluations = s.evaluations;
     if (evaluate(s, v, INFINITY)) {
-        out.cost = s.hole.cost;
+        out.cost = s.hole.sp;
         if (s.grid_w > 0)
             out.covered = std::max(out.covered, double(lattice_inside(s, s.hole)));
     }
@@ -334,7 +335,7 @@ EraseStats NodeEraser::measure() const {
                 const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / area;
                 dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z));
             } else {
-                dev = std::abs(glm::dot(p - a, normal)) / glm::length(normal);
+                dev = triangle_distance(p, a, b, c); // as locate() measures what the erase bounds
             }
             stats.max_vertical = std::max(stats.max_vertical, dev);
             stats.max_weighted =

@@ -6,10 +6,11 @@
 #include "erase/hole_geometry.hpp"
 #include "erase/tuning.hpp"
 #include "lattice_rings.hpp"
+#include "refine/frame_state.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/view.hpp"
-#include "weigher.hpp"
 
 #include <array>
 #include <cassert>
@@ -37,7 +38,7 @@ struct EraseRecord {
     bool boundary = false;
 };
 
-// What an update needs to know of a live node without walking its fan (see update()).
+// What an update needs to know of a live node without walking its fan (see NodeEraser::update).
 struct LiveNode {
     std::uint32_t node;
     std::int32_t vertex; // its vertex (the node id itself unless EraserState::lattice)
@@ -52,8 +53,8 @@ struct LiveNode {
     float reach;
     float fan_dev;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
-    std::uint32_t cell;       // its cell of the update's grid (EraserState::cells)
-    // For the screen model's updates, as logarithms (see EraserState::face_seen_dev for the motion
+    std::uint32_t cell;       // its cell of the update's grid (UpdateGrid)
+    // For the screen model's updates, as logarithms (see ViewBounds::face_seen_dev for the motion
     // factor that carries them to a later view): under the view of update seen_at, every node the
     // faces it seeds (see seed_fan) swallowed had a weighted deviation <= exp(seen_log) (+inf:
     // none known, dropped when the fan changes but by an update's erase, see carry_seen); under
@@ -87,15 +88,7 @@ struct Block {
     glm::dvec3 lo, hi;   // the box of its nodes
 };
 
-// A square of the grid in xy that lets an update skip whole regions: bounds over the live nodes in
-// it, kept conservative between updates (raised, or lowered for star_dev, as the nodes change).
-struct Cell {
-    float fan_dev = 0.0f;                  // >= every live node's fan_dev
-    float reach = 0.0f;                    // >= every live node's reach
-    float star_dev = 0.0f;                 // <= every live node's star_dev
-    float zlo = INFINITY, zhi = -INFINITY; // the heights of every node in it, live or erased
-    bool dirty = true;                     // some live node in it may be dirty
-};
+using refine::Cell;
 
 constexpr std::uint8_t k_locked = 1;    // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;     // its key predates a change of its neighbourhood
@@ -107,7 +100,9 @@ constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN nev
 constexpr std::int32_t k_regular_ring = std::numeric_limits<std::int32_t>::max();
 
 // The eraser's state, grouped by the part each field belongs to. NodeEraser holds one; the stages
-// (the free functions of lib/src/erase and lib/src/refine) take it whole for now.
+// (the free functions of lib/src/erase and lib/src/refine) take it whole for now, but for the
+// refiner's grid and view bounds, parts of their own (refine/frame_state.hpp) that the stages
+// which read only them take alone.
 struct EraserState {
     // ---- The input: the mesh, the options, node ids ----
     Mesh *mesh = nullptr; // borrowed from the caller
@@ -197,44 +192,19 @@ struct EraserState {
     // by rebind() or when a face is first tiled.
     std::vector<float> tile_z;
 
-    // ---- The update's grid (refine/update_grid.hpp) ----
+    // ---- The update's grid (refine/frame_state.hpp, refine/update_grid.hpp) ----
     // The live nodes' and cells' fan bounds (reach, fan_dev) are not kept: only an update reads
     // them, so the constructor and erase() leave them, and the first update after them builds them
     // from the fans (rebuild_fans), as keeping them cost a one-off erase time for nothing
     // (docs/decisions/006-fan-bounds.md).
     bool fans_stale = true;
-    // The update's grid: cells of side cell_side from grid_lo, grid_nx per row, over the input's
-    // extent in xy (grid_lo to grid_hi), sized for grid_live live nodes (see regrid).
-    std::vector<Cell> cells;
-    std::vector<std::uint8_t> cell_visit; // update's scratch: the cells that may matter
-    glm::dvec2 grid_lo{0.0}, grid_hi{0.0};
-    double cell_side = 1.0;
-    std::int64_t grid_live = 0;
-    int grid_nx = 1, grid_ny = 1;
+    refine::UpdateGrid grid;
     // Where the mesh's vertex, edge and face arrays were when rebind() advised huge pages for them
     // (all null: never, as for a one-off erase).
     std::array<const void *, 3> advised{};
 
-    // ---- The view bounds the updates carry over (refine/motion_bounds.hpp) ----
-    // Per face, for the screen model's updates: a bound on its swallowed nodes' weighted deviation
-    // under the view of update face_seen[f] >> 1 (negative: none since the face last changed; the
-    // low bit of face_seen[f]: they lay inside the view cone then, see weight_growth). When the
-    // eye moves by d and the axis turns by a, a node's weight k / distance * peripheral(angle to
-    // the axis) grows by at most (1 + d / distance') * exp((a + asin(d / distance')) / falloff), so
-    // a face whose nodes were within the bound by that much is cleared without a scan
-    // (docs/decisions/007-seen-bounds.md). The views of the last k_seen_views updates are kept; an
-    // older bound is dropped.
-    std::vector<float> face_seen_dev;
-    std::vector<std::uint32_t> face_seen;
-    std::array<View, k_seen_views> seen_views;
-    // For the update under way, per slot of seen_views: how far the eye has moved and the axis
-    // turned since that view, and whether a bound made then carries over (the same lens).
-    struct Since {
-        double moved = 0.0, turn = 0.0;
-        bool ok = false;
-    };
-    std::array<Since, k_seen_views> since;
-    std::uint32_t updates = 0; // update() calls so far
+    // ---- The view bounds the updates carry over (refine/frame_state.hpp, motion_bounds.hpp) ----
+    refine::ViewBounds seen;
 
     // ---- Counters ----
     std::int64_t evaluations = 0;
@@ -321,19 +291,13 @@ inline Samples samples(const EraserState &s) {
     return g;
 }
 
-inline std::uint32_t cell_of(const EraserState &s, const glm::dvec3 &p) {
-    const int cx = std::clamp(int(std::floor((p.x - s.grid_lo.x) / s.cell_side)), 0, s.grid_nx - 1);
-    const int cy = std::clamp(int(std::floor((p.y - s.grid_lo.y) / s.cell_side)), 0, s.grid_ny - 1);
-    return std::uint32_t(cy * s.grid_nx + cx);
-}
-
 // Makes x (vertex v) live; `record` is its record from an earlier erase (-1 if none), kept for
 // re-use.
 inline void add_live(EraserState &s, std::uint32_t x, std::int32_t record, VH v) {
     const Mesh::Point point = node_point(s, x);
     const glm::dvec3 p = to_glm(point);
-    const std::uint32_t c = cell_of(s, p);
-    Cell &cell = s.cells[c];
+    const std::uint32_t c = refine::cell_of(s.grid, p);
+    Cell &cell = s.grid.cells[c];
     cell.zlo = std::min(cell.zlo, float_down(p.z));
     cell.zhi = std::max(cell.zhi, float_up(p.z));
     cell.star_dev = 0.0f;
@@ -386,7 +350,7 @@ inline std::uint8_t &node_stamp(EraserState &s, std::uint32_t x) {
 
 // Face f's swallowed nodes change: its blocks and its seen bound go.
 inline void face_changed(EraserState &s, FH f) {
-    s.face_seen_dev[f.idx()] = -1.0f;
+    s.seen.face_seen_dev[f.idx()] = -1.0f;
     if (s.face_blocked[f.idx()]) {
         s.face_blocked[f.idx()] = 0;
         s.face_blocks.erase(f.idx());
@@ -399,7 +363,7 @@ inline void mark_dirty(EraserState &s, std::uint32_t x) {
     s.flags[x] |= k_dirty;
     LiveNode &l = live_node(s, x);
     l.low_log = -INFINITY;
-    s.cells[l.cell].dirty = true;
+    s.grid.cells[l.cell].dirty = true;
 }
 
 inline void remove_live(EraserState &s, std::uint32_t x, std::int32_t record) {

@@ -41,7 +41,7 @@ inline void widen_fans(EraserState &s, const glm::dvec3 *p, const std::uint32_t 
         l.fan_exact = false;
         l.reach = std::max(l.reach, float_up(std::sqrt(far2[i]) + double(most[i])));
         l.fan_dev = std::max(l.fan_dev, most[i]);
-        Cell &cell = s.cells[l.cell];
+        Cell &cell = s.grid.cells[l.cell];
         cell.reach = std::max(cell.reach, l.reach);
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
     }

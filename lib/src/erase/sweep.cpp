@@ -71,17 +71,17 @@ std::int64_t erase_loop(EraserState &s) {
         const double second = double(s.heap.second_key());
         const bool by_cost = s.options.significance.model != SpModel::paper;
         bool erasable = evaluate(s, vh(s, v), dirty && by_cost ? std::min(tau, second) : tau);
-        if (erasable && dirty && by_cost && second < tau && s.hole.cost > second) {
-            if (float(s.hole.cost) > float(second)) {
-                s.heap.set(v, float(s.hole.cost));
+        if (erasable && dirty && by_cost && second < tau && s.hole.sp > second) {
+            if (float(s.hole.sp) > float(second)) {
+                s.heap.set(v, float(s.hole.sp));
                 s.flags[v] |= k_dirty;
                 continue;
             }
             erasable = evaluate(s, vh(s, v), tau); // equal as floats: the exact cost decides
         }
-        if (!erasable || !(s.hole.cost <= tau)) {
+        if (!erasable || !(s.hole.sp <= tau)) {
             s.heap.pop(); // cannot be erased now; touch_ring brings it back when its ring changes
-            s.heap.store_key(v, erasable ? float(s.hole.cost) : INFINITY);
+            s.heap.store_key(v, erasable ? float(s.hole.sp) : INFINITY);
             continue;
         }
         const float fresh = key_of(s, s.hole);
@@ -185,9 +185,9 @@ static bool sweep_node(EraserState &s, std::uint32_t x, double limit,
         return false;
     }
     s.flags[x] &= std::uint8_t(~k_dirty);
-    if (!(s.hole.cost <= limit)) {
-        store_node_key(s, x, float(s.hole.cost));
-        remember_low(s, live_node(s, x), s.hole.cost);
+    if (!(s.hole.sp <= limit)) {
+        store_node_key(s, x, float(s.hole.sp));
+        remember_low(s, live_node(s, x), s.hole.sp);
         return false;
     }
     s.reerased += (s.flags[x] & k_recovered) != 0;
@@ -393,7 +393,7 @@ CoarseRungs coarse_rungs(EraserState &s, std::vector<std::uint32_t> &order, doub
     for (std::uint32_t x = 0; x < s.nodes; x += k_sample_stride) {
         if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
             continue;
-        const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.hole.cost) : INFINITY;
+        const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.hole.sp) : INFINITY;
         s.heap.store_key(x, cost);
         costs.push_back(cost);
     }

@@ -53,7 +53,8 @@ double covered_estimate(const EraserState &s, std::uint32_t x);
 std::int64_t sweep_dirty(EraserState &s, double limit, std::vector<std::uint32_t> list,
                          std::size_t cap, std::int64_t stop_at = 0);
 
-// classify -> erase: SP models whose key is the cost (not `paper`), see the sweep above.
+// The sweep at the top of this file, for the SP models whose key is the cost (not `paper`).
+// Returns the erases made.
 std::int64_t sweep_erase(EraserState &s);
 
 } // namespace tinlod::erase

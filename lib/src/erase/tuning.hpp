@@ -71,7 +71,7 @@ inline constexpr int k_block_side = 8; // blocks: a k_block_side² grid over the
 inline constexpr std::size_t k_kept_scratch = 4096; // larger scratch is released after use
 
 // The views of the last k_seen_views updates are kept for the bounds the updates carry over (see
-// EraserState::face_seen_dev); an older bound is dropped.
+// ViewBounds::face_seen_dev); an older bound is dropped.
 inline constexpr std::uint32_t k_seen_views = 64;
 // The update's walk over the nodes its bounds did not settle asks for their flags and their star's
 // height this many nodes ahead: each is a cache miss (docs/decisions/009-prefetching.md).

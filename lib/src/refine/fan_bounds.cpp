@@ -46,14 +46,14 @@ static void fan_extent(const EraserState &s, LiveNode &l) {
 } // namespace
 
 void rebuild_fans(EraserState &s) {
-    for (Cell &cell : s.cells) {
+    for (Cell &cell : s.grid.cells) {
         cell.fan_dev = 0.0f;
         cell.reach = 0.0f;
     }
     for (LiveNode &l : s.live_list) {
         fan_extent(s, l);
         l.seen_log = INFINITY;
-        Cell &cell = s.cells[l.cell];
+        Cell &cell = s.grid.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
         cell.reach = std::max(cell.reach, l.reach);
     }

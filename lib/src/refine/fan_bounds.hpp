@@ -11,16 +11,6 @@
 
 namespace tinlod::refine {
 
-using erase::EraserState;
-using erase::FH;
-using erase::float_down;
-using erase::float_up;
-using erase::Hole;
-using erase::k_rounded_weight;
-using erase::k_seen_views;
-using erase::LiveNode;
-using erase::to_glm;
-
 // A bound on the weighted deviation of the swallowed nodes of live node l's fan under the current
 // view, from its bounds alone: the largest deviation times the largest weight in the cube they lie
 // in.
@@ -43,7 +33,7 @@ inline void remember_fan(const EraserState &s, LiveNode &l, double bound) {
     if (keeps_bounds(s)) {
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::log(bound) + 1e-6);
-        l.seen_at = s.updates;
+        l.seen_at = s.seen.updates;
         l.seen_cone = s.weigher.in_cone(p - r, p + r);
     }
 }
@@ -54,7 +44,7 @@ inline void remember_fan(const EraserState &s, LiveNode &l, double bound) {
 inline bool fan_cleared(const EraserState &s, LiveNode &l, double recover_above,
                         double log_recover) {
     if (l.seen_log < INFINITY) {
-        if (const EraserState::Since *d = since(s, l.seen_at)) {
+        if (const ViewBounds::Since *d = since(s, l.seen_at)) {
             const double falloff = s.weigher.falloff();
             if (moved_within(s.view.eye, to_glm(l.p), double(l.reach), d->moved,
                              log_recover - double(l.seen_log) -

@@ -13,6 +13,7 @@
 
 namespace tinlod::refine {
 
+// The eraser's names the refiner's stages use (they work on the eraser's state).
 using erase::EraserState;
 using erase::FH;
 using erase::float_down;
@@ -24,9 +25,9 @@ using erase::LiveNode;
 using erase::to_glm;
 
 // Whether the bounds an update makes carry over to the updates that follow (the screen model's, see
-// EraserState::face_seen_dev and LiveNode::seen_log).
+// ViewBounds::face_seen_dev and LiveNode::seen_log).
 inline bool keeps_bounds(const EraserState &s) {
-    return s.options.significance.model == SpModel::screen && s.updates > 0;
+    return s.options.significance.model == SpModel::screen && s.seen.updates > 0;
 }
 
 // Live node l's erase cost under the current view is at least `cost` (see LiveNode::low_log).
@@ -34,24 +35,24 @@ inline void remember_low(const EraserState &s, LiveNode &l, double cost) {
     l.low_log = -INFINITY;
     if (keeps_bounds(s)) {
         l.low_log = float_down(std::log(cost) - 1e-6);
-        l.low_at = s.updates;
+        l.low_at = s.seen.updates;
     }
 }
 
 // The eye's move and the axis's turn since the view of update `at`, or null when a bound made under
 // that view does not carry over to the current one.
-inline const EraserState::Since *since(const EraserState &s, std::uint32_t at) {
-    if (!keeps_bounds(s) || at == 0 || s.updates - at >= k_seen_views)
+inline const ViewBounds::Since *since(const EraserState &s, std::uint32_t at) {
+    if (!keeps_bounds(s) || at == 0 || s.seen.updates - at >= k_seen_views)
         return nullptr;
-    const EraserState::Since &d = s.since[at % k_seen_views];
+    const ViewBounds::Since &d = s.seen.since[at % k_seen_views];
     return d.ok ? &d : nullptr;
 }
 
 // The factor by which the weight of a node at least `nearest` from the current eye may have grown
-// since `d` (see EraserState::face_seen_dev); infinite when the eye moved that far. `cone`: the
+// since `d` (see ViewBounds::face_seen_dev); infinite when the eye moved that far. `cone`: the
 // node was inside the view cone then (peripheral factor 1, which no view exceeds): the distance's
 // share alone.
-inline double weight_growth(const EraserState &s, const EraserState::Since &d, double nearest,
+inline double weight_growth(const EraserState &s, const ViewBounds::Since &d, double nearest,
                             bool cone) {
     if (!(d.moved < nearest))
         return INFINITY;
@@ -65,7 +66,7 @@ inline double weight_growth(const EraserState &s, const EraserState::Since &d, d
 // share), over-estimated without transcendental functions: ln(1 + x) <= x, -ln(1 - x) <=
 // x / (1 - x) and asin x <= x / sqrt(1 - x²). For the per-node tests an update makes for every
 // live node it visits.
-inline double log_growth(const EraserState &s, const EraserState::Since &d, double nearest,
+inline double log_growth(const EraserState &s, const ViewBounds::Since &d, double nearest,
                          bool cone) {
     if (!(d.moved < nearest))
         return INFINITY;
@@ -73,7 +74,7 @@ inline double log_growth(const EraserState &s, const EraserState::Since &d, doub
     return cone ? x : x + (d.turn + x / std::sqrt(1.0 - x * x)) / s.weigher.falloff();
 }
 
-inline double log_shrink(const EraserState &s, const EraserState::Since &d, double nearest,
+inline double log_shrink(const EraserState &s, const ViewBounds::Since &d, double nearest,
                          bool cone) {
     if (!(d.moved < nearest))
         return INFINITY;
@@ -109,9 +110,9 @@ inline bool moved_within(const glm::dvec3 &eye, const glm::dvec3 &p, double r, d
 inline double seen_now(const EraserState &s, const LiveNode &l) {
     if (!(l.seen_log < INFINITY))
         return INFINITY;
-    if (l.seen_at == s.updates)
+    if (l.seen_at == s.seen.updates)
         return double(l.seen_log);
-    const EraserState::Since *d = since(s, l.seen_at);
+    const ViewBounds::Since *d = since(s, l.seen_at);
     if (!d)
         return INFINITY;
     const double nearest = glm::length(to_glm(l.p) - s.view.eye) - double(l.reach);
@@ -131,14 +132,14 @@ inline void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_
 // within the erase's cost, the exact largest weighted deviation of the samples in the hole. Else
 // the next update walked their fans again (docs/decisions/007-seen-bounds.md).
 inline void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old) {
-    const double cost = h.cost > 0.0 ? std::log(h.cost * (1.0 + 1e-6)) : -INFINITY;
+    const double cost = h.sp > 0.0 ? std::log(h.sp * (1.0 + 1e-6)) : -INFINITY;
     for (int i = 0; i < h.n; ++i) {
         if (!(old[std::size_t(i)] < INFINITY))
             continue;
         LiveNode &l = live_node(s, node_of(s, h.r[i]));
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::max(old[std::size_t(i)], cost) + 1e-6);
-        l.seen_at = s.updates;
+        l.seen_at = s.seen.updates;
         l.seen_cone = s.weigher.in_cone(p - r, p + r);
     }
 }
@@ -148,7 +149,7 @@ inline void carry_seen(EraserState &s, const Hole &h, const std::array<double, k
 double seen_bound(const EraserState &s, FH f, const glm::dvec3 &lo, const glm::dvec3 &hi);
 
 // Face f's swallowed nodes, in the box [lo, hi], have weighted deviations <= seen under the
-// current view: kept for the updates that follow (see EraserState::face_seen_dev).
+// current view: kept for the updates that follow (see ViewBounds::face_seen_dev).
 void remember_seen(EraserState &s, FH f, double seen, const glm::dvec3 &lo, const glm::dvec3 &hi);
 
 } // namespace tinlod::refine

@@ -29,7 +29,7 @@ static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
     eo.lattice = lattice;
     eo.absent_history = true;
     eo.retrieval_tin = retrieval;
-    eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
+    eo.tolerance = options.tolerance * (1.0 - options.hysteresis);
     eo.significance = options.significance;
     eo.max_valence = options.max_valence;
     eo.shallow_history = true; // a recover must not undo a whole row of erases
@@ -37,12 +37,12 @@ static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
 }
 
 static void start(RefinerState &s, const View &first, bool retrieval) {
-    assert(s.options.tol_px > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
+    assert(s.options.tolerance > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
     assert(s.options.significance.model != SpModel::vertical);
     Stopwatch clock;
     s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first,
                                             erase_options(s.options, retrieval, s.lattice));
-    s.first.ms_weights = clock.ms();
+    const double weights_ms = clock.ms();
     clock.reset();
     const EraseStats e = s.eraser->erase();
     // The grid's erased edges and faces leave memory (a copy gets arrays of the compacted size),
@@ -58,16 +58,18 @@ static void start(RefinerState &s, const View &first, bool retrieval) {
     // An update from the same view makes the bounds that later updates carry over (each fan's and
     // face's weighted deviation, each node's least cost), so the first move does not pay for
     // them all at once.
-    const UpdateStats warm =
-        s.eraser->update(first, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
-    s.first.ms_erase = clock.ms();
-    s.first.erased = e.erased + warm.erased;
-    s.first.recovered = warm.recovered;
-    s.first.candidates = e.evaluations;
+    const UpdateStats warm = s.eraser->update(first, s.options.tolerance,
+                                              s.options.tolerance * (1.0 - s.options.hysteresis));
+    UpdateStats &first_update = s.first.update;
+    first_update.weights_ms = weights_ms;
+    first_update.erase_ms = clock.ms();
+    first_update.erased = e.erased + warm.erased;
+    first_update.recovered = warm.recovered;
+    first_update.candidates = e.evaluations;
     s.first.nodes = s.eraser->live_nodes();
     s.first.triangles = s.eraser->live_triangles();
     s.first.bound_px = e.max_weighted;
-    s.first.ms_total = s.first.ms_retrieve + s.first.ms_weights + s.first.ms_erase;
+    s.first.total_ms = s.first.retrieve_ms + weights_ms + first_update.erase_ms;
 }
 
 // Starts from the TIN `retrieved(options)` gives, the quad-tree retrieval at the first retrieval's
@@ -82,10 +84,10 @@ static void start_on_grid(RefinerState &s, const Heightfield &hf, const View &fi
         s.options.significance.model == SpModel::screen ? s.options.retrieve_share : 0;
     if (share > 0) {
         RetrieveOptions ro;
-        ro.tolerance = share * s.options.tol_px * (1.0 - s.options.hysteresis);
+        ro.tolerance = share * s.options.tolerance * (1.0 - s.options.hysteresis);
         ro.peripheral = &s.options.significance;
         s.mesh = std::make_unique<Mesh>(retrieved(ro));
-        s.first.ms_retrieve = clock.ms();
+        s.first.retrieve_ms = clock.ms();
     } else {
         s.mesh = std::make_unique<Mesh>(grid_tin(hf));
     }
@@ -127,22 +129,13 @@ const FrameStats &Refiner::first_frame() const { return state_->first; }
 FrameStats Refiner::update(const View &view) {
     RefinerState &s = *state_;
     Stopwatch clock;
-    const UpdateStats u =
-        s.eraser->update(view, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
+    const UpdateStats u = s.eraser->update(view, s.options.tolerance,
+                                           s.options.tolerance * (1.0 - s.options.hysteresis));
     FrameStats f;
-    f.erased = u.erased;
-    f.recovered = u.recovered;
-    f.entered = u.entered;
-    f.fans_kept = u.fans_kept;
-    f.reerased = u.reerased;
-    f.candidates = u.candidates;
-    f.evaluations = u.evaluations;
-    f.ms_weights = u.ms_weights;
-    f.ms_recover = u.ms_recover;
-    f.ms_erase = u.ms_erase;
+    f.update = u;
     f.nodes = s.eraser->live_nodes();
     f.triangles = s.eraser->live_triangles();
-    f.ms_total = clock.ms();
+    f.total_ms = clock.ms();
     return f;
 }
 

@@ -76,14 +76,14 @@ namespace {
 
 // The update's grid sized for the live nodes, and their fan bounds built, if need be.
 void prepare(EraserState &s) {
-    if (s.live > k_regrid_ratio * s.grid_live || k_regrid_ratio * s.live < s.grid_live)
+    if (s.live > k_regrid_ratio * s.grid.grid_live || k_regrid_ratio * s.live < s.grid.grid_live)
         regrid(s);
     if (s.fans_stale)
         rebuild_fans(s);
 }
 
 // The new view's weigher, and how far the eye has moved and the axis turned since each kept view
-// (EraserState::since), for the bounds carried over.
+// (ViewBounds::since), for the bounds carried over.
 void new_view(EraserState &s, const View &view) {
     s.view = view;
     s.has_view = true;
@@ -91,10 +91,10 @@ void new_view(EraserState &s, const View &view) {
         s.focal_distance = std::max(focal_point(*s.mesh, view).distance, 1e-9);
     s.weigher = Weigher(&s.view, s.options.significance);
     new_weights(s, false);
-    s.seen_views[++s.updates % k_seen_views] = view;
+    s.seen.seen_views[++s.seen.updates % k_seen_views] = view;
     for (std::uint32_t i = 0; i < k_seen_views; ++i) {
-        const View &then = s.seen_views[i];
-        EraserState::Since &d = s.since[i];
+        const View &then = s.seen.seen_views[i];
+        ViewBounds::Since &d = s.seen.since[i];
         d.ok = then.fov_deg == view.fov_deg && then.viewport_w == view.viewport_w &&
                then.viewport_h == view.viewport_h;
         d.moved = glm::length(view.eye - then.eye);
@@ -107,11 +107,11 @@ void new_view(EraserState &s, const View &view) {
 // grid skips the cells whose bounds clear every node in them; the walk over the live nodes
 // rebuilds those bounds (widen_fans raises them as the update changes fans).
 std::vector<FH> seed_recover(EraserState &s, double recover_above) {
-    std::vector<std::uint8_t> &visit = s.cell_visit;
-    visit.resize(s.cells.size());
-    for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
-        Cell &cell = s.cells[c];
-        const auto [lo, hi] = cell_box(s, c, double(cell.reach));
+    std::vector<std::uint8_t> &visit = s.grid.cell_visit;
+    visit.resize(s.grid.cells.size());
+    for (std::uint32_t c = 0; c < std::uint32_t(s.grid.cells.size()); ++c) {
+        Cell &cell = s.grid.cells[c];
+        const auto [lo, hi] = cell_box(s.grid, c, double(cell.reach));
         visit[c] =
             cell.fan_dev > 0.0f &&
             double(cell.fan_dev) * s.weigher.bound(lo, hi) * k_rounded_weight > recover_above;
@@ -123,7 +123,7 @@ std::vector<FH> seed_recover(EraserState &s, double recover_above) {
     for (LiveNode &l : s.live_list) {
         if (visit[l.cell] && !fan_cleared(s, l, recover_above, log_recover))
             seed_fan(s, l, recover_above, work);
-        Cell &cell = s.cells[l.cell];
+        Cell &cell = s.grid.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
         cell.reach = std::max(cell.reach, l.reach);
     }
@@ -179,17 +179,17 @@ std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, d
 // weight in the box the stars lie in says so), and each node's lower bound on its cost, carried
 // from the view it was made under, settles most of the rest without a weight.
 std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
-    std::vector<std::uint8_t> &visit = s.cell_visit;
-    for (std::uint32_t c = 0; c < std::uint32_t(s.cells.size()); ++c) {
-        Cell &cell = s.cells[c];
-        const auto [lo, hi] = cell_box(s, c, double(cell.reach));
+    std::vector<std::uint8_t> &visit = s.grid.cell_visit;
+    for (std::uint32_t c = 0; c < std::uint32_t(s.grid.cells.size()); ++c) {
+        Cell &cell = s.grid.cells[c];
+        const auto [lo, hi] = cell_box(s.grid, c, double(cell.reach));
         visit[c] = cell.dirty || !(double(cell.star_dev) * s.weigher.lower(lo, hi) > erase_below);
         cell.star_dev = INFINITY;
     }
     std::vector<LiveNode *> unsettled;
     const double log_below = std::log(erase_below);
     for (LiveNode &l : s.live_list) {
-        Cell &cell = s.cells[l.cell];
+        Cell &cell = s.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
         if (!visit[l.cell])
             continue;
@@ -198,7 +198,7 @@ std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
         if (l.low_log == INFINITY)
             continue; // parked
         if (l.low_log > -INFINITY) {
-            if (const EraserState::Since *d = since(s, l.low_at)) {
+            if (const ViewBounds::Since *d = since(s, l.low_at)) {
                 // The shrink outside the view cone bounds the one inside it: the cone test (a
                 // square root and a division per node) only when that bound does not settle the
                 // node (docs/decisions/007-seen-bounds.md).
@@ -274,7 +274,7 @@ void finish(EraserState &s, const std::vector<std::uint32_t> &recovered) {
     const Mesh &m = *s.mesh;
     for (const std::uint32_t x : recovered)
         s.flags[x] &= std::uint8_t(~k_recovered);
-    for (Cell &cell : s.cells)
+    for (Cell &cell : s.grid.cells)
         cell.dirty = false;
     if (s.advised[0] &&
         (s.advised[0] != m.points() || (m.n_edges() > 0 && s.advised[1] != &m.edge(EH(0))) ||
@@ -294,16 +294,16 @@ UpdateStats NodeEraser::update(const View &view, double recover_above, double er
     prepare(s);
     Stopwatch clock;
     new_view(s, view);
-    stats.ms_weights = clock.ms();
+    stats.weights_ms = clock.ms();
     clock.reset();
     const std::vector<std::uint32_t> recovered =
         recover_faces(s, seed_recover(s, recover_above), recover_above, stats);
-    stats.ms_recover = clock.ms();
+    stats.recover_ms = clock.ms();
     clock.reset();
     erase_candidates(s, pick_candidates(s, unsettled_nodes(s, erase_below), erase_below, stats),
                      erase_below, stats);
     finish(s, recovered);
-    stats.ms_erase = clock.ms();
+    stats.erase_ms = clock.ms();
     return stats;
 }
 

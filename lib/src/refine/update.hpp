@@ -1,23 +1,5 @@
-// The refiner's frame step, NodeEraser::update(view, recover_above = tau, erase_below =
-// (1 - h) tau), which follows the observer both ways with local edits:
-//
-//   new view: the weigher, and how far the eye moved and the axis turned since each kept view
-//   recover, top down (the recoveries a frame makes are chosen here):
-//       work = the faces whose swallowed nodes may exceed tau
-//              (the cells' and the live nodes' fan bounds clear the rest unwalked: fan_bounds.hpp)
-//       while work is not empty: f = pop(work)
-//           u = f's worst swallowed node over tau, if any          (face_check.hpp)
-//           x = ready_dependency(u): the erase u's recovery waits on that can be undone now
-//           reinsert(x); mark x and its ring dirty; push x's faces and f
-//   erase:
-//       candidates = the dirty live nodes, and those whose cost may have fallen to (1 - h) tau:
-//                    their star's deviation times its weight now (a lower bound of the cost) is
-//                    not over it; bounds carried from earlier views settle the rest unweighed
-//                    (motion_bounds.hpp)
-//       sweep_dirty(candidates, (1 - h) tau): the candidates, then the rings their erases changed
-//
-// Afterwards every swallowed node's weighted deviation is <= tau. A frame costs a few operations
-// per live node in the cells the grid cannot clear (update_grid.hpp), plus the nodes that change.
+// The refiner's frame step, NodeEraser::update(view, recover_above, erase_below); its algorithm
+// opens tinlod/refine.hpp.
 #pragma once
 
 #include "erase/state.hpp"

@@ -11,19 +11,19 @@ namespace tinlod::refine {
 using namespace erase;
 
 void regrid(EraserState &s) {
-    const glm::dvec2 extent = s.grid_hi - s.grid_lo;
+    const glm::dvec2 extent = s.grid.grid_hi - s.grid.grid_lo;
     const double cells = std::max(1.0, double(s.live) / k_live_per_cell);
     const double area = extent.x * extent.y;
-    s.cell_side = std::max(
+    s.grid.cell_side = std::max(
         {area > 0.0 ? std::sqrt(area / cells) : 0.0, std::max(extent.x, extent.y) / 4000.0, 1e-30});
-    s.grid_nx = int(extent.x / s.cell_side) + 1;
-    s.grid_ny = int(extent.y / s.cell_side) + 1;
-    s.grid_live = s.live;
-    s.cells.assign(std::size_t(s.grid_nx) * std::size_t(s.grid_ny), Cell{});
+    s.grid.grid_nx = int(extent.x / s.grid.cell_side) + 1;
+    s.grid.grid_ny = int(extent.y / s.grid.cell_side) + 1;
+    s.grid.grid_live = s.live;
+    s.grid.cells.assign(std::size_t(s.grid.grid_nx) * std::size_t(s.grid.grid_ny), Cell{});
     for (LiveNode &l : s.live_list) {
         const glm::dvec3 p = to_glm(l.p);
-        l.cell = cell_of(s, p);
-        Cell &cell = s.cells[l.cell];
+        l.cell = cell_of(s.grid, p);
+        Cell &cell = s.grid.cells[l.cell];
         cell.zlo = std::min(cell.zlo, float_down(p.z));
         cell.zhi = std::max(cell.zhi, float_up(p.z));
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);

@@ -1,5 +1,5 @@
 // The update's grid: squares in xy over the input's extent, each with bounds over the live nodes
-// in it, so that an update skips whole regions (EraserState::cells). Also the huge pages an
+// in it, so that an update skips whole regions (UpdateGrid). Also the huge pages an
 // update's random reads want.
 #pragma once
 
@@ -9,18 +9,17 @@
 
 namespace tinlod::refine {
 
-using erase::Cell;
 using erase::EraserState;
 
 // The box that holds cell c's live nodes and, `reach` around them, their fans' swallowed nodes.
-inline std::pair<glm::dvec3, glm::dvec3> cell_box(const EraserState &s, std::uint32_t c,
+inline std::pair<glm::dvec3, glm::dvec3> cell_box(const UpdateGrid &g, std::uint32_t c,
                                                   double reach) {
-    const Cell &cell = s.cells[c];
-    const double margin = reach + 1e-6 * s.cell_side; // and the rounding of cell_of's division
+    const Cell &cell = g.cells[c];
+    const double margin = reach + 1e-6 * g.cell_side; // and the rounding of cell_of's division
     const glm::dvec2 lo =
-        s.grid_lo + s.cell_side * glm::dvec2(int(c) % s.grid_nx, int(c) / s.grid_nx);
+        g.grid_lo + g.cell_side * glm::dvec2(int(c) % g.grid_nx, int(c) / g.grid_nx);
     return {{lo.x - margin, lo.y - margin, double(cell.zlo) - margin},
-            {lo.x + s.cell_side + margin, lo.y + s.cell_side + margin, double(cell.zhi) + margin}};
+            {lo.x + g.cell_side + margin, lo.y + g.cell_side + margin, double(cell.zhi) + margin}};
 }
 
 // Sizes the update's grid for s.live live nodes over the input's extent, at most ~4000 cells a side
