@@ -452,7 +452,7 @@ Outcome dem_erase(const Case &c, const EraseOptions &eo) {
     o.extra["evaluations"] = st.erase.evaluations;
     o.extra["retrieved_nodes"] = st.retrieved_nodes;
     o.extra["retrieve_ms"] = st.retrieve_ms;
-    o.extra["erase_ms"] = st.erase.ms;
+    o.extra["erase_ms"] = st.erase.erase_ms;
     o.extra["first_stage"] = first_stage_name(st.first_stage);
     o.input_tris = std::int64_t(c.input->hf.width - 1) * (c.input->hf.height - 1) * 2;
     return o;

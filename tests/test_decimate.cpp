@@ -284,7 +284,7 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
             // retrieval's TIN with a vertex for every sample (the others deleted) gives the same
             // triangles over the same samples.
             RetrieveOptions ro;
-            ro.tol_px = share * options.tolerance;
+            ro.tolerance = share * options.tolerance;
             ro.peripheral = &options.significance;
             Mesh dense = to_lattice_mesh(retrieve(QuadTree(hf), view, ro), hf);
             erase_nodes(dense, &view, options);

@@ -165,7 +165,7 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
 
     // What the first frame retrieved, by RefineOptions' rule.
     RetrieveOptions ro;
-    ro.tol_px = options.retrieve_share * options.tolerance * (1.0 - options.hysteresis);
+    ro.tolerance = options.retrieve_share * options.tolerance * (1.0 - options.hysteresis);
     const Retrieval first = retrieve(QuadTree(hf), high, ro);
     std::vector<std::uint8_t> retrieved(std::size_t(hf.size()), 0);
     for (std::uint32_t id : first.nodes)

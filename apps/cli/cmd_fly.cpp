@@ -147,7 +147,7 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             }
         }
 
-        Stopwatch clock;
+        StageTimes first_frame; // the run up to the first frame: load, retrieval and erase
         std::optional<Heightfield> hf;
         std::optional<Refiner> refiner;
         std::int64_t store_tiles = 0;
@@ -157,7 +157,9 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         options.retrieve_share = args->retrieve_share;
         options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
         if (is_mesh_path(args->input)) {
-            refiner.emplace(read_mesh(args->input), views.front(), options);
+            Mesh input = read_mesh(args->input);
+            first_frame.lap("load");
+            refiner.emplace(std::move(input), views.front(), options);
         } else {
             // A store's first retrieval reads the bounds it holds: no quad-tree is built.
             std::unique_ptr<TileStore> store;
@@ -175,12 +177,13 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
                 check_eye_above(*hf, k.eye, args->path);
             for (const View &v : views)
                 check_eye_above(*hf, v.eye, args->path);
+            first_frame.lap("load");
             if (store)
                 refiner.emplace(*hf, std::move(store), views.front(), options);
             else
                 refiner.emplace(*hf, views.front(), options);
         }
-        const double ms_start = clock.ms();
+        first_frame.lap("refine");
 
         std::unique_ptr<Renderer> renderer;
         RenderOptions ro;
@@ -277,14 +280,15 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
                     throw Error(args->stats, "cannot write: " + std::string(std::strerror(errno)));
             });
         const auto &m = refiner->mesh();
-        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), "
+        std::printf("%d frames, tau %.2f px: first frame %s, "
                     "then per frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all "
                     "(%lld there for the first time, %lld erased again by the update that "
                     "recovered them); %.0f erases tried per frame, %.0f made; %.0f bytes per "
                     "node (TIN + history)%s\n",
-                    frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
-                    (long long)erased_all, (long long)recovered_all, (long long)entered_all,
-                    (long long)reerased_all, double(evaluations_all) / std::max(frames - 1, 1),
+                    frames, args->tol, first_frame.summary().c_str(), percentile(totals, 0.5),
+                    percentile(totals, 0.99), (long long)erased_all, (long long)recovered_all,
+                    (long long)entered_all, (long long)reerased_all,
+                    double(evaluations_all) / std::max(frames - 1, 1),
                     double(erased_after_first) / std::max(frames - 1, 1),
                     double(refiner->bytes()) /
                         double(hf ? hf->size() : std::int64_t(m.n_vertices())),

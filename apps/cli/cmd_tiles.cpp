@@ -62,9 +62,8 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         check_writable_folder(args->output);
         check_writable({args->stats});
         StageTimes times;
-        Stopwatch clock;
         const GeoLattice lattice = load_coverage(args->inputs, args->raster.load_options());
-        times.add("load", clock.ms());
+        times.lap("load");
         const int finest = finest_zoom(lattice);
         const int last = max_zoom->count() > 0 ? args->max_zoom : default_max_zoom(lattice);
         if (last > finest)
@@ -86,11 +85,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                 bar = std::make_unique<Progress>("tiles", total);
             bar->update(done);
         };
-        clock.reset();
         const PyramidStats ps = write_pyramid(lattice, args->output, po);
         if (bar)
             bar->finish();
-        times.add("tiles", clock.ms());
+        times.lap("tiles");
 
         std::int64_t tiles = 0, triangles = 0, vertices = 0, bytes = 0;
         double worst = 0.0, max_vertical = 0.0;

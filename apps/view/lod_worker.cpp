@@ -173,7 +173,8 @@ class GridEngine final : public EngineBase {
         if (lattice && !hf_)
             hf_ = store_->heightfield();
         RetrieveOptions ro;
-        ro.tol_px = lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
+        ro.tolerance =
+            lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
         ro.cull = settings.cull;
         if (lattice && settings.significance.model == SpModel::screen)
             ro.peripheral = &settings.significance; // the erase's weighted bound, as erase_dem

@@ -392,7 +392,7 @@ struct QuadTreeLod::Impl {
     void set_view(const View &view, const RetrieveOptions &options) {
         eye = view.eye;
         k = view.k();
-        tol = options.tol_px;
+        tol = options.tolerance;
         cull = options.cull;
         weigh = options.peripheral != nullptr;
         if (weigh)
@@ -630,7 +630,9 @@ struct QuadTreeLod::Impl {
     }
 
     const Retrieval &run(const View &view, const RetrieveOptions &options) {
-        assert(options.tol_px >= 0.0);
+        if (!(options.tolerance >= 0.0))
+            throw Error("RetrieveOptions::tolerance",
+                        "must be 0 or more (pixels), not " + std::to_string(options.tolerance));
         reset();
         set_view(view, options);
         source->begin_retrieval();

@@ -81,7 +81,8 @@ inline constexpr int k_max_ring = 48;
 enum class Projection { automatic, xy, mean_plane };
 
 struct EraseOptions {
-    // tau: pixels (screen, paper models) or world units (vertical); may be +inf
+    // tau: pixels (screen, paper models) or world units (vertical); may be +inf, 0 erases only
+    // nodes that lie exactly on their neighbours' surface
     double tolerance = 1.0;
     std::int64_t max_nodes = 0;       // stop once this many live nodes remain (0: no budget)
     SignificanceOptions significance; // SP model and its parameters
@@ -136,7 +137,7 @@ struct EraseStats {
     double max_screen_px = 0.0;
     double max_vertical = 0.0; // max deviation over all swallowed nodes, world units: vertical in
                                // a TIN, the distance to the covering triangle on a surface mesh
-    double ms = 0.0;           // wall time of the erase
+    double erase_ms = 0.0;     // wall time of the erase
 };
 
 // The ring of an erased node's last erase, enough to undo it exactly (counter-clockwise; for a
@@ -181,7 +182,9 @@ inline constexpr std::size_t k_update_cap = 4096;
 class NodeEraser {
   public:
     // `mesh`: triangles only, no deleted elements, status attributes (tinlod::Mesh has them).
-    // `view` may be null only for SpModel::vertical; it is copied.
+    // `view` may be null only for SpModel::vertical; it is copied. Throws Error naming the option
+    // for a tolerance < 0 or NaN, max_nodes < 0, max_valence outside [3, k_max_ring], or a screen
+    // or paper model without a view (set_view too).
     NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options);
     ~NodeEraser();
     NodeEraser(NodeEraser &&) noexcept;
@@ -267,6 +270,8 @@ EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options
 
 // ---- Both methods on a DEM ---------------------------------------------------------------------
 
+// erase_dem throws Error naming the option for a share outside its range (retrieve_share and
+// greedy_cap in [0, 1], budget_share finite and >= 0).
 struct DemEraseOptions {
     // With a tolerance: the quad-tree retrieval keeps retrieve_share * tolerance, the erase the
     // rest of the budget (0: the erase starts from the full grid).

@@ -4,13 +4,16 @@
 
 #include "erase/hole_geometry.hpp"
 #include "erase/tuning.hpp"
+#include "tinlod/error.hpp"
 #include "tinlod/greedy.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
+#include <string>
 
 namespace tinlod {
 
@@ -93,7 +96,7 @@ bool retrieves(const Heightfield &hf, const View *view, const EraseOptions &opti
 // the tolerance, so each step aims at 1.1 x the target along the slope of the last two retrievals
 // in log-log (the first along -1), and bisects the bracket on the log when a step would leave it:
 // a few retrievals, where bisection took several times as many
-// (docs/decisions/019-erase-dem-first-stage.md). Leaves the tolerance in ro.tol_px; returns the
+// (docs/decisions/019-erase-dem-first-stage.md). Leaves the tolerance in ro.tolerance; returns the
 // retrieval at it, or null when the last one made was at another.
 const Retrieval *retrieve_for_budget(QuadTreeLod &lod, const View &eye, RetrieveOptions &ro,
                                      double target, double shared) {
@@ -101,7 +104,7 @@ const Retrieval *retrieve_for_budget(QuadTreeLod &lod, const View &eye, Retrieve
     double lo = 1e-6, hi = std::min(1e6, shared);
     double t = std::min(1.0, hi), slope = -1.0, last_t = 0.0, last_n = 0.0;
     for (int i = 0; i < 40; ++i) {
-        ro.tol_px = t;
+        ro.tolerance = t;
         r = &lod.retrieve(eye, ro);
         const double n = double(r->nodes.size());
         (n > target ? lo : hi) = t;
@@ -115,9 +118,9 @@ const Retrieval *retrieve_for_budget(QuadTreeLod &lod, const View &eye, Retrieve
         if (!(t > lo && t < hi))
             t = std::sqrt(lo * hi);
     }
-    const double last = ro.tol_px;
-    ro.tol_px = std::min(lo, shared);
-    return ro.tol_px == last ? r : nullptr;
+    const double last = ro.tolerance;
+    ro.tolerance = std::min(lo, shared);
+    return ro.tolerance == last ? r : nullptr;
 }
 
 // The quad-tree retrieval's TIN on the whole lattice (vertices for its samples only), at
@@ -132,14 +135,14 @@ Mesh retrieved_tin(const Heightfield &hf, const View &eye, const EraseOptions &o
     ro.peripheral = &options.significance;
     const double shared =
         std::isfinite(options.tolerance) ? options.tolerance * dem.retrieve_share : INFINITY;
-    ro.tol_px = shared;
+    ro.tolerance = shared;
     const Retrieval *r = nullptr;
     if (options.max_nodes > 0 && shared > 1e-6)
         r = retrieve_for_budget(lod, eye, ro, retrieval_target(hf, options, dem), shared);
     if (!r)
         r = &lod.retrieve(eye, ro);
     out.retrieved_nodes = std::int64_t(r->nodes.size());
-    out.retrieve_tol = ro.tol_px;
+    out.retrieve_tol = ro.tolerance;
     return to_sparse_lattice_mesh(*r, hf);
 }
 
@@ -163,7 +166,7 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
     run.out.erase = NodeEraser(mesh, run.view, eo).erase();
     run.clock.reset();
     Mesh tin = live_copy(mesh);
-    run.out.erase.ms += run.clock.ms();
+    run.out.erase.erase_ms += run.clock.ms();
     if (stats)
         *stats = run.out;
     return tin;
@@ -173,6 +176,15 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
 
 Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
                const DemEraseOptions &dem, DemEraseStats *stats) {
+    // The shares a user can set, checked in Release too (EraseOptions: by the NodeEraser).
+    const auto check_share = [](const char *name, double value, double hi) {
+        if (!(value >= 0.0 && value <= hi))
+            throw Error(std::string("DemEraseOptions::") + name,
+                        "must be in [0, " + std::to_string(hi) + "], not " + std::to_string(value));
+    };
+    check_share("retrieve_share", dem.retrieve_share, 1.0);
+    check_share("greedy_cap", dem.greedy_cap, 1.0);
+    check_share("budget_share", dem.budget_share, std::numeric_limits<double>::max());
     DemRun run{hf, view, options, Stopwatch(), DemEraseStats()};
     if (const std::optional<GreedyTin> greedy = greedy_first(hf, options, dem)) {
         Mesh mesh = to_sparse_lattice_mesh(greedy->tin, hf);

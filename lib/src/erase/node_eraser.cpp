@@ -10,12 +10,14 @@
 #include "erase/swallowed.hpp"
 #include "erase/sweep.hpp"
 #include "refine/update_grid.hpp"
+#include "tinlod/error.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/util.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace tinlod {
 
@@ -144,10 +146,29 @@ void build_live_set(EraserState &s, std::vector<std::int32_t> vertex_of) {
     }
 }
 
+// The option values a user can reach, checked in Release too (an assert is compiled out): each
+// Error names the option at fault.
+void check_options(const View *view, const EraseOptions &options) {
+    if (!(options.tolerance >= 0.0))
+        throw Error("EraseOptions::tolerance",
+                    "must be 0 or more (or +inf), not " + std::to_string(options.tolerance));
+    if (options.max_nodes < 0)
+        throw Error("EraseOptions::max_nodes",
+                    "must be 0 (no budget) or more, not " + std::to_string(options.max_nodes));
+    if (options.max_valence < 3 || options.max_valence > k_max_ring)
+        throw Error("EraseOptions::max_valence", "must be in [3, " + std::to_string(k_max_ring) +
+                                                     "], not " +
+                                                     std::to_string(options.max_valence));
+    if (!view && options.significance.model != SpModel::vertical)
+        throw Error("EraseOptions::significance",
+                    "the screen and paper models need a view (only the vertical model has none)");
+}
+
 } // namespace
 
 NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
     : state_(std::make_unique<erase::EraserState>()) {
+    check_options(view, options);
     EraserState &s = *state_;
     s.mesh = &mesh;
     assert(s.mesh->is_trimesh());
@@ -172,8 +193,8 @@ NodeEraser::NodeEraser(NodeEraser &&) noexcept = default;
 NodeEraser &NodeEraser::operator=(NodeEraser &&) noexcept = default;
 
 void NodeEraser::set_view(const View *view, const EraseOptions &options) {
+    check_options(view, options);
     EraserState &s = *state_;
-    assert(view || options.significance.model == SpModel::vertical);
     s.options = options;
     s.has_view = view != nullptr;
     std::fill(s.seen.face_seen_dev.begin(), s.seen.face_seen_dev.end(),
@@ -232,7 +253,7 @@ EraseStats NodeEraser::erase() {
     stats.max_weighted = now.max_weighted;
     stats.max_screen_px = now.max_screen_px;
     stats.max_vertical = now.max_vertical;
-    stats.ms = clock.ms();
+    stats.erase_ms = clock.ms();
     return stats;
 }
 
@@ -346,7 +367,7 @@ EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options
     }
     Stopwatch clock;
     mesh.garbage_collection();
-    stats.ms += clock.ms();
+    stats.erase_ms += clock.ms();
     return stats;
 }
 

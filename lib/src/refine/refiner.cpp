@@ -84,7 +84,7 @@ static void start_on_grid(RefinerState &s, const Heightfield &hf, const View &fi
         s.options.significance.model == SpModel::screen ? s.options.retrieve_share : 0;
     if (share > 0) {
         RetrieveOptions ro;
-        ro.tol_px = share * s.options.tolerance * (1.0 - s.options.hysteresis);
+        ro.tolerance = share * s.options.tolerance * (1.0 - s.options.hysteresis);
         ro.peripheral = &s.options.significance;
         s.mesh = std::make_unique<Mesh>(retrieved(ro));
         s.first.retrieve_ms = clock.ms();
