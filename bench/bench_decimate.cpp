@@ -51,7 +51,7 @@ Row measure(const std::string &name, const Heightfield &hf, const View &view, co
             bench::folded_faces(out),
             0.0};
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     row.max_screen_px = measure_error(hf, out, eo).max_screen_px;
     return row;
 }
@@ -63,7 +63,7 @@ Row run_tinlod(const Heightfield &hf, const View &view, double tol, std::int64_t
     options.tolerance = tol;
     options.max_nodes = max_nodes;
     Stopwatch clock;
-    erase_nodes(tin, &view, options);
+    erase_nodes(tin, Significance::screen(view), options);
     const double ms = clock.ms();
     return measure(max_nodes ? "tinlod erase (node budget)" : "tinlod erase (tau = 1 px)", hf, view,
                    tin, ms, tris);
@@ -155,7 +155,7 @@ int main(int argc, char **argv) {
     {
         // The erase history the refiner builds on: its size, and recovering every node.
         Mesh tin = grid_tin(hf);
-        NodeEraser eraser(tin, &view, EraseOptions{});
+        NodeEraser eraser(tin, Significance::screen(view), EraseOptions{});
         const EraseStats stats = eraser.erase();
         const double bytes = double(eraser.history_bytes()) / double(stats.input_nodes);
         Stopwatch clock;
@@ -172,11 +172,10 @@ int main(int argc, char **argv) {
     const double grid_tris = 2.0 * (hf.width - 1) * (hf.height - 1);
     for (double bound : {1.0, 5.0, 20.0}) {
         EraseOptions options;
-        options.significance.model = SpModel::vertical;
         options.tolerance = bound;
         DemEraseStats st;
         Stopwatch clock;
-        const Mesh tin = erase_dem(hf, nullptr, options, {}, &st);
+        const Mesh tin = erase_dem(hf, Significance::vertical(), options, {}, &st);
         const double ms = clock.ms();
         std::printf("%10.1f %10s %10zu %10.0f %12.2f %10.3f\n", bound,
                     first_stage_name(st.first_stage), tin.n_vertices(), ms, grid_tris / ms / 1000.0,

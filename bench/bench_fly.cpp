@@ -50,6 +50,7 @@
 #include "tinlod/tin.hpp"
 #include "tinlod/util.hpp"
 #include "tinlod/view.hpp"
+#include "working_set.hpp"
 
 #include "common.hpp"
 
@@ -262,7 +263,7 @@ struct Flight {
 
 double measured_px(const Heightfield &hf, const Mesh &tin, const View &view) {
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     return measure_error(hf, tin, eo).max_screen_px;
 }
 
@@ -335,7 +336,7 @@ PathResult fly(const Heightfield &hf, const QuadTree &tree, const FlightPath &p,
         } else if (rebuilds && i % k_rebuild_every == 1) {
             const double rcpu0 = thread_cpu_ms();
             clock.reset();
-            const Mesh rebuilt = erase_dem(hf, &views[i], eo, rebuild);
+            const Mesh rebuilt = erase_dem(hf, Significance::screen(views[i]), eo, rebuild);
             row.rebuild_ms = clock.ms();
             row.rebuild_cpu_ms = thread_cpu_ms() - rcpu0;
             row.rebuilt = true;

@@ -2,9 +2,11 @@
 // re-triangulation (triangulate_ring), quad-tree traversal (QuadTreeLod::retrieve), the grid TIN's
 // mesh (grid_tin), node erase and recovery (NodeEraser), on the real SRTM tile N42E001 (meshes/)
 // and its 513² crop.
+#include "erase/ring_triangulation.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/significance.hpp"
 #include "tinlod/tin.hpp"
 
@@ -60,20 +62,25 @@ void BM_SpEvaluate(benchmark::State &state, SpModel model) {
         t.ration = t.delta / 90.0;
         t.peripheral = peripheral_factor(view, p, {});
     }
-    SignificanceOptions options;
-    options.model = model;
+    const Significance sp = Significance::of(model, view, {});
     for (auto _ : state)
         for (const NodeTerms &t : terms)
-            benchmark::DoNotOptimize(significance(t, &view, options, 5000.0));
+            benchmark::DoNotOptimize(significance(t, sp, 5000.0));
     state.SetItemsProcessed(state.iterations() * std::int64_t(terms.size()));
 }
 
 // The weight every node's deviation is measured with (k / OD * peripheral), over the grid TIN.
 void BM_NodeWeights(benchmark::State &state) {
     const Mesh mesh = grid_tin(n42_513());
-    const View view = low_view(n42_513());
-    for (auto _ : state)
-        benchmark::DoNotOptimize(node_weights(mesh, &view, {}).data());
+    const Weigher weigher(low_view(n42_513()), {});
+    std::vector<float> weight(mesh.n_vertices());
+    for (auto _ : state) {
+        for (auto v : mesh.all_vertices()) {
+            const auto &p = mesh.point(v);
+            weight[std::size_t(v.idx())] = float(weigher({p[0], p[1], p[2]}));
+        }
+        benchmark::DoNotOptimize(weight.data());
+    }
     state.SetItemsProcessed(state.iterations() * std::int64_t(mesh.n_vertices()));
 }
 
@@ -90,7 +97,7 @@ void BM_TriangulateRing(benchmark::State &state) {
         }
     for (auto _ : state)
         for (const auto &ring : rings)
-            benchmark::DoNotOptimize(triangulate_ring(ring).data());
+            benchmark::DoNotOptimize(erase::triangulate_ring(ring).data());
     state.SetItemsProcessed(state.iterations() * std::int64_t(rings.size()));
 }
 
@@ -145,7 +152,7 @@ void BM_Erase(benchmark::State &state) {
         state.PauseTiming();
         Mesh mesh = grid;
         state.ResumeTiming();
-        NodeEraser eraser(mesh, &view, EraseOptions{});
+        NodeEraser eraser(mesh, Significance::screen(view), EraseOptions{});
         benchmark::DoNotOptimize(eraser.erase().erased);
     }
     state.SetItemsProcessed(state.iterations() * std::int64_t(grid.n_faces()));
@@ -155,7 +162,7 @@ void BM_Erase(benchmark::State &state) {
 void BM_Recover(benchmark::State &state) {
     Mesh mesh = grid_tin(n42_513());
     const View view = low_view(n42_513());
-    NodeEraser eraser(mesh, &view, EraseOptions{});
+    NodeEraser eraser(mesh, Significance::screen(view), EraseOptions{});
     std::int64_t recovered = 0;
     for (auto _ : state) {
         state.PauseTiming();

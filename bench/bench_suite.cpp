@@ -355,7 +355,7 @@ json run_case(const std::string &name, const Contender &contender, const Case &c
             return r;
         if (c.input->is_terrain()) {
             ErrorOptions eo;
-            eo.view = &c.view;
+            eo.model = Significance::screen(c.view);
             const TinError e = measure_error(hf, o.tris, eo);
             r["max_vertical"] = e.max_vertical;
             r["rms_vertical"] = e.rms_vertical;
@@ -364,7 +364,8 @@ json run_case(const std::string &name, const Contender &contender, const Case &c
             r["folded"] = bench::folded_triangles(hf, o.tris);
         } else {
             HausdorffOptions ho;
-            ho.view = &c.view; // each sample's distance seen from where it lies, as on terrains
+            ho.model = Significance::screen(
+                c.view); // each sample's distance seen from where it lies, as on terrains
             const HausdorffResult h = hausdorff(*o.mesh, *c.input->mesh, ho);
             r["hausdorff_max"] = h.max;
             r["hausdorff_rms"] = h.rms;
@@ -438,14 +439,14 @@ Outcome retrieve_only(const Case &c, bool matched) {
 // erase_dem from the terrain's DEM, as `tinlod simplify DEM` runs it: retrieval (the screen
 // model), greedy insertion or the grid (the vertical model), then node erase over every sample of
 // the grid; the first stage and its mesh are timed too.
-Outcome dem_erase(const Case &c, const EraseOptions &eo) {
+Outcome dem_erase(const Case &c, SpModel model, const EraseOptions &eo) {
     Outcome o;
     DemEraseStats st;
-    const View *view = eo.significance.model == SpModel::vertical ? nullptr : &c.view;
+    const Significance sp = Significance::of(model, c.view, {});
     while (again(c, o.ms)) {
         o.mesh.reset();
         Timer clock;
-        const Mesh out = erase_dem(c.input->hf, view, eo, {}, &st);
+        const Mesh out = erase_dem(c.input->hf, sp, eo, {}, &st);
         clock.stop(o);
         o.mesh = std::make_unique<Mesh>(out);
     }
@@ -462,7 +463,7 @@ Outcome dem_erase(const Case &c, const EraseOptions &eo) {
 Outcome retrieve_erase(const Case &c) {
     EraseOptions eo;
     eo.tolerance = c.tol;
-    return dem_erase(c, eo);
+    return dem_erase(c, SpModel::screen, eo);
 }
 
 // Node erase: view-dependent (screen) or view-independent (vertical), to c.target_nodes (tolerance
@@ -470,18 +471,16 @@ Outcome retrieve_erase(const Case &c) {
 // erase_dem (dem_erase); otherwise the erase runs on the input mesh, built untimed.
 Outcome erase_grid(const Case &c, SpModel model) {
     EraseOptions eo;
-    eo.significance.model = model;
     eo.tolerance = c.target_nodes > 0 ? INFINITY : c.tol;
     eo.max_nodes = c.target_nodes;
     if (model == SpModel::screen && c.input->is_terrain())
-        return dem_erase(c, eo);
+        return dem_erase(c, model, eo);
     Outcome o;
     while (again(c, o.ms)) {
         o.mesh = input_mesh(*c.input);
         o.input_tris = std::int64_t(o.mesh->n_faces());
         Timer clock;
-        const EraseStats s =
-            erase_nodes(*o.mesh, model == SpModel::vertical ? nullptr : &c.view, eo);
+        const EraseStats s = erase_nodes(*o.mesh, Significance::of(model, c.view, {}), eo);
         clock.stop(o);
         o.extra["evaluations"] = s.evaluations;
     }
@@ -774,9 +773,8 @@ struct Suite {
                 "tinlod erase (vertical)",
                 [](const Case &k) {
                     EraseOptions eo;
-                    eo.significance.model = SpModel::vertical;
                     eo.tolerance = k.tol;
-                    return dem_erase(k, eo);
+                    return dem_erase(k, SpModel::vertical, eo);
                 },
                 c));
             c.reps = 1; // delatin at small bounds takes tens of seconds

@@ -1,10 +1,13 @@
 // The public API's contract (#47 item 7, #50 item 4): option values a user can reach are checked
-// with tinlod::Error naming the option, and the CLI's times account for the whole run.
+// with tinlod::Error naming the option, a significance model carries its view exactly when it
+// needs one, and the CLI's times account for the whole run.
 #include "support/assets.hpp"
 
 #include "tinlod/decimate.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/quadtree.hpp"
+#include "tinlod/refine.hpp"
+#include "tinlod/significance.hpp"
 #include "tinlod/util.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +18,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 using namespace tinlod;
 using tinlod::test::asset;
@@ -49,11 +53,10 @@ void expect_error_naming(const std::function<void()> &call, const std::string &o
     }
 }
 
-// A NodeEraser on the bumps' grid TIN with `options` (and the overhead view unless `view` is null).
-void erase_with(const EraseOptions &options, bool view = true) {
+// A NodeEraser on the bumps' grid TIN with `options`, in the screen model from the overhead view.
+void erase_with(const EraseOptions &options) {
     Mesh mesh = grid_tin(bumps());
-    const View v = overhead();
-    NodeEraser eraser(mesh, view ? &v : nullptr, options);
+    NodeEraser eraser(mesh, Significance::screen(overhead()), options);
     eraser.erase();
 }
 
@@ -116,24 +119,47 @@ TEST(ApiOptions, EraseNegativeBudgetIsAnError) {
     expect_error_naming([&] { erase_with(o); }, "max_nodes");
 }
 
-TEST(ApiOptions, AViewModelWithoutAViewIsAnError) {
+// A screen or paper model without a view, once a run-time Error, cannot be written: a
+// Significance is made by its factories only, which give the view exactly to the models that use
+// it.
+static_assert(!std::is_constructible_v<Significance, SpModel, View, SignificanceOptions>);
+
+TEST(ApiSignificance, TheViewIsThereExactlyWhenTheModelNeedsIt) {
+    const View v = overhead();
+    SignificanceOptions p;
+    p.falloff_deg = 7.0;
+    EXPECT_FALSE(Significance().view());
+    EXPECT_EQ(Significance().model(), SpModel::vertical);
+    EXPECT_FALSE(Significance::of(SpModel::vertical, v, p).view());
     for (SpModel model : {SpModel::screen, SpModel::paper}) {
-        EraseOptions o;
-        o.significance.model = model;
-        expect_error_naming([&] { erase_with(o, false); }, "significance");
-        Mesh mesh = grid_tin(bumps());
-        expect_error_naming([&] { erase_nodes(mesh, nullptr, o); }, "significance");
-        expect_error_naming([&] { erase_dem(bumps(), nullptr, o); }, "significance");
+        const Significance s = Significance::of(model, v, p);
+        ASSERT_TRUE(s.view());
+        EXPECT_EQ(s.model(), model);
+        EXPECT_EQ(s.view()->eye, v.eye);
+        View moved = v;
+        moved.eye.x += 5.0;
+        const Significance t = s.seen_from(moved);
+        EXPECT_EQ(t.model(), model);
+        EXPECT_EQ(t.view()->eye, moved.eye);
+        EXPECT_EQ(t.options().falloff_deg, 7.0);
     }
+    EXPECT_FALSE(Significance::vertical().seen_from(v).view());
+}
+
+TEST(ApiOptions, RefinerInTheVerticalModelIsAnError) {
+    RefineOptions o;
+    o.model = SpModel::vertical;
+    const Heightfield hf = bumps();
+    expect_error_naming([&] { Refiner refiner(hf, overhead(), o); }, "model");
 }
 
 TEST(ApiOptions, SetViewChecksItsOptionsToo) {
     Mesh mesh = grid_tin(bumps());
     const View v = overhead();
-    NodeEraser eraser(mesh, &v, EraseOptions{});
+    NodeEraser eraser(mesh, Significance::screen(v), EraseOptions{});
     EraseOptions o;
     o.tolerance = -2.0;
-    expect_error_naming([&] { eraser.set_view(&v, o); }, "tolerance");
+    expect_error_naming([&] { eraser.set_view(Significance::screen(v), o); }, "tolerance");
 }
 
 TEST(ApiOptions, DemSharesOutOfRangeAreErrors) {
@@ -142,15 +168,18 @@ TEST(ApiOptions, DemSharesOutOfRangeAreErrors) {
     for (double bad : {-0.5, 1.5, nan}) {
         DemEraseOptions d;
         d.retrieve_share = bad;
-        expect_error_naming([&] { erase_dem(bumps(), &v, EraseOptions{}, d); }, "retrieve_share");
+        expect_error_naming([&] { erase_dem(bumps(), Significance::screen(v), EraseOptions{}, d); },
+                            "retrieve_share");
         d = {};
         d.greedy_cap = bad;
-        expect_error_naming([&] { erase_dem(bumps(), &v, EraseOptions{}, d); }, "greedy_cap");
+        expect_error_naming([&] { erase_dem(bumps(), Significance::screen(v), EraseOptions{}, d); },
+                            "greedy_cap");
     }
     for (double bad : {-1.0, nan, double(INFINITY)}) {
         DemEraseOptions d;
         d.budget_share = bad;
-        expect_error_naming([&] { erase_dem(bumps(), &v, EraseOptions{}, d); }, "budget_share");
+        expect_error_naming([&] { erase_dem(bumps(), Significance::screen(v), EraseOptions{}, d); },
+                            "budget_share");
     }
 }
 

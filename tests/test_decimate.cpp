@@ -1,6 +1,6 @@
-// Node erase (lib/decimate): ring geometry on hand-built rings, then every asset in meshes/ through
-// the invariants (manifold, no fold-over, outline and Euler characteristic unchanged, measured
-// error <= bound, recover(erase(m)) == m).
+// Node erase (lib/src/erase): every asset in meshes/ through the invariants (manifold, no
+// fold-over, outline and Euler characteristic unchanged, measured error <= bound,
+// recover(erase(m)) == m). The ear clipping of hand-built rings: test_erase_internals.
 #include "assets.hpp"
 
 #include "../lib/src/lattice_rings.hpp" // internal: the rings of the samples a retrieval left out
@@ -23,70 +23,6 @@ namespace tinlod {
 namespace {
 
 using test::asset;
-
-double tri_area2(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c) {
-    return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-}
-
-// ---- Tier 1: hand-built rings
-// --------------------------------------------------------------------
-
-TEST(Ring, OrderAndOrientation) {
-    const std::vector<glm::dvec2> shuffled = {{1, 1}, {-1, -1}, {1, -1}, {-1, 1}, {0, -2}};
-    const std::vector<int> order = order_ring({0, 0}, shuffled);
-    std::vector<glm::dvec2> ring;
-    for (int i : order)
-        ring.push_back(shuffled[i]);
-    EXPECT_EQ(ring_orientation(ring), RingOrientation::ccw);
-    std::reverse(ring.begin(), ring.end());
-    EXPECT_EQ(ring_orientation(ring), RingOrientation::cw);
-    const std::vector<glm::dvec2> line = {{0, 0}, {1, 0}, {2, 0}};
-    EXPECT_EQ(ring_orientation(line), RingOrientation::degenerate);
-}
-
-TEST(Ring, ConcaveRingFirstEarNotErasable) {
-    // The dent at node 3 reaches into the convex corner at node 0.
-    const std::vector<glm::dvec2> ring = {{0, 0}, {4, 0}, {4, 4}, {1, 1}, {0, 4}};
-    ASSERT_EQ(ring_orientation(ring), RingOrientation::ccw);
-    EXPECT_FALSE(is_erasable_ear(ring, 0)); // convex, but node 3 lies inside the ear
-    EXPECT_FALSE(is_erasable_ear(ring, 3)); // reflex
-    EXPECT_FALSE(is_erasable_ear(ring, 1)); // node 3 lies on its edge 0-2
-    EXPECT_TRUE(is_erasable_ear(ring, 2));
-    const auto tris = triangulate_ring(ring);
-    ASSERT_EQ(tris.size(), ring.size() - 2);
-    double area = 0.0;
-    for (const auto &t : tris) {
-        const double a2 = tri_area2(ring[t.a], ring[t.b], ring[t.c]);
-        EXPECT_GT(a2, 0.0);
-        area += a2 / 2;
-        for (int j = 0; j < int(ring.size()); ++j) {
-            if (j == t.a || j == t.b || j == t.c)
-                continue;
-            const bool inside = tri_area2(ring[t.a], ring[t.b], ring[j]) >= 0 &&
-                                tri_area2(ring[t.b], ring[t.c], ring[j]) >= 0 &&
-                                tri_area2(ring[t.c], ring[t.a], ring[j]) >= 0;
-            EXPECT_FALSE(inside) << "ring node " << j << " inside a new triangle";
-        }
-    }
-    EXPECT_DOUBLE_EQ(area, 10.0); // the polygon's shoelace area
-}
-
-TEST(Ring, ClockwiseRingIsRefused) {
-    std::vector<glm::dvec2> ring = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    std::reverse(ring.begin(), ring.end());
-    EXPECT_TRUE(triangulate_ring(ring).empty());
-}
-
-TEST(Ring, PrefersDelaunayDiagonal) {
-    // A flat rhombus: the short diagonal (1-3) is the Delaunay one.
-    const std::vector<glm::dvec2> ring = {{0, 0}, {2, -0.5}, {4, 0}, {2, 0.5}};
-    const auto tris = triangulate_ring(ring);
-    ASSERT_EQ(tris.size(), 2u);
-    for (const auto &t : tris) {
-        const bool has1 = t.a == 1 || t.b == 1 || t.c == 1, has3 = t.a == 3 || t.b == 3 || t.c == 3;
-        EXPECT_TRUE(has1 && has3);
-    }
-}
 
 // ---- Helpers over meshes
 // ---------------------------------------------------------------------------
@@ -191,7 +127,7 @@ TEST_P(DemErase, ScreenBoundInvariantsAndExactRecovery) {
     EraseOptions options;
     options.tolerance = 1.0;
     Mesh work = input;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     const EraseStats stats = eraser.erase();
     EXPECT_GT(stats.erased, 0);
     EXPECT_LT(stats.output_nodes, stats.input_nodes);
@@ -207,7 +143,7 @@ TEST_P(DemErase, ScreenBoundInvariantsAndExactRecovery) {
     EXPECT_NEAR(test::xy_area(out), input_area, 1e-9 * input_area);
 
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     const TinError measured = measure_error(hf, out, eo);
     EXPECT_EQ(measured.uncovered, 0);
     EXPECT_LE(measured.max_screen_px, options.tolerance)
@@ -232,10 +168,9 @@ TEST_P(DemErase, VerticalBoundHoldsAndNodesFallAsBoundGrows) {
     std::int64_t previous = INT64_MAX;
     for (double fraction : {0.002, 0.01, 0.05}) {
         EraseOptions options;
-        options.significance.model = SpModel::vertical;
         options.tolerance = fraction * relief;
         Mesh tin = grid_tin(hf);
-        const EraseStats stats = erase_nodes(tin, nullptr, options);
+        const EraseStats stats = erase_nodes(tin, Significance::vertical(), options);
         const TinError measured = measure_error(hf, tin);
         EXPECT_EQ(measured.uncovered, 0);
         EXPECT_LE(measured.max_vertical, options.tolerance) << "bound " << options.tolerance;
@@ -255,16 +190,16 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
     const View view = corner_view(hf);
     const Invariants grid = invariants(grid_tin(hf));
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     EraseOptions options;
     options.tolerance = 1.0;
     Mesh full = grid_tin(hf);
-    erase_nodes(full, &view, options);
+    erase_nodes(full, Significance::screen(view), options);
     for (double share : {0.5, 1.0}) {
         DemEraseOptions dem;
         dem.retrieve_share = share;
         DemEraseStats stats;
-        const Mesh out = erase_dem(hf, &view, options, dem, &stats);
+        const Mesh out = erase_dem(hf, Significance::screen(view), options, dem, &stats);
         EXPECT_LT(stats.retrieved_nodes, hf.size()) << "share " << share;
         EXPECT_EQ(stats.retrieve_tol, share * options.tolerance);
         const TinError measured = measure_error(hf, out, eo);
@@ -285,9 +220,10 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
             // triangles over the same samples.
             RetrieveOptions ro;
             ro.tolerance = share * options.tolerance;
-            ro.peripheral = &options.significance;
+            const SignificanceOptions screen;
+            ro.peripheral = &screen;
             Mesh dense = to_lattice_mesh(retrieve(QuadTree(hf), view, ro), hf);
-            erase_nodes(dense, &view, options);
+            erase_nodes(dense, Significance::screen(view), options);
             Mesh sparse = out;
             EXPECT_EQ(triangle_set(sparse), triangle_set(dense));
         }
@@ -298,7 +234,7 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
     DemEraseOptions dem;
     dem.budget_share = 2.0;
     DemEraseStats stats;
-    const Mesh out = erase_dem(hf, &view, budget, dem, &stats);
+    const Mesh out = erase_dem(hf, Significance::screen(view), budget, dem, &stats);
     EXPECT_EQ(std::int64_t(out.n_vertices()), budget.max_nodes);
     EXPECT_GE(stats.retrieved_nodes, 2 * budget.max_nodes);
     // The search for the retrieval's tolerance lands in (1, 1.2] x its target.
@@ -308,19 +244,19 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
     // A budget far below what the bound allows, with the bound: the bound wins.
     budget.tolerance = options.tolerance;
     budget.max_nodes = std::max<std::int64_t>(8, std::int64_t(full.n_vertices()) / 20);
-    const Mesh bounded = erase_dem(hf, &view, budget, dem, &stats);
+    const Mesh bounded = erase_dem(hf, Significance::screen(view), budget, dem, &stats);
     EXPECT_LE(measure_error(hf, bounded, eo).max_screen_px, options.tolerance);
     EXPECT_LE(stats.retrieve_tol, 0.5 * options.tolerance);
     // No share of the bound for the retrieval: the whole lattice, no search.
     dem.retrieve_share = 0.0;
-    const Mesh whole = erase_dem(hf, &view, budget, dem, &stats);
+    const Mesh whole = erase_dem(hf, Significance::screen(view), budget, dem, &stats);
     EXPECT_EQ(stats.retrieved_nodes, hf.size());
     EXPECT_LE(measure_error(hf, whole, eo).max_screen_px, options.tolerance);
     // No share of the budget either (`simplify --max-nodes N --retrieve-share 0`): the whole
     // lattice, erased to the budget.
     dem.budget_share = 0.0;
     budget.tolerance = INFINITY;
-    const Mesh to_budget = erase_dem(hf, &view, budget, dem, &stats);
+    const Mesh to_budget = erase_dem(hf, Significance::screen(view), budget, dem, &stats);
     EXPECT_EQ(stats.retrieved_nodes, hf.size());
     EXPECT_EQ(std::int64_t(to_budget.n_vertices()), budget.max_nodes);
 }
@@ -334,15 +270,15 @@ TEST_P(DemErase, BudgetReachesTheBoundOfAsManyNodes) {
     const Heightfield hf = load_cropped(GetParam());
     const View view = corner_view(hf);
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     EraseOptions bounded;
     bounded.tolerance = 1.0;
-    const Mesh swept = erase_dem(hf, &view, bounded);
+    const Mesh swept = erase_dem(hf, Significance::screen(view), bounded);
     ASSERT_LE(measure_error(hf, swept, eo).max_screen_px, 1.0);
     EraseOptions budget;
     budget.tolerance = INFINITY;
     budget.max_nodes = std::int64_t(swept.n_vertices());
-    const Mesh out = erase_dem(hf, &view, budget);
+    const Mesh out = erase_dem(hf, Significance::screen(view), budget);
     EXPECT_EQ(out.n_vertices(), swept.n_vertices());
     EXPECT_LE(measure_error(hf, out, eo).max_screen_px, 1.1) << budget.max_nodes << " nodes";
 }
@@ -413,13 +349,12 @@ TEST_P(DemErase, VerticalEraseFromGreedyInsertionKeepsTheBound) {
     const Heightfield hf = load_cropped(GetParam());
     const double relief = hf.max_z() - hf.min_z();
     EraseOptions options;
-    options.significance.model = SpModel::vertical;
     options.tolerance = 0.05 * relief;
     for (const double cap : {DemEraseOptions{}.greedy_cap, 0.0}) {
         DemEraseOptions dem;
         dem.greedy_cap = cap;
         DemEraseStats stats;
-        const Mesh out = erase_dem(hf, nullptr, options, dem, &stats);
+        const Mesh out = erase_dem(hf, Significance::vertical(), options, dem, &stats);
         EXPECT_EQ(stats.first_stage, cap > 0.0 ? FirstStage::greedy : FirstStage::grid);
         const TinError measured = measure_error(hf, out);
         EXPECT_EQ(measured.uncovered, 0);
@@ -445,10 +380,10 @@ TEST(Erase, InvariantsHoldAfterEveryStage) {
     EraseOptions options;
     options.tolerance = INFINITY;
     Mesh work = input;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     for (std::int64_t budget = eraser.live_nodes() * 3 / 4; budget > 200; budget /= 2) {
         options.max_nodes = budget;
-        eraser.set_view(&view, options);
+        eraser.set_view(Significance::screen(view), options);
         eraser.erase();
         EXPECT_LE(eraser.live_nodes(), budget);
         Mesh out = eraser.mesh();
@@ -471,14 +406,14 @@ TEST(Erase, LatticeScanAgreesWithSwallowedLists) {
     Mesh listed = grid;
     listed.add_vertex(grid.point(Mesh::VertexHandle(0)));
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     EraseOptions options;
     options.tolerance = 1.0;
     std::int64_t nodes[2];
     int k = 0;
     for (const Mesh *input : {&grid, static_cast<const Mesh *>(&listed)}) {
         Mesh work = *input;
-        const EraseStats stats = erase_nodes(work, &view, options);
+        const EraseStats stats = erase_nodes(work, Significance::screen(view), options);
         const TinError measured = measure_error(hf, work, eo);
         EXPECT_LE(measured.max_screen_px, options.tolerance);
         EXPECT_NEAR(stats.max_screen_px, measured.max_screen_px, 1e-3);
@@ -499,7 +434,7 @@ TEST(Erase, RetrievedLatticeTinRecoversExactly) {
     const auto input_triangles = triangle_set(input);
     EXPECT_EQ(input_triangles.size(), retrieval.triangles.size() / 3);
     Mesh work = input;
-    NodeEraser eraser(work, &view, EraseOptions{});
+    NodeEraser eraser(work, Significance::screen(view), EraseOptions{});
     EXPECT_EQ(eraser.live_nodes(), std::int64_t(retrieval.nodes.size()));
     const EraseStats stats = eraser.erase();
     EXPECT_GT(stats.erased, 0);
@@ -540,7 +475,7 @@ TEST(Erase, AbsentSamplesKeepOnlyTheRingsTheLatticeCannotTell) {
             Mesh work = lattice;
             EraseOptions options;
             options.absent_history = absent;
-            NodeEraser eraser(work, &view, options);
+            NodeEraser eraser(work, Significance::screen(view), options);
             if (absent)
                 for (const auto &[x, ring] : replay) {
                     const ErasedNodeRing kept = eraser.ring(Mesh::VertexHandle(int(x)));
@@ -590,7 +525,7 @@ TEST(Erase, RetrievalTinsOnPowerOfTwoGridsNeedNoReplay) {
                 EraseOptions options;
                 options.absent_history = true;
                 options.retrieval_tin = true;
-                const NodeEraser eraser(work, &view, options);
+                const NodeEraser eraser(work, Significance::screen(view), options);
                 EXPECT_EQ(eraser.live_nodes(), hf.size() - std::int64_t(replay.size()));
                 std::int64_t differ = 0;
                 for (const auto &[x, ring] : replay) {
@@ -620,7 +555,7 @@ TEST(Erase, AbsentSamplesEnterInAnyOrderUntilTheLatticeIsWhole) {
         EraseOptions options;
         options.tolerance = 4.0;
         options.absent_history = true;
-        NodeEraser eraser(work, &view, options);
+        NodeEraser eraser(work, Significance::screen(view), options);
         // Each sample's record is its insertion's ring: 3 nodes (inside a triangle), 4 (on an
         // edge) or a chain of 3 (on the outline); on a 2^k + 1 grid every centre and midpoint lies
         // on an edge of the restricted quad-tree's fans.
@@ -670,10 +605,11 @@ TEST(Erase, DeletedVerticesOutsideAGridAreRefused) {
     Mesh bunny = read_mesh(asset("bun_zipper_res4.ply"));
     const auto isolated = bunny.add_vertex(bunny.point(Mesh::VertexHandle(0)));
     bunny.status(isolated).set_deleted(true);
-    EXPECT_THROW(NodeEraser(bunny, nullptr, EraseOptions{}), std::invalid_argument);
+    EXPECT_THROW(NodeEraser(bunny, Significance::vertical(), EraseOptions{}),
+                 std::invalid_argument);
     Mesh grid = grid_tin(load_cropped({"dem_squared.tif", false, 0}));
     grid.status(Mesh::VertexHandle(5)).set_deleted(true);
-    EXPECT_THROW(NodeEraser(grid, nullptr, EraseOptions{}), std::invalid_argument);
+    EXPECT_THROW(NodeEraser(grid, Significance::vertical(), EraseOptions{}), std::invalid_argument);
 }
 
 TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
@@ -681,10 +617,10 @@ TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
     const View view = corner_view(hf);
     Mesh work = grid_tin(hf);
     EraseOptions options;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     const EraseStats first = eraser.erase();
     options.tolerance = 3.0;
-    eraser.set_view(&view, options);
+    eraser.set_view(Significance::screen(view), options);
     const EraseStats second = eraser.erase();
     EXPECT_GT(second.erased, 0);
     EXPECT_LT(second.output_nodes, first.output_nodes);
@@ -692,7 +628,7 @@ TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
     Mesh out = eraser.mesh();
     out.garbage_collection();
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     EXPECT_LE(measure_error(hf, out, eo).max_screen_px, options.tolerance);
 }
 
@@ -710,7 +646,7 @@ TEST(Erase, ProgressRisesWithTheWork) {
         if (budget > 0)
             options.tolerance = INFINITY;
         options.progress = [&seen](double done) { seen.push_back(done); };
-        const EraseStats stats = NodeEraser(work, &view, options).erase();
+        const EraseStats stats = NodeEraser(work, Significance::screen(view), options).erase();
         ASSERT_GT(stats.erased, 0);
         ASSERT_GE(seen.size(), 10u);
         EXPECT_LT(seen.front(), 0.1);
@@ -730,10 +666,9 @@ TEST(Erase, RecoverInRandomOrderStaysValid) {
     Mesh input = grid_tin(hf);
     const auto input_triangles = triangle_set(input);
     EraseOptions options;
-    options.significance.model = SpModel::vertical;
     options.tolerance = 0.02 * (hf.max_z() - hf.min_z());
     Mesh work = input;
-    NodeEraser eraser(work, nullptr, options);
+    NodeEraser eraser(work, Significance::vertical(), options);
     eraser.erase();
     std::vector<int> erased;
     for (auto v : input.vertices())
@@ -774,7 +709,7 @@ TEST(Erase, CompactedHistoryRecoversExactly) {
     EraseOptions options;
     options.tolerance = 1.0;
     Mesh work = input;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     const EraseStats stats = eraser.erase();
     ASSERT_GT(stats.erased, 1000);
     const auto erased_triangles = triangle_set(work);
@@ -820,7 +755,7 @@ TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
     EraseOptions options;
     options.tolerance = 0.75;
     Mesh work = crop.input;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     eraser.erase();
     eraser.compact();
     Mesh copy = work;
@@ -834,7 +769,7 @@ TEST(Erase, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
     // more than the bound: an erase cannot lower it).
     EraseOptions looser = options;
     looser.tolerance = 2.0;
-    eraser.set_view(&nearer, looser);
+    eraser.set_view(Significance::screen(nearer), looser);
     const EraseStats again = eraser.erase();
     EXPECT_GT(again.erased, 0);
     EXPECT_LE(again.max_weighted, 2.0);
@@ -860,7 +795,7 @@ TEST(Erase, UpdateLeavesNoNodeItCouldErase) {
     Mesh input = grid_tin(hf);
     EraseOptions options;
     options.tolerance = 1.0;
-    NodeEraser eraser(input, &start, options);
+    NodeEraser eraser(input, Significance::screen(start), options);
     eraser.erase();
     eraser.compact(); // as the refiner runs its updates
     Mesh work = input;
@@ -927,7 +862,7 @@ TEST(Erase, FlatRegionIsErasedFirst) {
     options.tolerance = INFINITY;
     options.max_nodes = std::int64_t(input.n_vertices()) - 200;
     Mesh work = input;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     eraser.erase();
     std::int64_t erased = 0, erased_raised = 0;
     for (auto v : input.vertices()) {
@@ -950,7 +885,7 @@ TEST(Erase, BunnyKeepsTopologyAndRecoversExactly) {
     EraseOptions options;
     options.tolerance = 4.0;
     Mesh work = input;
-    NodeEraser eraser(work, &view, options);
+    NodeEraser eraser(work, Significance::screen(view), options);
     const EraseStats stats = eraser.erase();
     EXPECT_GT(stats.erased, std::int64_t(input.n_vertices() / 10));
     EXPECT_LE(stats.max_weighted, options.tolerance);
@@ -987,11 +922,11 @@ TEST(Erase, SurfaceMeshVerticesStayWithinTheBoundOfTheSurface) {
         Mesh work = input;
         EraseOptions options;
         options.tolerance = tau;
-        const EraseStats stats = erase_nodes(work, &view, options);
+        const EraseStats stats = erase_nodes(work, Significance::screen(view), options);
         EXPECT_GT(stats.erased, std::int64_t(input.n_vertices() / 4));
         HausdorffOptions every_vertex;
         every_vertex.samples = 0;
-        every_vertex.view = &view;
+        every_vertex.model = Significance::screen(view);
         const HausdorffResult h = hausdorff(input, work, every_vertex);
         EXPECT_LE(h.max_screen_px_a_to_b, tau * (1.0 + 1e-9));
         EXPECT_GT(h.max_screen_px_a_to_b, 0.5 * tau); // the bound is used, not just kept
@@ -1031,7 +966,7 @@ TEST(Erase, BunnyRefinerFlightKeepsTopology) {
         const View view = view_from(distance);
         HausdorffOptions every_vertex;
         every_vertex.samples = 0;
-        every_vertex.view = &view;
+        every_vertex.model = Significance::screen(view);
         EXPECT_LE(hausdorff(input, out, every_vertex).max_screen_px_a_to_b,
                   options.tolerance * (1.0 + 1e-9));
     }

@@ -1,8 +1,10 @@
 // Unit tests of the erase core's internals (lib/src/erase), each against a brute-force computation
 // written here: the lattice scans and tile bounds (lattice_scan.hpp), and the batched raise of a
-// band's pending samples (erase_cost.hpp).
+// band's pending samples (erase_cost.hpp); and the ear clipping of hand-built rings
+// (ring_triangulation.hpp).
 #include "erase/erase_cost.hpp"
 #include "erase/lattice_scan.hpp"
+#include "erase/ring_triangulation.hpp"
 #include "erase/state.hpp"
 
 #include <gtest/gtest.h>
@@ -251,4 +253,59 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
     }
     EXPECT_GT(failed, 1000);
     EXPECT_GT(raised, 1000);
+}
+
+// ---- Hand-built rings (ring_triangulation.hpp) ----
+
+TEST(Ring, Orientation) {
+    std::vector<glm::dvec2> ring = {{-1, -1}, {0, -2}, {1, -1}, {1, 1}, {-1, 1}};
+    EXPECT_EQ(ring_orientation(ring), RingOrientation::ccw);
+    std::reverse(ring.begin(), ring.end());
+    EXPECT_EQ(ring_orientation(ring), RingOrientation::cw);
+    const std::vector<glm::dvec2> line = {{0, 0}, {1, 0}, {2, 0}};
+    EXPECT_EQ(ring_orientation(line), RingOrientation::degenerate);
+}
+
+TEST(Ring, ConcaveRingFirstEarNotErasable) {
+    // The dent at node 3 reaches into the convex corner at node 0.
+    const std::vector<glm::dvec2> ring = {{0, 0}, {4, 0}, {4, 4}, {1, 1}, {0, 4}};
+    ASSERT_EQ(ring_orientation(ring), RingOrientation::ccw);
+    EXPECT_FALSE(is_erasable_ear(ring, 0)); // convex, but node 3 lies inside the ear
+    EXPECT_FALSE(is_erasable_ear(ring, 3)); // reflex
+    EXPECT_FALSE(is_erasable_ear(ring, 1)); // node 3 lies on its edge 0-2
+    EXPECT_TRUE(is_erasable_ear(ring, 2));
+    const auto tris = triangulate_ring(ring);
+    ASSERT_EQ(tris.size(), ring.size() - 2);
+    double area = 0.0;
+    for (const auto &t : tris) {
+        const double a2 = orient(ring[t.a], ring[t.b], ring[t.c]);
+        EXPECT_GT(a2, 0.0);
+        area += a2 / 2;
+        for (int j = 0; j < int(ring.size()); ++j) {
+            if (j == t.a || j == t.b || j == t.c)
+                continue;
+            const bool inside = orient(ring[t.a], ring[t.b], ring[j]) >= 0 &&
+                                orient(ring[t.b], ring[t.c], ring[j]) >= 0 &&
+                                orient(ring[t.c], ring[t.a], ring[j]) >= 0;
+            EXPECT_FALSE(inside) << "ring node " << j << " inside a new triangle";
+        }
+    }
+    EXPECT_DOUBLE_EQ(area, 10.0); // the polygon's shoelace area
+}
+
+TEST(Ring, ClockwiseRingIsRefused) {
+    std::vector<glm::dvec2> ring = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::reverse(ring.begin(), ring.end());
+    EXPECT_TRUE(triangulate_ring(ring).empty());
+}
+
+TEST(Ring, PrefersDelaunayDiagonal) {
+    // A flat rhombus: the short diagonal (1-3) is the Delaunay one.
+    const std::vector<glm::dvec2> ring = {{0, 0}, {2, -0.5}, {4, 0}, {2, 0.5}};
+    const auto tris = triangulate_ring(ring);
+    ASSERT_EQ(tris.size(), 2u);
+    for (const auto &t : tris) {
+        const bool has1 = t.a == 1 || t.b == 1 || t.c == 1, has3 = t.a == 3 || t.b == 3 || t.c == 3;
+        EXPECT_TRUE(has1 && has3);
+    }
 }

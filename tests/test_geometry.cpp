@@ -119,8 +119,8 @@ TEST(ViewFrame, IsOrthonormalAndTheFrustumsFrame) {
 }
 
 // significance.hpp's screen_weight and peripheral_factor are the Weigher's values (one
-// definition), k / OD times the factor, whatever model the options name; the factor is 1 ahead
-// and falls to the floor behind.
+// definition), k / OD times the factor, the erase bound's weight in the screen and paper models;
+// the factor is 1 ahead and falls to the floor behind.
 TEST(ScreenWeight, IsTheWeighersValue) {
     View view;
     view.eye = {0.0, 0.0, 500.0};
@@ -128,9 +128,8 @@ TEST(ScreenWeight, IsTheWeighersValue) {
     SignificanceOptions options;
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> coord(-3000.0, 3000.0);
-    for (SpModel model : {SpModel::screen, SpModel::paper, SpModel::vertical}) {
-        options.model = model;
-        const Weigher weigher(view, options);
+    for (SpModel model : {SpModel::screen, SpModel::paper}) {
+        const Weigher weigher(Significance::of(model, view, options));
         for (int i = 0; i < 2000; ++i) {
             const glm::dvec3 p(coord(rng), coord(rng), coord(rng) / 10.0);
             const double od = glm::length(p - view.eye);
@@ -144,5 +143,5 @@ TEST(ScreenWeight, IsTheWeighersValue) {
     EXPECT_EQ(peripheral_factor(view, view.at, options), 1.0);
     EXPECT_EQ(peripheral_factor(view, view.eye - 1000.0 * view.axis(), options), options.floor);
     EXPECT_EQ(screen_weight(view, view.eye, options), INFINITY);
-    EXPECT_EQ(Weigher(nullptr, options)(view.at), 1.0); // no view: every node weighs 1
+    EXPECT_EQ(Weigher(Significance::vertical())(view.at), 1.0); // every node weighs 1
 }

@@ -26,11 +26,11 @@ Measured erase_and_compare(Renderer &renderer, const Heightfield &hf, const View
     Mesh tin = grid_tin(hf);
     EraseOptions eo;
     eo.tolerance = tau;
-    erase_nodes(tin, &view, eo);
+    erase_nodes(tin, Significance::screen(view), eo);
     RenderOptions ro;
     ro.normal_source = &hf; // shaded as terrain engines do: by the DEM's normals
     ErrorOptions err;
-    err.view = &view;
+    err.model = Significance::screen(view);
     return {compare_images(renderer.render(tin, view, ro), reference),
             measure_error(hf, tin, err).max_screen_px, std::int64_t(tin.n_vertices())};
 }

@@ -145,7 +145,7 @@ TEST(Hausdorff, ScreenSpaceDistanceIsSeenFromWhereEachSampleLies) {
     view.eye = {1.0, 0.5, 10.0};
     view.at = {1.0, 0.5, 0.0};
     HausdorffOptions options;
-    options.view = &view;
+    options.model = Significance::screen(view);
     const HausdorffResult r = hausdorff(rectangle(2, 1, 0), rectangle(2, 1, 0.5), options);
     EXPECT_LE(r.max_screen_px_a_to_b, 0.5 * view.k() / 10.0 * (1.0 + 1e-12));
     EXPECT_NEAR(r.max_screen_px_a_to_b, 0.5 * view.k() / 10.0, 1e-4 * view.k());
@@ -154,6 +154,7 @@ TEST(Hausdorff, ScreenSpaceDistanceIsSeenFromWhereEachSampleLies) {
     EXPECT_EQ(r.max_screen_px, r.max_screen_px_b_to_a);
     // Looking away, no sample is inside the frustum.
     view.at = {1.0, 0.5, 20.0};
+    options.model = Significance::screen(view);
     EXPECT_EQ(hausdorff(rectangle(2, 1, 0), rectangle(2, 1, 0.5), options).max_screen_px, 0.0);
     // Without a view there is no screen measure.
     EXPECT_EQ(hausdorff(rectangle(2, 1, 0), rectangle(2, 1, 0.5)).max_screen_px, 0.0);

@@ -140,7 +140,7 @@ TEST(Plugin, StockDecimaterWithDistanceDecayKeepsNearNodes) {
         << "a module owns its property for exactly its lifetime";
     HausdorffOptions measure;
     measure.samples = 0; // the input's nodes: the bound is over them
-    measure.view = &s.view;
+    measure.model = Significance::screen(s.view);
     EXPECT_LE(hausdorff(grid_tin(s.hf), soup(mesh), measure).max_screen_px_a_to_b,
               1.0 + k_px_slack);
     mesh.garbage_collection();
@@ -204,7 +204,7 @@ TEST(Plugin, NodeEraseDecimaterOnStockMesh) {
         EXPECT_EQ(decimater.n_live_vertices(), mesh.n_vertices() - removed);
     }
     ErrorOptions measure;
-    measure.view = &s.view;
+    measure.model = Significance::screen(s.view);
     const TinError error = measure_error(s.hf, soup(mesh), measure);
     EXPECT_LE(error.max_screen_px, 1.0 + k_px_slack);
     EXPECT_EQ(error.uncovered, 0);
@@ -284,7 +284,7 @@ PlainMesh read_plain(const std::string &file) {
 template <class M> double measured_px(const std::string &file, const M &output, const View &view) {
     HausdorffOptions options;
     options.samples = 0; // the input's vertices alone: the bound is over them
-    options.view = &view;
+    options.model = Significance::screen(view);
     return hausdorff(read_mesh(test::asset(file)), soup(output), options).max_screen_px_a_to_b;
 }
 
@@ -326,7 +326,7 @@ TEST(PluginScans, NodeEraseKeepsTheBoundGivesTheLibrarysNodesAndRecovers) {
         Mesh library = read_mesh(test::asset(scan.file));
         EraseOptions options;
         options.tolerance = 1.0;
-        erase_nodes(library, &scan.view, options);
+        erase_nodes(library, Significance::screen(scan.view), options);
         const auto origin = find_origin_property(library);
         ASSERT_TRUE(origin.is_valid());
         std::set<std::int64_t> library_nodes;
@@ -480,7 +480,7 @@ TEST(PluginScans, NodeEraseUndoesTheErasesUnderARefusedTriangle) {
     ASSERT_TRUE(OpenMesh::IO::read_mesh(mesh, test::asset(scan.file)));
     const std::int64_t outline = boundary_edges(mesh);
     Mesh library = read_mesh(test::asset(scan.file));
-    const EraseStats erased = erase_nodes(library, &scan.view, EraseOptions{});
+    const EraseStats erased = erase_nodes(library, Significance::screen(scan.view), EraseOptions{});
 
     om::NodeEraseDecimaterT<RefusingMesh> decimater(mesh);
     decimater.set_view(scan.view);

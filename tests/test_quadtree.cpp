@@ -233,7 +233,7 @@ TEST(Retrieve, ScreenErrorWithinToleranceOnEveryAssetAndView) {
                 const Retrieval &r = lod.retrieve(nv.view, {tol, false});
                 const std::string what = a.name + " " + nv.name + " tol " + std::to_string(tol);
                 ErrorOptions eo;
-                eo.view = &nv.view;
+                eo.model = Significance::screen(nv.view);
                 eo.frustum_only = false;
                 const TinError err = measure_error(hf, r.triangles, eo);
                 EXPECT_EQ(err.uncovered, 0) << what;
@@ -273,7 +273,7 @@ TEST(Retrieve, AnySizeIsCrackFreeAndWithinTolerance) {
                                          nv.name + " tol " + std::to_string(tol);
                 expect_crack_free(hf, r, what);
                 ErrorOptions eo;
-                eo.view = &nv.view;
+                eo.model = Significance::screen(nv.view);
                 eo.frustum_only = false;
                 EXPECT_LE(measure_error(hf, r.triangles, eo).max_screen_px, tol * (1 + 1e-9))
                     << what;
@@ -342,12 +342,10 @@ TEST(Retrieve, PeripheralWeightsBoundTheErasesWeightedErrorAtEverySample) {
             }
             expect_crack_free(hf, weighed, what);
             ErrorOptions eo;
-            eo.view = &nv.view;
+            eo.model = Significance::screen(nv.view);
             EXPECT_LE(measure_error(hf, weighed.triangles, eo).max_screen_px, 1.0 + 1e-9) << what;
             Mesh mesh = to_lattice_mesh(weighed, hf);
-            EraseOptions erase;
-            erase.significance = screen;
-            const NodeEraser eraser(mesh, &nv.view, erase);
+            const NodeEraser eraser(mesh, Significance::screen(nv.view, screen), EraseOptions{});
             const EraseStats bound = eraser.measure();
             // Within the tolerance, and within the bound the retrieval reports.
             EXPECT_LE(bound.max_weighted, 1.0 + 1e-6) << what;
@@ -366,7 +364,7 @@ TEST(Retrieve, CullingKeepsTheBoundInsideTheFrustum) {
             const std::string what = a.name + " " + nv.name;
             EXPECT_LE(culled.nodes.size(), all.nodes.size()) << what;
             ErrorOptions eo;
-            eo.view = &nv.view;
+            eo.model = Significance::screen(nv.view);
             eo.frustum_only = true;
             const TinError err = measure_error(hf, culled.triangles, eo);
             EXPECT_EQ(err.uncovered, 0) << what;
@@ -418,101 +416,7 @@ TEST(Retrieve, MeshConversionKeepsProvenanceAndGeometry) {
         ASSERT_EQ(mesh.point(v)[0], float((id % hf.width) * hf.dx));
     }
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     eo.frustum_only = false;
     EXPECT_LE(measure_error(hf, mesh, eo).max_screen_px, 1.0 + 1e-6);
-}
-
-namespace {
-
-// The nodes of `level` whose (inclusive) rectangle holds sample (c, r): up to two per axis.
-std::vector<std::size_t> nodes_holding(const QuadLayout &lay, int level, std::uint32_t c,
-                                       std::uint32_t r) {
-    auto along = [&](const AxisSplit &axis, std::uint32_t s, std::uint32_t last) {
-        const std::uint32_t k = axis.interval_of(level, std::min(s, last - 1));
-        std::vector<std::uint32_t> out{k};
-        if (s == axis.lo(level, k) && k > 0)
-            out.push_back(k - 1);
-        return out;
-    };
-    std::vector<std::size_t> out;
-    for (const std::uint32_t j : along(lay.y, r, std::uint32_t(lay.height - 1)))
-        for (const std::uint32_t i : along(lay.x, c, std::uint32_t(lay.width - 1)))
-            out.push_back(std::size_t(j) * lay.x.count(level) + i);
-    return out;
-}
-
-} // namespace
-
-TEST(HeightWorkingSet, EverySampleOutsideTheNeededBlocksIsWithinTheBound) {
-    // The blocks the working set leaves out are cleared by node bounds alone: every sample in them
-    // under a face of the TIN must be within tau, weighted as the erase weighs it. The TIN is
-    // erase_dem's to 4 tau, so that many samples are not, and those must lie in needed blocks.
-    // Checked at every sample of N42E001, from the low and the high view.
-    const Heightfield &hf = dem({"N42E001.hgt", {}});
-    const QuadTree tree(hf);
-    const QuadLayout &lay = tree.layout();
-    const int level = level_for_cells(lay, 16);
-    ASSERT_LE(lay.x.length(level, 0), 16u);
-    const SignificanceOptions screen;
-    constexpr double tau = 1.0;
-    for (const NamedView &nv : views_of(hf)) {
-        if (nv.name == "outside")
-            continue;
-        EraseOptions eo;
-        eo.tolerance = 4 * tau;
-        const Mesh tin = erase_dem(hf, &nv.view, eo);
-        const WorkingSet ws = height_working_set(tree, tin, nv.view, screen, tau, level);
-        ASSERT_EQ(ws.needed.size(), lay.level_nodes(level));
-        EXPECT_EQ(ws.count, std::count(ws.needed.begin(), ws.needed.end(), 1)) << nv.name;
-        std::int64_t cleared = 0, over = 0;
-        for (const auto f : tin.faces()) {
-            std::array<glm::dvec3, 3> p;
-            int k = 0;
-            for (const auto v : tin.fv_range(f)) {
-                const Mesh::Point &q = tin.point(v);
-                p[k++] = glm::dvec3(q[0], q[1], q[2]);
-            }
-            const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-            const auto c0 = int(std::ceil(std::min({p[0].x, p[1].x, p[2].x}) / hf.dx - 1e-6));
-            const auto c1 = int(std::floor(std::max({p[0].x, p[1].x, p[2].x}) / hf.dx + 1e-6));
-            const auto r0 = int(std::ceil(std::min({p[0].y, p[1].y, p[2].y}) / hf.dy - 1e-6));
-            const auto r1 = int(std::floor(std::max({p[0].y, p[1].y, p[2].y}) / hf.dy + 1e-6));
-            for (int r = r0; r <= r1; ++r)
-                for (int c = c0; c <= c1; ++c) {
-                    const Mesh::Point g = grid_point(hf, c, r);
-                    const glm::dvec3 s(g[0], g[1], g[2]);
-                    bool inside = true;
-                    for (int i = 0; i < 3 && inside; ++i) {
-                        const glm::dvec3 a = p[i], b = p[(i + 1) % 3];
-                        inside = (b.x - a.x) * (s.y - a.y) - (b.y - a.y) * (s.x - a.x) >=
-                                 -1e-3 * hf.dx * glm::length(b - a);
-                    }
-                    if (!inside)
-                        continue;
-                    const double plane =
-                        p[0].z - (n.x * (s.x - p[0].x) + n.y * (s.y - p[0].y)) / n.z;
-                    const double weighted =
-                        std::abs(s.z - plane) * screen_weight(nv.view, s, screen);
-                    over += weighted > tau;
-                    const bool needed = std::ranges::any_of(
-                        nodes_holding(lay, level, std::uint32_t(c), std::uint32_t(r)),
-                        [&](std::size_t node) { return ws.needed[node] != 0; });
-                    if (needed)
-                        continue;
-                    ++cleared;
-                    ASSERT_LE(weighted, tau * (1.0 + 1e-6))
-                        << nv.name << ": sample (" << c << ", " << r << ") in a cleared block";
-                }
-        }
-        // The check has teeth both ways: many samples lie in cleared blocks, many are over tau.
-        EXPECT_GT(cleared, 10000) << nv.name;
-        EXPECT_GT(over, 1000) << nv.name;
-        // A looser bound needs fewer blocks; the grid's own TIN, whose faces hold no sample but
-        // their corners, needs none.
-        EXPECT_LT(height_working_set(tree, tin, nv.view, screen, 4 * tau, level).count, ws.count)
-            << nv.name;
-        EXPECT_EQ(height_working_set(tree, grid_tin(hf), nv.view, screen, tau, level).count, 0)
-            << nv.name;
-    }
 }

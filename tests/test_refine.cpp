@@ -84,7 +84,7 @@ TEST(Refiner, EveryFrameWithinTauWhileFlyingAcrossARealDem) {
                     << "frame " << i;
             }
             ErrorOptions eo;
-            eo.view = &views[i];
+            eo.model = Significance::screen(views[i]);
             const TinError e = measure_error(hf, refiner.mesh(), eo);
             EXPECT_LE(e.max_screen_px, tau) << "frame " << i;
             EXPECT_EQ(e.uncovered, 0) << "frame " << i;
@@ -113,7 +113,7 @@ TEST(Refiner, EveryFrameOfTheShippedPathsIsWithinTau) {
                 changed += f.update.erased + f.update.recovered;
             }
             ErrorOptions eo;
-            eo.view = &views[i];
+            eo.model = Significance::screen(views[i]);
             const TinError e = measure_error(hf, refiner.mesh(), eo);
             EXPECT_LE(e.max_screen_px, options.tolerance) << "frame " << i;
             EXPECT_EQ(e.uncovered, 0) << "frame " << i;
@@ -143,7 +143,7 @@ TEST(Refiner, ApproachingRecoversThereRecedingErasesThere) {
     EXPECT_GT(out.update.erased, 0);
     EXPECT_LT(after.second, close.second) << "the east half, far again, must lose nodes";
     ErrorOptions eo;
-    eo.view = &far;
+    eo.model = Significance::screen(far);
     EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tolerance);
 }
 
@@ -212,7 +212,7 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
         }
         EXPECT_LE(f.update.entered, f.update.recovered);
         ErrorOptions eo;
-        eo.view = &view;
+        eo.model = Significance::screen(view);
         const TinError e = measure_error(hf, refiner.mesh(), eo);
         EXPECT_LE(e.max_screen_px, options.tolerance);
         EXPECT_EQ(e.uncovered, 0);
@@ -246,7 +246,7 @@ TEST(Refiner, SmallStepsTowardTheGroundAndPanningKeepTauAtEverySample) {
         const FrameStats f = refiner.update(view);
         recovered += f.update.recovered;
         ErrorOptions eo;
-        eo.view = &view;
+        eo.model = Significance::screen(view);
         EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0) << "frame " << i;
     }
     EXPECT_GT(recovered, 0);
@@ -270,7 +270,7 @@ TEST(Refiner, LargeFacesKeepTauWithTileBoundsAndKeptFans) {
         kept += f.update.fans_kept;
         recovered += f.update.recovered;
         ErrorOptions eo;
-        eo.view = &views[i];
+        eo.model = Significance::screen(views[i]);
         const TinError e = measure_error(hf, refiner.mesh(), eo);
         EXPECT_LE(e.max_screen_px, options.tolerance) << "frame " << i;
         EXPECT_EQ(e.uncovered, 0) << "frame " << i;
@@ -294,7 +294,7 @@ TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
                                    {w, h / 2, hf.min_z()});
             entered += refiner.update(view).update.entered;
             ErrorOptions eo;
-            eo.view = &view;
+            eo.model = Significance::screen(view);
             EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0)
                 << cw << "x" << ch << " frame " << i;
         }
@@ -325,7 +325,7 @@ TEST(Refiner, PowerOfTwoCropsLetSamplesEnterWithoutAReplay) {
             entered += stats.update.entered;
             (i == 6 ? lowest : back) = stats.nodes;
             ErrorOptions eo;
-            eo.view = &view;
+            eo.model = Significance::screen(view);
             EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0)
                 << side << "² frame " << i;
         }
@@ -351,7 +351,7 @@ TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     // Back at the first view the TIN is as coarse as the first frame, within a tenth.
     EXPECT_NEAR(double(back.nodes), double(first), 0.1 * double(first));
     ErrorOptions eo;
-    eo.view = &start;
+    eo.model = Significance::screen(start);
     EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tolerance);
 }
 
@@ -382,7 +382,7 @@ TEST(Refiner, WiderHysteresisKeepsMoreNodesAndChangesFewer) {
             f.changed += stats.update.erased + stats.update.recovered;
             if (i % 5 == 0) {
                 ErrorOptions eo;
-                eo.view = &views[i];
+                eo.model = Significance::screen(views[i]);
                 EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tolerance)
                     << "h " << hysteresis << " frame " << i;
             }
@@ -540,7 +540,7 @@ TEST(Refiner, FlyWritesEachFramesTinAndDrawsThemFromAFixedCamera) {
         EXPECT_EQ(std::int64_t(tin.n_vertices()), std::stoll(f[1]));
         EXPECT_EQ(std::int64_t(tin.n_faces()), std::stoll(f[2]));
         ErrorOptions eo;
-        eo.view = &views[std::size_t(i)];
+        eo.model = Significance::screen(views[std::size_t(i)]);
         const double px = measure_error(hf, tin, eo).max_screen_px;
         EXPECT_LE(px, 1.0);
         EXPECT_NEAR(px, std::stod(f[10]), 1e-5) << "the file holds the TIN the frame measured";

@@ -69,10 +69,11 @@ TEST(MotionBounds, BoundTheExactWeightAtBothViews) {
                      w_now = screen_weight(now, p, options);
         const refine::ViewBounds::Since d = since_views(then, now);
         EraserState s;
-        s.options.significance = options;
-        s.weigher = Weigher(&now, options);
+        s.model = SpModel::screen;
+        s.significance = options;
+        s.weigher = Weigher(now, options);
         const double nearest = glm::length(p - now.eye);
-        const bool cone_then = Weigher(&then, options).in_cone(p, p),
+        const bool cone_then = Weigher(then, options).in_cone(p, p),
                    cone_now = s.weigher.in_cone(p, p);
         for (const bool cone : {false, true}) {
             // The `cone` bounds hold only for nodes in the cone of the view they name.
@@ -152,10 +153,9 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
     const Heightfield hf = rough(33, 3);
     Mesh mesh = grid_tin(hf);
     EraseOptions options;
-    options.significance.model = SpModel::vertical;
     options.tolerance = 12.0;
     options.shallow_history = true;
-    NodeEraser eraser(mesh, nullptr, options);
+    NodeEraser eraser(mesh, Significance::vertical(), options);
     eraser.erase();
 
     const std::uint32_t nodes = std::uint32_t(mesh.n_vertices());

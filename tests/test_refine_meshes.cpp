@@ -105,7 +105,7 @@ Flight fly_and_check(const Mesh &input, const std::vector<double> &distances) {
         EXPECT_EQ(now.degenerate, 0);
         HausdorffOptions every_vertex;
         every_vertex.samples = 0;
-        every_vertex.view = &view;
+        every_vertex.model = Significance::screen(view);
         EXPECT_LE(hausdorff(input, out, every_vertex).max_screen_px_a_to_b,
                   options.tolerance * (1.0 + 1e-9));
         (i == 0 ? flight.first_nodes : flight.last_nodes) = f.nodes;

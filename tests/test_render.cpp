@@ -211,7 +211,7 @@ TEST(Render, CoarserTinsShowLargerImageAndGeometricError) {
         const ImageDifference dd =
             compare_images(renderer.render(coarse, view, dem_shaded), dem_truth);
         ErrorOptions eo;
-        eo.view = &view;
+        eo.model = Significance::screen(view);
         const TinError e = measure_error(hf, coarse, eo);
         SCOPED_TRACE("step " + std::to_string(step));
         std::printf("step %2d: PSNR %.2f dB, %.3f%% pixels > 2 levels, max %.0f; with DEM normals "

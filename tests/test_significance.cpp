@@ -25,12 +25,10 @@ View looking_north() {
 TEST(Significance, FallsWithDistance) {
     const View view = looking_north();
     for (SpModel model : {SpModel::screen, SpModel::paper}) {
-        SignificanceOptions options;
-        options.model = model;
+        const Significance sp = Significance::of(model, view, {});
         NodeTerms near{100.0, 0.1, 2.0, 0.1, 1.0}, far = near;
         far.od = 1000.0;
-        EXPECT_GT(significance(near, &view, options, 500.0),
-                  significance(far, &view, options, 500.0));
+        EXPECT_GT(significance(near, sp, 500.0), significance(far, sp, 500.0));
     }
 }
 
@@ -46,20 +44,17 @@ TEST(Significance, FallsWithObservationAngle) {
     EXPECT_GT(screen_weight(view, ahead, options), screen_weight(view, aside, options));
     EXPECT_GT(observation_angle(view, aside), observation_angle(view, ahead));
 
-    options.model = SpModel::paper;
+    const Significance paper = Significance::paper(view, options);
     NodeTerms on_axis{500.0, 0.0, 2.0, 0.1, 1.0}, off_axis = on_axis;
     off_axis.oa = 1.2;
-    EXPECT_GT(significance(on_axis, &view, options, 500.0),
-              significance(off_axis, &view, options, 500.0));
+    EXPECT_GT(significance(on_axis, paper, 500.0), significance(off_axis, paper, 500.0));
 }
 
 TEST(Significance, ScreenModelIsPixelsOfDeviation) {
     const View view = looking_north();
-    SignificanceOptions options;
     const NodeTerms t{250.0, 0.0, 3.0, 0.0, 1.0};
-    EXPECT_NEAR(significance(t, &view, options), 3.0 * view.k() / 250.0, 1e-9);
-    options.model = SpModel::vertical;
-    EXPECT_DOUBLE_EQ(significance(t, nullptr, options), 3.0);
+    EXPECT_NEAR(significance(t, Significance::screen(view)), 3.0 * view.k() / 250.0, 1e-9);
+    EXPECT_DOUBLE_EQ(significance(t, Significance::vertical()), 3.0);
 }
 
 TEST(Significance, NodeSignificanceOnARealTinFallsFarAway) {
@@ -71,9 +66,8 @@ TEST(Significance, NodeSignificanceOnARealTinFallsFarAway) {
     near.at = {0.5 * w, 0.5 * w, hf.min_z()};
     View far = near;
     far.eye.z += 5.0 * w;
-    SignificanceOptions options;
-    const auto sp_near = node_significance(tin, &near, options);
-    const auto sp_far = node_significance(tin, &far, options);
+    const auto sp_near = node_significance(tin, Significance::screen(near));
+    const auto sp_far = node_significance(tin, Significance::screen(far));
     std::int64_t interior = 0, lower = 0;
     for (auto v : tin.vertices()) {
         if (tin.is_boundary(v) || sp_near[v.idx()] == 0.0f)
@@ -107,7 +101,7 @@ TEST(Weigher, MatchesScreenWeightAndBoundsItOverEveryBox) {
     narrow.viewport_w = narrow.viewport_h = 512;
     views.push_back(narrow);
     for (const View &view : views) {
-        const Weigher weigher(&view, options);
+        const Weigher weigher(view, options);
         const glm::dvec3 f = view.axis();
         // A point at distance r whose direction makes angle a with the axis, at azimuth b.
         const glm::dvec3 side = glm::normalize(

@@ -118,7 +118,7 @@ TEST_F(StoreFixture, NearViewReadsOnlyPartOfTheTilesAndCacheHolds) {
     EXPECT_LE(store->resident_bytes(), 1024 * 1024);
     EXPECT_GT(first.tiles_evicted, 0);
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     EXPECT_LE(measure_error(*hf, r.triangles, eo).max_screen_px, 1.0 + 1e-9);
     // The same view again reads only what was evicted; a cache large enough reads nothing.
     lod.retrieve(view, {1.0, true});

@@ -89,9 +89,8 @@ static Mesh erased_in_place(std::int64_t *erased_nodes = nullptr) {
     const Heightfield hf = load_heightfield(asset("crater_u16.png"));
     Mesh erased = grid_tin(hf);
     EraseOptions eo;
-    eo.significance.model = SpModel::vertical;
     eo.tolerance = 2.0;
-    const EraseStats e = NodeEraser(erased, nullptr, eo).erase();
+    const EraseStats e = NodeEraser(erased, Significance::vertical(), eo).erase();
     if (erased_nodes)
         *erased_nodes = e.erased;
     return erased;
@@ -135,7 +134,7 @@ TEST(MeshIo, WritesTheLivePartOfAMeshWithDeletedElements) {
     view.eye = {0.3, 0.12, 0.4};
     view.at = {-0.02, 0.1, 0.0};
     Mesh bunny = read_mesh(asset("bun_zipper_res2.ply"));
-    NodeEraser(bunny, &view, EraseOptions{}).erase();
+    NodeEraser(bunny, Significance::screen(view), EraseOptions{}).erase();
     {
         SCOPED_TRACE("crater_u16 grid TIN");
         expect_written_live_part(erased_in_place());

@@ -392,7 +392,7 @@ TEST(ViewWorker, EraseStageThinsTheRetrievalWithinTauAtEverySample) {
     EXPECT_LE(erased->erase_max_px, s.tol_px + 1e-9);
     // A DEM in memory: the bound holds at every sample, not only at the retrieved nodes.
     ErrorOptions eo;
-    eo.view = &v;
+    eo.model = Significance::screen(v);
     const TinError measured =
         measure_error(load_heightfield(test::asset("dem_squared.tif")), erased->mesh, eo);
     EXPECT_LE(measured.max_screen_px, s.tol_px);
@@ -422,7 +422,7 @@ TEST(ViewWorker, EraseStageFromAStoreBoundsEverySample) {
     s.stages = LodStages::retrieve_erase;
     const auto erased = engine->compute(v, s);
     ErrorOptions eo;
-    eo.view = &v;
+    eo.model = Significance::screen(v);
     const TinError measured = measure_error(hf, erased->mesh, eo);
     EXPECT_EQ(measured.uncovered, 0);
     EXPECT_LE(measured.max_screen_px, s.tol_px);
@@ -447,7 +447,7 @@ TEST(ViewWorker, RefineStageKeepsOneTinThatFollowsTheEye) {
     EXPECT_GT(near->nodes, far->nodes) << "descending recovers nodes";
     for (const auto &[r, v] : {std::pair{far.get(), &high}, std::pair{near.get(), &low}}) {
         ErrorOptions eo;
-        eo.view = v;
+        eo.model = Significance::screen(*v);
         EXPECT_LE(measure_error(hf, r->mesh, eo).max_screen_px, s.tol_px);
         EXPECT_EQ(r->triangles, std::int64_t(r->mesh.n_faces()));
     }

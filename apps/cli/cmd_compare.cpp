@@ -90,7 +90,7 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
               {"triangles", reference.n_faces()}}}};
         if (dem) {
             ErrorOptions eo;
-            eo.view = &view;
+            eo.model = Significance::screen(view);
             const TinError e = measure_error(*dem, mesh, eo);
             out["geometry"] = {{"max_vertical", e.max_vertical},
                                {"rms_vertical", e.rms_vertical},
@@ -100,7 +100,7 @@ static Register compare("compare", 70, [](CLI::App &cmd) {
         } else {
             HausdorffOptions ho;
             ho.samples = args->samples;
-            ho.view = &view;
+            ho.model = Significance::screen(view);
             const HausdorffResult h = hausdorff(mesh, reference, ho);
             out["geometry"] = {{"hausdorff_max", h.max},
                                {"hausdorff_mean", h.mean},

@@ -155,7 +155,7 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         options.tolerance = args->tol;
         options.hysteresis = args->hysteresis;
         options.retrieve_share = args->retrieve_share;
-        options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
+        options.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
         if (is_mesh_path(args->input)) {
             Mesh input = read_mesh(args->input);
             first_frame.lap("load");
@@ -237,7 +237,7 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             double max_px = -1.0; // not measured
             if (args->check) {
                 ErrorOptions eo;
-                eo.view = &views[i];
+                eo.model = Significance::screen(views[i]);
                 const TinError e = measure_error(*hf, refiner->mesh(), eo);
                 max_px = e.max_screen_px;
                 worst = std::max(worst, max_px);

@@ -170,7 +170,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
             if (!hf)
                 hf = store->heightfield();
             ErrorOptions eo;
-            eo.view = &*view;
+            eo.model = Significance::screen(*view);
             eo.frustum_only = true;
             const TinError in_view = measure_error(*hf, triangles, eo);
             eo.frustum_only = false;

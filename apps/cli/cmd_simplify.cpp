@@ -149,11 +149,12 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         }
         EraseOptions options;
         options.max_nodes = args->max_nodes;
+        Significance model;
         if (!has_camera) {
-            options.significance.model = SpModel::vertical;
             options.tolerance = bound ? args->max_error : INFINITY;
         } else {
-            options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
+            model =
+                args->model == "paper" ? Significance::paper(*view) : Significance::screen(*view);
             options.tolerance = args->max_nodes > 0 && tol->count() == 0 ? INFINITY : args->tol;
         }
         DemEraseStats dem;
@@ -181,11 +182,11 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                     dem_options.budget_share = 0.0;
                     dem_options.greedy_cap = 0.0;
                 }
-                mesh = erase_dem(*hf, view ? &*view : nullptr, options, dem_options, &dem);
+                mesh = erase_dem(*hf, model, options, dem_options, &dem);
                 erased = dem.erase;
                 times.add("retrieve", dem.retrieve_ms);
             } else {
-                erased = erase_nodes(mesh, view ? &*view : nullptr, options);
+                erased = erase_nodes(mesh, model, options);
             }
             bar.finish();
             times.lap("simplify");
@@ -198,7 +199,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         double max_screen = erased.max_screen_px, max_vertical = erased.max_vertical;
         if (hf) {
             ErrorOptions eo;
-            eo.view = view ? &*view : nullptr;
+            eo.model = model;
             const TinError measured = measure_error(*hf, mesh, eo);
             max_screen = measured.max_screen_px;
             max_vertical = measured.max_vertical;

@@ -101,19 +101,19 @@ class EngineBase : public LodEngine {
     void finish(LodResult &result, const View &view, const LodSettings &settings, double extent,
                 bool tin, const Heightfield *lattice = nullptr) {
         Stopwatch clock;
+        const Significance model = Significance::of(settings.model, view, settings.significance);
         if (settings.stages == LodStages::retrieve_erase) {
             EraseOptions eo;
             eo.tolerance = settings.tol_px;
-            eo.significance = settings.significance;
             eo.lattice = lattice;
-            const EraseStats erased = erase_nodes(result.mesh, &view, eo);
+            const EraseStats erased = erase_nodes(result.mesh, model, eo);
             result.erase_ms = clock.ms();
             result.erase_max_px = erased.max_screen_px;
         }
         clock.reset();
         switch (settings.color) {
         case ColorBy::sp: {
-            result.vertex_scalar = node_significance(result.mesh, &view, settings.significance);
+            result.vertex_scalar = node_significance(result.mesh, model);
             result.scalar_max = std::max(quantile(result.vertex_scalar, 0.95), 1e-6f);
             for (float &s : result.vertex_scalar)
                 if (!std::isfinite(s))
@@ -176,7 +176,7 @@ class GridEngine final : public EngineBase {
         ro.tolerance =
             lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
         ro.cull = settings.cull;
-        if (lattice && settings.significance.model == SpModel::screen)
+        if (lattice && settings.model == SpModel::screen)
             ro.peripheral = &settings.significance; // the erase's weighted bound, as erase_dem
         const Retrieval &r = lod_.retrieve(view, ro);
         result->mesh = lattice ? to_sparse_lattice_mesh(r, *hf_) : to_mesh(r, lod_.frame());
@@ -193,17 +193,17 @@ class GridEngine final : public EngineBase {
     std::unique_ptr<LodResult> refine(const View &view, const LodSettings &settings) {
         Stopwatch total;
         auto result = std::make_unique<LodResult>();
-        if (!refiner_ || refined_tol_ != settings.tol_px ||
-            refined_model_ != settings.significance.model) {
+        if (!refiner_ || refined_tol_ != settings.tol_px || refined_model_ != settings.model) {
             if (!hf_)
                 hf_ = store_->heightfield();
             RefineOptions options;
             options.tolerance = settings.tol_px;
+            options.model = settings.model;
             options.significance = settings.significance;
             refiner_.reset();
             refiner_ = std::make_unique<Refiner>(*hf_, view, options);
             refined_tol_ = settings.tol_px;
-            refined_model_ = settings.significance.model;
+            refined_model_ = settings.model;
             result->erase_ms = refiner_->first_frame().total_ms;
         } else {
             const FrameStats f = refiner_->update(view);
@@ -255,7 +255,7 @@ class MeshEngine final : public EngineBase {
 bool operator==(const LodSettings &a, const LodSettings &b) {
     const SignificanceOptions &p = a.significance, &q = b.significance;
     return a.tol_px == b.tol_px && a.stages == b.stages && a.cull == b.cull && a.color == b.color &&
-           p.model == q.model && p.cone_margin_px == q.cone_margin_px &&
+           a.model == b.model && p.cone_margin_px == q.cone_margin_px &&
            p.falloff_deg == q.falloff_deg && p.floor == q.floor && p.w_distance == q.w_distance &&
            p.w_angle == q.w_angle && p.w_ration == q.w_ration;
 }

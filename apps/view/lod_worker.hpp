@@ -36,7 +36,8 @@ enum class ColorBy { shade, height, sp, level, error };
 struct LodSettings {
     double tol_px = 1.0; // tau, pixels: retrieval and erase bound
     LodStages stages = LodStages::retrieve;
-    SignificanceOptions significance; // SP model and weights (erase ranking, SP colours)
+    SpModel model = SpModel::screen;  // SP model, screen or paper (erase ranking, SP colours)
+    SignificanceOptions significance; // its parameters
     bool cull = true;                 // retrieval leaves the terrain outside the frustum coarse
     ColorBy color = ColorBy::height;  // which per-element scalars to compute
 };

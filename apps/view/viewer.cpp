@@ -499,16 +499,16 @@ void Viewer::panel(double frame_ms) {
         }
         if (grid)
             ImGui::Checkbox("cull outside the frustum", &settings_.cull);
-        int model = settings_.significance.model == SpModel::paper ? 1 : 0;
+        int model = settings_.model == SpModel::paper ? 1 : 0;
         if (ImGui::Combo("SP model", &model, "screen\0paper\0"))
-            settings_.significance.model = model == 1 ? SpModel::paper : SpModel::screen;
+            settings_.model = model == 1 ? SpModel::paper : SpModel::screen;
         SignificanceOptions &sp = settings_.significance;
         auto slider = [](const char *label, double &value, float lo, float hi) {
             float v = float(value);
             if (ImGui::SliderFloat(label, &v, lo, hi, "%.2f"))
                 value = v;
         };
-        if (sp.model == SpModel::paper) {
+        if (settings_.model == SpModel::paper) {
             slider("w distance", sp.w_distance, 0.0f, 4.0f);
             slider("w angle", sp.w_angle, 0.0f, 4.0f);
             slider("w ration", sp.w_ration, 0.0f, 4.0f);

@@ -193,7 +193,8 @@ struct OneWay {
     std::size_t count = 0;
 };
 
-OneWay one_way(const std::vector<glm::dvec3> &points, const TriangleBvh &target, const View *view) {
+OneWay one_way(const std::vector<glm::dvec3> &points, const TriangleBvh &target,
+               const std::optional<View> &view) {
     OneWay r;
     const std::vector<double> d = distances(points, target);
     for (std::size_t i = 0; i < d.size(); ++i) {
@@ -215,8 +216,8 @@ HausdorffResult hausdorff(const Mesh &a, const Mesh &b, const HausdorffOptions &
         throw Error("hausdorff", "a mesh has no faces");
     const std::vector<glm::dvec3> pa = sample_surface(a, ta, options.samples, options.seed);
     const std::vector<glm::dvec3> pb = sample_surface(b, tb, options.samples, options.seed + 1);
-    const OneWay ab = one_way(pa, TriangleBvh(std::move(tb)), options.view);
-    const OneWay ba = one_way(pb, TriangleBvh(std::move(ta)), options.view);
+    const OneWay ab = one_way(pa, TriangleBvh(std::move(tb)), options.model.view());
+    const OneWay ba = one_way(pb, TriangleBvh(std::move(ta)), options.model.view());
     HausdorffResult r;
     r.max_a_to_b = ab.max;
     r.max_b_to_a = ba.max;

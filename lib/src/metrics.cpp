@@ -20,8 +20,8 @@ class ErrorAccumulator {
   public:
     ErrorAccumulator(const Heightfield &hf, const ErrorOptions &options)
         : hf_(hf), options_(options), covered_(static_cast<std::size_t>(hf.size()), false) {
-        if (options.view)
-            k_ = options.view->k();
+        if (options.model.view())
+            k_ = options.model.view()->k();
     }
 
     void triangle(const std::array<Corner, 3> &t) {
@@ -71,15 +71,15 @@ class ErrorAccumulator {
         sum_sq_ += dz * dz;
         if (dz > result_.max_vertical) {
             result_.max_vertical = dz;
-            if (!options_.view)
+            if (!options_.model.view())
                 result_.worst_sample = std::int64_t(id);
         }
-        if (!options_.view || dz == 0.0)
+        if (!options_.model.view() || dz == 0.0)
             return;
         const glm::dvec3 p(c * hf_.dx, r * hf_.dy, zs);
-        if (options_.frustum_only && !options_.view->in_frustum(p))
+        if (options_.frustum_only && !options_.model.view()->in_frustum(p))
             return;
-        const double d = glm::length(p - options_.view->eye);
+        const double d = glm::length(p - options_.model.view()->eye);
         const double px = d > 0 ? dz * k_ / d : INFINITY;
         if (px > result_.max_screen_px) {
             result_.max_screen_px = px;

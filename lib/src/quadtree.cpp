@@ -9,6 +9,7 @@
 #include "tinlod/error.hpp"
 #include "tinlod/screen_weight.hpp"
 #include "tinlod/util.hpp"
+#include "working_set.hpp"
 
 #include <algorithm>
 #include <array>
@@ -396,7 +397,7 @@ struct QuadTreeLod::Impl {
         cull = options.cull;
         weigh = options.peripheral != nullptr;
         if (weigh)
-            weigher = Weigher(&view, *options.peripheral);
+            weigher = Weigher(view, *options.peripheral);
         const auto [f, r, u] = view.frame();
         const double hw = view.viewport_w / 2.0, hh = view.viewport_h / 2.0;
         planes[0] = k * r - hw * f;
@@ -855,7 +856,7 @@ WorkingSet height_working_set(const QuadTree &tree, const Mesh &tin, const View 
     if (lay.levels() < 2 || level < 0 || level > lay.levels() - 2)
         throw std::invalid_argument("height_working_set: level " + std::to_string(level) +
                                     " has no node bounds");
-    const Weigher weigher(&view, significance);
+    const Weigher weigher(view, significance);
     WorkingSet out;
     out.level = level;
     out.needed.assign(std::size_t(lay.level_nodes(level)), 0);

@@ -6,7 +6,6 @@
 #include "tinlod/screen_weight.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
 namespace tinlod {
@@ -28,17 +27,17 @@ double screen_weight(const View &view, const glm::dvec3 &p, const SignificanceOp
     return Weigher(view, options)(p);
 }
 
-double significance(const NodeTerms &terms, const View *view, const SignificanceOptions &options,
-                    double focal_distance) {
-    switch (options.model) {
+double significance(const NodeTerms &terms, const Significance &model, double focal_distance) {
+    switch (model.model()) {
     case SpModel::vertical:
         return terms.delta;
     case SpModel::screen:
-        assert(view);
-        return terms.od > 0.0 ? terms.delta * view->k() / terms.od * terms.peripheral : INFINITY;
+        return terms.od > 0.0 ? terms.delta * model.view()->k() / terms.od * terms.peripheral
+                              : INFINITY;
     case SpModel::paper: {
         if (!(terms.od > 0.0))
             return INFINITY;
+        const SignificanceOptions &options = model.options();
         const double angle = std::cos(std::min(terms.oa, M_PI / 2) / 2.0);
         return std::pow(std::max(terms.ration, 0.0), options.w_ration) *
                std::pow(focal_distance / terms.od, options.w_distance) *
@@ -48,26 +47,12 @@ double significance(const NodeTerms &terms, const View *view, const Significance
     return 0.0;
 }
 
-std::vector<float> node_weights(const Mesh &mesh, const View *view,
-                                const SignificanceOptions &options) {
-    std::vector<float> weight(mesh.n_vertices(), 1.0f);
-    if (!view || options.model == SpModel::vertical)
-        return weight;
-    const Weigher weigher(*view, options);
-    for (auto v : mesh.all_vertices()) { // erased nodes too: the bound weighs what faces swallowed
-        const auto &p = mesh.point(v);
-        weight[v.idx()] = float(weigher(glm::dvec3(p[0], p[1], p[2])));
-    }
-    return weight;
-}
-
-std::vector<float> node_significance(const Mesh &mesh, const View *view,
-                                     const SignificanceOptions &options) {
-    assert(view || options.model == SpModel::vertical);
+std::vector<float> node_significance(const Mesh &mesh, const Significance &model) {
+    const std::optional<View> &view = model.view();
     std::vector<float> sp(mesh.n_vertices(), 0.0f);
-    const Weigher weigher(view ? *view : View{}, options);
+    const Weigher weigher(model);
     const double focal_distance =
-        view && options.model == SpModel::paper ? focal_point(mesh, *view).distance : 1.0;
+        model.model() == SpModel::paper ? focal_point(mesh, *view).distance : 1.0;
     for (auto v : mesh.vertices()) {
         if (mesh.is_boundary(v) || !mesh.halfedge_handle(v).is_valid()) {
             sp[v.idx()] = INFINITY;
@@ -103,7 +88,7 @@ std::vector<float> node_significance(const Mesh &mesh, const View *view,
             terms.oa = observation_angle(*view, c);
             terms.peripheral = weigher.peripheral(c);
         }
-        sp[v.idx()] = float(significance(terms, view, options, focal_distance));
+        sp[v.idx()] = float(significance(terms, model, focal_distance));
     }
     return sp;
 }

@@ -119,7 +119,7 @@ void check_bound(const Heightfield &hf, const NodeEraser &eraser, const View &vi
     const double limit = tolerance * (1 + 1e-6) + (vertical ? slack.z : slack.px);
     check(!(eraser.measure().max_weighted > limit), "the eraser measures its error > bound");
     ErrorOptions eo;
-    eo.view = &view;
+    eo.model = Significance::screen(view);
     const TinError e = measure_error(hf, eraser.mesh(), eo);
     check(e.uncovered == 0, "a sample is not covered by the TIN");
     check(!((vertical ? e.max_vertical : e.max_screen_px) > limit), "measured error > bound");
@@ -159,12 +159,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     Heightfield hf;
     const double zscale = fuzz::take_grid(in, 16, hf);
     static constexpr SpModel k_model[] = {SpModel::screen, SpModel::paper, SpModel::vertical};
+    const SpModel model = in.PickValueInArray(k_model);
     EraseOptions options;
-    options.significance.model = in.PickValueInArray(k_model);
     static constexpr double k_tolerance[] = {1, 0,  0.25,
                                              4, 64, std::numeric_limits<double>::infinity()};
-    options.tolerance = in.PickValueInArray(k_tolerance) *
-                        (options.significance.model == SpModel::vertical ? zscale : 1.0);
+    options.tolerance =
+        in.PickValueInArray(k_tolerance) * (model == SpModel::vertical ? zscale : 1.0);
     options.projection = in.ConsumeBool() ? Projection::automatic : Projection::xy;
     options.erase_boundary = in.ConsumeBool();
     options.shallow_history = in.ConsumeBool();
@@ -184,6 +184,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
     // Heights last: a short input leaves the rest of the grid flat, which is what erases most.
     const double max_abs_z = fuzz::take_heights(in, zscale, hf);
     const Slack slack = slack_of(hf, view, max_abs_z), next_slack = slack_of(hf, next, max_abs_z);
+    const Significance sp = Significance::of(model, view, {});
 
     const Mesh input = grid_tin(hf);
     const std::vector<Triangle> input_faces = triangle_set(input);
@@ -191,14 +192,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
 
     {
         Mesh work = input;
-        NodeEraser eraser(work, &view, options);
+        NodeEraser eraser(work, sp, options);
         const EraseStats stats = eraser.erase();
         check(stats.input_nodes == std::int64_t(input.n_vertices()), "stats.input_nodes");
         check(stats.output_nodes == eraser.live_nodes(), "stats.output_nodes");
         check(stats.output_triangles == eraser.live_triangles(), "stats.output_triangles");
         check(stats.erased == stats.input_nodes - stats.output_nodes, "stats.erased");
         check_tin(eraser, input_area);
-        check_bound(hf, eraser, view, options.significance.model, options.tolerance, slack);
+        check_bound(hf, eraser, view, model, options.tolerance, slack);
         Mesh compacted;
         if (compact) {
             eraser.compact();
@@ -208,11 +209,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
                   "compact kept erased faces");
             check_tin(eraser, input_area);
         }
-        if (options.significance.model != SpModel::vertical && std::isfinite(options.tolerance)) {
+        if (model != SpModel::vertical && std::isfinite(options.tolerance)) {
             eraser.update(next, options.tolerance, 0.75 * options.tolerance);
             check_tin(eraser, input_area);
-            check_bound(hf, eraser, next, options.significance.model, options.tolerance,
-                        next_slack);
+            check_bound(hf, eraser, next, model, options.tolerance, next_slack);
         }
         check_recovered(eraser, input, input_faces);
     }
@@ -220,11 +220,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
         Mesh work = input;
         EraseOptions by_budget = options;
         by_budget.max_nodes = budget;
-        NodeEraser eraser(work, &view, by_budget);
+        NodeEraser eraser(work, sp, by_budget);
         eraser.erase();
         check(eraser.live_nodes() >= budget, "the budget run erased below max_nodes");
         check_tin(eraser, input_area);
-        check_bound(hf, eraser, view, options.significance.model, options.tolerance, slack);
+        check_bound(hf, eraser, view, model, options.tolerance, slack);
         check_recovered(eraser, input, input_faces);
     }
     return 0;

@@ -47,33 +47,7 @@ namespace erase {
 struct EraserState; // the eraser's state (lib/src/erase/state.hpp)
 }
 
-// ---- Hole re-triangulation in the projection plane (paper steps 3-4) --------------------------
-
-// One triangle of a re-triangulated ring: three ring indices, counter-clockwise.
-struct RingTriangle {
-    std::uint8_t a, b, c;
-};
-
-enum class RingOrientation { ccw, cw, degenerate };
-
-// Orientation of the closed polygon `ring` by the sign of its area.
-RingOrientation ring_orientation(std::span<const glm::dvec2> ring);
-
-// Paper step 3: the neighbours of a node ordered into a counter-clockwise ring around `centre`
-// (by angle, starting from the negative x axis). Returns indices into `neighbours`.
-std::vector<int> order_ring(const glm::dvec2 &centre, std::span<const glm::dvec2> neighbours);
-
-// The paper's erasing-ability test for the ear at ring index i of the counter-clockwise polygon
-// `ring`: the corner (i-1, i, i+1) is strictly convex and no other ring node lies in the closed
-// triangle.
-bool is_erasable_ear(std::span<const glm::dvec2> ring, int i);
-
-// Ear clipping of a simple counter-clockwise polygon (at most k_max_ring nodes): among the erasable
-// ears it clips the one whose circumcircle holds no other remaining node (a Delaunay ear), then the
-// best shaped (2*sqrt(3)*area2 / sum of squared edges). Returns ring.size() - 2 triangles, or an
-// empty vector when the ring cannot be triangulated without a fold-over.
-std::vector<RingTriangle> triangulate_ring(std::span<const glm::dvec2> ring);
-
+// The largest ring a hole may have (EraseOptions::max_valence's upper limit).
 inline constexpr int k_max_ring = 48;
 
 // ---- The node-erase decimater ------------------------------------------------------------------
@@ -84,8 +58,7 @@ struct EraseOptions {
     // tau: pixels (screen, paper models) or world units (vertical); may be +inf, 0 erases only
     // nodes that lie exactly on their neighbours' surface
     double tolerance = 1.0;
-    std::int64_t max_nodes = 0;       // stop once this many live nodes remain (0: no budget)
-    SignificanceOptions significance; // SP model and its parameters
+    std::int64_t max_nodes = 0; // stop once this many live nodes remain (0: no budget)
     Projection projection = Projection::automatic; // automatic: xy when every face is CCW in xy
     bool erase_boundary = true; // TINs: erase boundary nodes lying exactly on the outline's line
     int max_valence = 24;       // nodes with more neighbours stay (bounds the hole size)
@@ -182,16 +155,20 @@ inline constexpr std::size_t k_update_cap = 4096;
 class NodeEraser {
   public:
     // `mesh`: triangles only, no deleted elements, status attributes (tinlod::Mesh has them).
-    // `view` may be null only for SpModel::vertical; it is copied. Throws Error naming the option
-    // for a tolerance < 0 or NaN, max_nodes < 0, max_valence outside [3, k_max_ring], or a screen
-    // or paper model without a view (set_view too).
-    NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options);
+    // `model`: the SP model and its view (copied). Throws Error naming the option for a tolerance
+    // < 0 or NaN, max_nodes < 0 or max_valence outside [3, k_max_ring] (set_view too).
+    NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions &options);
     ~NodeEraser();
     NodeEraser(NodeEraser &&) noexcept;
     NodeEraser &operator=(NodeEraser &&) noexcept;
 
-    // classify -> rank -> erase -> retriangulate over every live node, until no node can be erased
-    // within options.tolerance or options.max_nodes live nodes remain.
+    // Erases live nodes until none can be erased within options.tolerance or options.max_nodes
+    // live nodes remain (lib/src/erase/sweep.hpp). The screen and vertical models with a bound or
+    // a budget sweep: passes over the nodes in storage order erase each node whose cost (the SP
+    // of its erase) is within the pass's limit, the limits rising to tau (or, under a budget,
+    // rung by rung until N nodes remain). The paper model (whose key is not a cost) and an
+    // unbounded erase use a queue: rank every node by its key, pop the least while its erase
+    // stays within tau.
     EraseStats erase();
 
     // Re-inserts erased node v at its original position with its original triangles, first
@@ -201,9 +178,9 @@ class NodeEraser {
     // Recovers every erased node; the mesh then has the input's nodes and triangles.
     std::int64_t recover_all();
 
-    // A new view (and model/tolerance) for the next erase(); node weights are recomputed as they
-    // are needed.
-    void set_view(const View *view, const EraseOptions &options);
+    // A new model and view (and options) for the next erase(); node weights are recomputed as
+    // they are needed.
+    void set_view(const Significance &model, const EraseOptions &options);
 
     // Follows the observer to `view` in both directions (the refiner's frame step):
     //  1. recover: every face whose swallowed nodes exceed `recover_above` (weighted, the units of
@@ -264,9 +241,9 @@ class NodeEraser {
     std::unique_ptr<erase::EraserState> state_;
 };
 
-// One-off: erases nodes of `mesh` in place from `view` (null for SpModel::vertical), then removes
-// the deleted elements (garbage collection; the origin property keeps each node's provenance).
-EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options);
+// One-off: erases nodes of `mesh` in place under `model`, then removes the deleted elements
+// (garbage collection; the origin property keeps each node's provenance).
+EraseStats erase_nodes(Mesh &mesh, const Significance &model, const EraseOptions &options);
 
 // ---- Both methods on a DEM ---------------------------------------------------------------------
 
@@ -318,7 +295,7 @@ struct DemEraseStats {
 // that keeps few samples (DemEraseOptions::greedy_cap), and erases from there. The others erase
 // from the full grid. Returns the TIN's live nodes and faces (live_copy: the nodes and triangles
 // erase_nodes leaves, in sample order; origin = sample id).
-Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
+Mesh erase_dem(const Heightfield &hf, const Significance &model, const EraseOptions &options,
                const DemEraseOptions &dem = {}, DemEraseStats *stats = nullptr);
 
 } // namespace tinlod

@@ -3,6 +3,7 @@
 // nearest point of the other mesh's surface through a bounding-volume hierarchy over triangles.
 #pragma once
 
+#include "tinlod/significance.hpp"
 #include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
 
@@ -14,9 +15,10 @@ struct HausdorffOptions {
     std::int64_t samples = 200000; // points per mesh spread over its faces by area (its vertices
                                    // are added to these)
     std::uint64_t seed = 1;        // the same seed gives the same points, so the same result
-    // With a view: the screen-space distance too, each sample's distance seen from where it lies
-    // (d * k / OD, View::screen_px), over the samples of both directions inside the frustum.
-    const View *view = nullptr;
+    // The view of the screen and paper models: the screen-space distance too, each sample's
+    // distance seen from where it lies (d * k / OD, View::screen_px), over the samples of both
+    // directions inside the frustum. The vertical model (the default) has no view.
+    Significance model;
 };
 
 struct HausdorffResult {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "tinlod/raster.hpp"
+#include "tinlod/significance.hpp"
 #include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
 
@@ -23,8 +24,10 @@ struct TinError {
 };
 
 struct ErrorOptions {
-    const View *view = nullptr; // without a view, max_screen_px stays 0
-    bool frustum_only = true;   // screen error only over samples inside the view frustum
+    // The view of the screen and paper models gives max_screen_px (k / distance, without the
+    // peripheral factor); the vertical model (the default) has none: it stays 0.
+    Significance model;
+    bool frustum_only = true; // screen error only over samples inside the view frustum
 };
 
 // Rasterises every live triangle of `tin` (local world frame of `hf`, x = c*dx, y = r*dy) over the

@@ -48,7 +48,9 @@ struct RefineOptions {
     double tolerance = 1.0;   // tau: screen-space error every frame may show, pixels
     double hysteresis = 0.25; // erase only down to (1 - hysteresis) * tau, recover above tau, so a
                               // node near the threshold does not flicker; in [0, 1)
-    SignificanceOptions significance; // SP model (screen or paper) and its parameters
+    // SP model: screen or paper (the refiner follows a view; Error for the vertical model)
+    SpModel model = SpModel::screen;
+    SignificanceOptions significance; // its parameters
     int max_valence = 24;             // nodes with more neighbours stay (bounds a hole's size)
     // From a Heightfield with the screen model: the first frame retrieves the quad-tree's TIN at
     // retrieve_share times the erase tolerance, (1 - hysteresis) tau, and erases from there. The

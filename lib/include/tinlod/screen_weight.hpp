@@ -15,15 +15,17 @@
 namespace tinlod {
 
 // Pixels per unit of deviation at a point for one view: k / OD * peripheral(OA), with the view's
-// frame computed once; 1 without a view or in the vertical model.
+// frame computed once; 1 in the vertical model (and default-constructed).
 class Weigher {
   public:
     Weigher() = default;
-    Weigher(const View *view, const SignificanceOptions &options) {
-        if (view && options.model != SpModel::vertical)
-            *this = Weigher(*view, options);
+    // The erase bound's weight under `model`: the screen one for the screen and paper models (the
+    // paper's SP orders nodes only), 1 for the vertical one.
+    explicit Weigher(const Significance &model) {
+        if (model.view())
+            *this = Weigher(*model.view(), model.options());
     }
-    // The screen model's weight for this view, whatever options.model says.
+    // The screen model's weight for this view.
     Weigher(const View &view, const SignificanceOptions &options) {
         unit_ = false;
         eye_ = view.eye;

@@ -15,14 +15,14 @@
 //           from P to its ring neighbours (dimensionless)
 //
 // Models:
-//   screen (default)  SP = delta * k / OD * peripheral(OA)     [pixels]
+//   screen            SP = delta * k / OD * peripheral(OA)     [pixels]
 //       k = viewport_h / (2 tan(fov/2)) (docs/method.md): the pixels by which erasing P shifts the
 //       picture. peripheral(OA) = 1 inside the view frustum (with cone_margin_px of slack) and
 //       inside the cone around the axis that circumscribes the frustum; beyond that cone, whose
 //       half-angle is A = atan(half viewport diagonal / k), it decays as
 //       max(floor, exp(-(OA - A) / falloff)).
-//   paper             SP = sration^w_ration * (D_f / OD)^w_distance * cos(min(OA, pi/2) /
-//   2)^w_angle
+//   paper             SP = sration^w_ration * (D_f / OD)^w_distance
+//                          * cos(min(OA, pi/2) / 2)^w_angle
 //       the paper's f with explicit weights (exponents), D_f = distance from the eye to the focal
 //       point. Dimensionless: it orders nodes only; the erase bound stays the screen one.
 //   vertical          SP = delta                                [world units]
@@ -34,14 +34,15 @@
 
 #include <glm/glm.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace tinlod {
 
 enum class SpModel { screen, paper, vertical };
 
+// The parameters of the screen and paper models (the vertical model has none).
 struct SignificanceOptions {
-    SpModel model = SpModel::screen;
     double cone_margin_px = 2.0; // pixels of slack around the frustum still counted as inside
     // outside the view cone the peripheral factor e-folds every this many degrees
     double falloff_deg = 15.0;
@@ -49,6 +50,41 @@ struct SignificanceOptions {
     double w_distance = 1.0; // paper model: exponent of D_f / OD
     double w_angle = 1.0;    // paper model: exponent of cos(OA / 2)
     double w_ration = 1.0;   // paper model: exponent of sration
+};
+
+// A significance model with what it measures from: the view of the screen and paper models (the
+// vertical model has none) and their parameters. Only the factories make one, so a view is there
+// exactly when the model needs it. Default: the vertical model.
+class Significance {
+  public:
+    Significance() = default;
+    static Significance vertical() { return {}; }
+    static Significance screen(const View &view, const SignificanceOptions &options = {}) {
+        return {SpModel::screen, view, options};
+    }
+    static Significance paper(const View &view, const SignificanceOptions &options = {}) {
+        return {SpModel::paper, view, options};
+    }
+    // `model` chosen at run time: seen from `view` for the screen and paper models; the vertical
+    // model leaves the view and the parameters out.
+    static Significance of(SpModel model, const View &view, const SignificanceOptions &options) {
+        return model == SpModel::vertical ? vertical() : Significance(model, view, options);
+    }
+    // The same model and parameters seen from `view` (the vertical model stays without one).
+    Significance seen_from(const View &view) const { return of(model_, view, options_); }
+
+    SpModel model() const { return model_; }
+    // The view; present exactly for the screen and paper models.
+    const std::optional<View> &view() const { return view_; }
+    const SignificanceOptions &options() const { return options_; }
+
+  private:
+    Significance(SpModel model, const View &view, const SignificanceOptions &options)
+        : model_(model), view_(view), options_(options) {}
+
+    SpModel model_ = SpModel::vertical;
+    std::optional<View> view_;
+    SignificanceOptions options_;
 };
 
 // The per-node terms of SP (see the file comment).
@@ -67,25 +103,18 @@ double observation_angle(const View &view, const glm::dvec3 &p);
 double peripheral_factor(const View &view, const glm::dvec3 &p, const SignificanceOptions &options);
 
 // k / OD * peripheral(OA): pixels per world unit of deviation at p; the weight by which the erase
-// bound turns a node's deviation into pixels (Weigher(view, options)(p), whatever options.model).
-// Infinite at the eye.
+// bound turns a node's deviation into pixels in the screen and paper models (Weigher(view,
+// options)(p)). Infinite at the eye.
 double screen_weight(const View &view, const glm::dvec3 &p, const SignificanceOptions &options);
 
-// SP of a node from its terms. `view` may be null only for SpModel::vertical; `focal_distance`
-// (D_f, world units) is used by the paper model only.
-double significance(const NodeTerms &terms, const View *view, const SignificanceOptions &options,
-                    double focal_distance = 1.0);
-
-// screen_weight of every vertex, indexed by vertex idx (deleted vertices included); 1 everywhere
-// without a view or for SpModel::vertical.
-std::vector<float> node_weights(const Mesh &mesh, const View *view,
-                                const SignificanceOptions &options);
+// SP of a node from its terms under `model`; `focal_distance` (D_f, world units) is used by the
+// paper model only.
+double significance(const NodeTerms &terms, const Significance &model, double focal_distance = 1.0);
 
 // SP of every live vertex (indexed by vertex idx; 0 for deleted ones), with delta measured against
 // the plane through its ring's centroid normal to the fan's area-weighted normal (the quick,
 // one-off estimate used to colour renders; the decimater measures delta against the re-triangulated
 // hole instead). Boundary vertices get +infinity: they are not erased by significance alone.
-std::vector<float> node_significance(const Mesh &mesh, const View *view,
-                                     const SignificanceOptions &options);
+std::vector<float> node_significance(const Mesh &mesh, const Significance &model);
 
 } // namespace tinlod

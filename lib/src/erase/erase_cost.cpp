@@ -9,7 +9,7 @@
 namespace tinlod::erase {
 
 void new_weights(EraserState &s, bool keep) {
-    s.unit_weights = !s.has_view || s.options.significance.model == SpModel::vertical;
+    s.unit_weights = s.model == SpModel::vertical;
     if (s.unit_weights || !keep) {
         std::vector<float>().swap(s.weight);
         return;
@@ -38,7 +38,7 @@ void classify_nodes(EraserState &s) {
     for (std::size_t x = 0; x < s.record_of.size(); ++x)
         if (s.record_of[x] == k_absent)
             s.flags[x] |= k_locked;
-    s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
+    s.weigher = Weigher(Significance::of(s.model, s.view, s.significance));
     new_weights(s, true);
 }
 
@@ -298,7 +298,7 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
 }
 
 float key_of(const EraserState &s, const Hole &h) {
-    if (s.options.significance.model != SpModel::paper || !s.has_view)
+    if (s.model != SpModel::paper)
         return float(h.sp);
     const glm::dvec3 p = to_glm(s.mesh->point(h.v));
     NodeTerms terms;
@@ -309,7 +309,8 @@ float key_of(const EraserState &s, const Hole &h) {
     for (int i = 0; i < h.n; ++i)
         ring_length += glm::length(h.p[i] - p);
     terms.ration = ring_length > 0.0 ? h.delta * h.n / ring_length : 0.0;
-    return float(significance(terms, &s.view, s.options.significance, s.focal_distance));
+    return float(
+        significance(terms, Significance::paper(s.view, s.significance), s.focal_distance));
 }
 
 } // namespace tinlod::erase

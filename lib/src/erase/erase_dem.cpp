@@ -51,9 +51,9 @@ static bool greedy_pays(const Heightfield &hf, const GreedyOptions &options) {
 // samples. The insertion counts the erase's rounding margin (for the float coordinates farthest
 // from the origin, twice: the erase measures at rounded points), so its TIN is within the bound as
 // the erase measures it.
-std::optional<GreedyTin> greedy_first(const Heightfield &hf, const EraseOptions &options,
-                                      const DemEraseOptions &dem) {
-    if (options.significance.model != SpModel::vertical || !std::isfinite(options.tolerance) ||
+std::optional<GreedyTin> greedy_first(const Heightfield &hf, const Significance &model,
+                                      const EraseOptions &options, const DemEraseOptions &dem) {
+    if (model.model() != SpModel::vertical || !std::isfinite(options.tolerance) ||
         !(options.tolerance > 0.0) || options.max_nodes > 0 || !(dem.greedy_cap > 0.0))
         return std::nullopt;
     GreedyOptions go;
@@ -81,9 +81,9 @@ double retrieval_target(const Heightfield &hf, const EraseOptions &options,
 // the target leaves the erase at least 3/4 of budget_share times the budget to choose from: a
 // retrieval cut to fewer is coarse where the erase cannot mend it
 // (docs/decisions/019-erase-dem-first-stage.md).
-bool retrieves(const Heightfield &hf, const View *view, const EraseOptions &options,
+bool retrieves(const Heightfield &hf, const Significance &model, const EraseOptions &options,
                const DemEraseOptions &dem) {
-    if (!view || options.significance.model != SpModel::screen)
+    if (model.model() != SpModel::screen)
         return false;
     if (options.max_nodes <= 0)
         return dem.retrieve_share > 0.0;
@@ -125,14 +125,15 @@ const Retrieval *retrieve_for_budget(QuadTreeLod &lod, const View &eye, Retrieve
 
 // The quad-tree retrieval's TIN on the whole lattice (vertices for its samples only), at
 // retrieve_share of the tolerance, or with a budget at the tolerance that keeps about the target.
-Mesh retrieved_tin(const Heightfield &hf, const View &eye, const EraseOptions &options,
+Mesh retrieved_tin(const Heightfield &hf, const Significance &model, const EraseOptions &options,
                    const DemEraseOptions &dem, DemEraseStats &out) {
+    const View &eye = *model.view();
     std::optional<QuadTree> own;
     if (!dem.tree)
         own.emplace(hf);
     QuadTreeLod lod(dem.tree ? *dem.tree : *own);
     RetrieveOptions ro;
-    ro.peripheral = &options.significance;
+    ro.peripheral = &model.options();
     const double shared =
         std::isfinite(options.tolerance) ? options.tolerance * dem.retrieve_share : INFINITY;
     ro.tolerance = shared;
@@ -149,7 +150,7 @@ Mesh retrieved_tin(const Heightfield &hf, const View &eye, const EraseOptions &o
 // One erase_dem: its inputs, and its stats as they are made.
 struct DemRun {
     const Heightfield &hf;
-    const View *view;
+    const Significance &model;
     const EraseOptions &options;
     Stopwatch clock; // since erase_dem began, then since the erase ended
     DemEraseStats out;
@@ -163,7 +164,7 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
     run.out.retrieve_ms = run.clock.ms();
     EraseOptions eo = run.options;
     eo.lattice = stage == FirstStage::grid ? nullptr : &run.hf;
-    run.out.erase = NodeEraser(mesh, run.view, eo).erase();
+    run.out.erase = NodeEraser(mesh, run.model, eo).erase();
     run.clock.reset();
     Mesh tin = live_copy(mesh);
     run.out.erase.erase_ms += run.clock.ms();
@@ -174,7 +175,7 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
 
 } // namespace
 
-Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &options,
+Mesh erase_dem(const Heightfield &hf, const Significance &model, const EraseOptions &options,
                const DemEraseOptions &dem, DemEraseStats *stats) {
     // The shares a user can set, checked in Release too (EraseOptions: by the NodeEraser).
     const auto check_share = [](const char *name, double value, double hi) {
@@ -185,15 +186,15 @@ Mesh erase_dem(const Heightfield &hf, const View *view, const EraseOptions &opti
     check_share("retrieve_share", dem.retrieve_share, 1.0);
     check_share("greedy_cap", dem.greedy_cap, 1.0);
     check_share("budget_share", dem.budget_share, std::numeric_limits<double>::max());
-    DemRun run{hf, view, options, Stopwatch(), DemEraseStats()};
-    if (const std::optional<GreedyTin> greedy = greedy_first(hf, options, dem)) {
+    DemRun run{hf, model, options, Stopwatch(), DemEraseStats()};
+    if (const std::optional<GreedyTin> greedy = greedy_first(hf, model, options, dem)) {
         Mesh mesh = to_sparse_lattice_mesh(greedy->tin, hf);
         run.out.retrieved_nodes = std::int64_t(greedy->tin.nodes.size());
         run.out.retrieve_tol = options.tolerance;
         return erase_from(run, mesh, FirstStage::greedy, stats);
     }
-    if (retrieves(hf, view, options, dem)) {
-        Mesh mesh = retrieved_tin(hf, *view, options, dem, run.out);
+    if (retrieves(hf, model, options, dem)) {
+        Mesh mesh = retrieved_tin(hf, model, options, dem, run.out);
         return erase_from(run, mesh, FirstStage::quadtree, stats);
     }
     run.out.retrieved_nodes = hf.size();

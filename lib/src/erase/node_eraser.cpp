@@ -148,7 +148,7 @@ void build_live_set(EraserState &s, std::vector<std::int32_t> vertex_of) {
 
 // The option values a user can reach, checked in Release too (an assert is compiled out): each
 // Error names the option at fault.
-void check_options(const View *view, const EraseOptions &options) {
+void check_options(const EraseOptions &options) {
     if (!(options.tolerance >= 0.0))
         throw Error("EraseOptions::tolerance",
                     "must be 0 or more (or +inf), not " + std::to_string(options.tolerance));
@@ -159,16 +159,13 @@ void check_options(const View *view, const EraseOptions &options) {
         throw Error("EraseOptions::max_valence", "must be in [3, " + std::to_string(k_max_ring) +
                                                      "], not " +
                                                      std::to_string(options.max_valence));
-    if (!view && options.significance.model != SpModel::vertical)
-        throw Error("EraseOptions::significance",
-                    "the screen and paper models need a view (only the vertical model has none)");
 }
 
 } // namespace
 
-NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
+NodeEraser::NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions &options)
     : state_(std::make_unique<erase::EraserState>()) {
-    check_options(view, options);
+    check_options(options);
     EraserState &s = *state_;
     s.mesh = &mesh;
     assert(s.mesh->is_trimesh());
@@ -185,24 +182,25 @@ NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options
         record_absent_samples(s, options.retrieval_tin);
     if (absent > 0)
         swallow_absent(s);
-    set_view(view, options);
+    set_view(model, options);
 }
 
 NodeEraser::~NodeEraser() = default;
 NodeEraser::NodeEraser(NodeEraser &&) noexcept = default;
 NodeEraser &NodeEraser::operator=(NodeEraser &&) noexcept = default;
 
-void NodeEraser::set_view(const View *view, const EraseOptions &options) {
-    check_options(view, options);
+void NodeEraser::set_view(const Significance &model, const EraseOptions &options) {
+    check_options(options);
     EraserState &s = *state_;
     s.options = options;
-    s.has_view = view != nullptr;
+    s.model = model.model();
+    s.significance = model.options();
     std::fill(s.seen.face_seen_dev.begin(), s.seen.face_seen_dev.end(),
               -1.0f); // the model may change
     forget_nodes(s);
-    if (view) {
+    if (const std::optional<View> &view = model.view()) {
         s.view = *view;
-        if (options.significance.model == SpModel::paper)
+        if (s.model == SpModel::paper)
             s.focal_distance = std::max(focal_point(*s.mesh, *view).distance, 1e-9);
     }
     classify_nodes(s);
@@ -224,7 +222,7 @@ void per_vertex_keys(EraserState &s) {
 // The sweep (sweep.hpp) where the key is the cost (not the paper model) and a bound or a budget
 // stops it, else the queue: rank every node, then pop the least.
 std::int64_t erase_by_model(EraserState &s) {
-    if (s.options.significance.model != SpModel::paper &&
+    if (s.model != SpModel::paper &&
         (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance)))
         return sweep_erase(s);
     rank_nodes(s);
@@ -287,7 +285,8 @@ EraseStats NodeEraser::measure() const {
     EraseStats stats;
     stats.output_nodes = s.live;
     stats.output_triangles = s.live_faces;
-    const double k = s.has_view ? s.view.k() : 0.0;
+    const bool has_view = s.model != SpModel::vertical;
+    const double k = has_view ? s.view.k() : 0.0;
     // Each TIN face's bounds on what its swallowed nodes can show: its largest deviation, alone,
     // times the largest weight in its box and times k over the box's distance (a surface mesh's
     // faces get no bounds: each is scanned). Faces go from the largest weighted bound down, and a
@@ -310,13 +309,13 @@ EraseStats NodeEraser::measure() const {
         const auto [lo, hi] = swallowed_box(s, f, a, b, c);
         const double near = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
         faces.push_back({s.xy ? dev * s.weigher.bound(lo, hi) * k_rounded_weight : INFINITY,
-                         s.xy && s.has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY, f});
+                         s.xy && has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY, f});
     }
     std::sort(faces.begin(), faces.end(),
               [](const Bounded &x, const Bounded &y) { return x.weighted > y.weighted; });
     for (const Bounded &bounded : faces) {
         if (!(bounded.weighted > stats.max_weighted) && !(bounded.vertical > stats.max_vertical) &&
-            (!s.has_view || !(bounded.screen > stats.max_screen_px)))
+            (!has_view || !(bounded.screen > stats.max_screen_px)))
             continue;
         const FH f = bounded.f;
         std::int32_t u = s.face_head[f.idx()];
@@ -340,7 +339,7 @@ EraseStats NodeEraser::measure() const {
             stats.max_vertical = std::max(stats.max_vertical, dev);
             stats.max_weighted =
                 std::max(stats.max_weighted, weighted(s, std::uint32_t(node), dev));
-            if (s.has_view && s.view.in_frustum(p))
+            if (has_view && s.view.in_frustum(p))
                 stats.max_screen_px =
                     std::max(stats.max_screen_px, dev * k / glm::length(p - s.view.eye));
         };
@@ -359,10 +358,10 @@ EraseStats NodeEraser::measure() const {
     return stats;
 }
 
-EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options) {
+EraseStats erase_nodes(Mesh &mesh, const Significance &model, const EraseOptions &options) {
     EraseStats stats;
     {
-        NodeEraser eraser(mesh, view, options);
+        NodeEraser eraser(mesh, model, options);
         stats = eraser.erase();
     }
     Stopwatch clock;

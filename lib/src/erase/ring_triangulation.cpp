@@ -1,11 +1,9 @@
-// Ear clipping of a hole's ring (ring_triangulation.hpp) and the public ring functions
-// (decimate.hpp).
+// Ear clipping of a hole's ring, and the ring functions of the tests (ring_triangulation.hpp).
 #include "erase/ring_triangulation.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 
 namespace tinlod::erase {
 
@@ -105,13 +103,6 @@ int clip_ears(const glm::dvec2 *q, int n, RingTriangle *out) {
     return count;
 }
 
-} // namespace tinlod::erase
-
-namespace tinlod {
-
-using erase::clip_ears;
-using erase::ear_quality;
-
 RingOrientation ring_orientation(std::span<const glm::dvec2> ring) {
     double area2 = 0.0;
     for (std::size_t i = 0; i < ring.size(); ++i) {
@@ -122,16 +113,6 @@ RingOrientation ring_orientation(std::span<const glm::dvec2> ring) {
     return area2 > 0.0   ? RingOrientation::ccw
            : area2 < 0.0 ? RingOrientation::cw
                          : RingOrientation::degenerate;
-}
-
-std::vector<int> order_ring(const glm::dvec2 &centre, std::span<const glm::dvec2> neighbours) {
-    std::vector<int> order(neighbours.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::vector<double> angle(neighbours.size());
-    for (std::size_t i = 0; i < neighbours.size(); ++i)
-        angle[i] = std::atan2(neighbours[i].y - centre.y, neighbours[i].x - centre.x);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
-    return order;
 }
 
 bool is_erasable_ear(std::span<const glm::dvec2> ring, int i) {
@@ -152,4 +133,4 @@ std::vector<RingTriangle> triangulate_ring(std::span<const glm::dvec2> ring) {
     return {out.begin(), out.begin() + count};
 }
 
-} // namespace tinlod
+} // namespace tinlod::erase

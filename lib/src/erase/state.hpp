@@ -127,8 +127,9 @@ struct EraserState {
     double area_per_node = 0.0;                  // xy: the input's bounding-box area over its nodes
 
     // ---- The view and the weights ----
-    bool has_view = false;
-    View view;
+    SpModel model = SpModel::vertical; // set_view's model
+    SignificanceOptions significance;  // its parameters
+    View view;                         // its view, which update() moves (screen and paper models)
     double focal_distance = 1.0;
     Weigher weigher;          // pixels per unit deviation for the current view
     bool unit_weights = true; // no view, or the vertical model: every weight is 1

@@ -60,7 +60,7 @@ std::int64_t erase_loop(EraserState &s) {
     while (!s.heap.empty() && s.live > budget) {
         const std::uint32_t v = s.heap.top();
         const float key = s.heap.key(v);
-        if (double(key) > tau && s.options.significance.model != SpModel::paper)
+        if (double(key) > tau && s.model != SpModel::paper)
             break; // every remaining key exceeds the bound (dirty keys are re-checked below)
         const bool dirty = s.flags[v] & k_dirty;
         s.flags[v] &= std::uint8_t(~k_dirty);
@@ -69,7 +69,7 @@ std::int64_t erase_loop(EraserState &s) {
         // (the keys stay lower bounds of the costs, so the order is the one exact keys give),
         // not scanned whole (docs/decisions/013-sweep.md).
         const double second = double(s.heap.second_key());
-        const bool by_cost = s.options.significance.model != SpModel::paper;
+        const bool by_cost = s.model != SpModel::paper;
         bool erasable = evaluate(s, vh(s, v), dirty && by_cost ? std::min(tau, second) : tau);
         if (erasable && dirty && by_cost && second < tau && s.hole.sp > second) {
             if (float(s.hole.sp) > float(second)) {

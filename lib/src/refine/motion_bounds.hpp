@@ -27,7 +27,7 @@ using erase::to_glm;
 // Whether the bounds an update makes carry over to the updates that follow (the screen model's, see
 // ViewBounds::face_seen_dev and LiveNode::seen_log).
 inline bool keeps_bounds(const EraserState &s) {
-    return s.options.significance.model == SpModel::screen && s.seen.updates > 0;
+    return s.model == SpModel::screen && s.seen.updates > 0;
 }
 
 // Live node l's erase cost under the current view is at least `cost` (see LiveNode::low_log).

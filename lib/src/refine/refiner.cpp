@@ -1,6 +1,7 @@
 // The refiner (refine.hpp): a NodeEraser kept alive between frames, moved view to view.
 #include "tinlod/refine.hpp"
 
+#include "tinlod/error.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
 
@@ -30,7 +31,6 @@ static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
     eo.absent_history = true;
     eo.retrieval_tin = retrieval;
     eo.tolerance = options.tolerance * (1.0 - options.hysteresis);
-    eo.significance = options.significance;
     eo.max_valence = options.max_valence;
     eo.shallow_history = true; // a recover must not undo a whole row of erases
     return eo;
@@ -38,10 +38,12 @@ static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
 
 static void start(RefinerState &s, const View &first, bool retrieval) {
     assert(s.options.tolerance > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
-    assert(s.options.significance.model != SpModel::vertical);
+    if (s.options.model == SpModel::vertical)
+        throw Error("RefineOptions::model", "must be screen or paper: the refiner follows a view");
     Stopwatch clock;
-    s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first,
-                                            erase_options(s.options, retrieval, s.lattice));
+    s.eraser = std::make_unique<NodeEraser>(
+        *s.mesh, Significance::of(s.options.model, first, s.options.significance),
+        erase_options(s.options, retrieval, s.lattice));
     const double weights_ms = clock.ms();
     clock.reset();
     const EraseStats e = s.eraser->erase();
@@ -80,8 +82,7 @@ template <class Retrieved>
 static void start_on_grid(RefinerState &s, const Heightfield &hf, const View &first,
                           Retrieved retrieved) {
     const Stopwatch clock;
-    const double share =
-        s.options.significance.model == SpModel::screen ? s.options.retrieve_share : 0;
+    const double share = s.options.model == SpModel::screen ? s.options.retrieve_share : 0;
     if (share > 0) {
         RetrieveOptions ro;
         ro.tolerance = share * s.options.tolerance * (1.0 - s.options.hysteresis);

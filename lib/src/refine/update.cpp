@@ -86,10 +86,9 @@ void prepare(EraserState &s) {
 // (ViewBounds::since), for the bounds carried over.
 void new_view(EraserState &s, const View &view) {
     s.view = view;
-    s.has_view = true;
-    if (s.options.significance.model == SpModel::paper)
+    if (s.model == SpModel::paper)
         s.focal_distance = std::max(focal_point(*s.mesh, view).distance, 1e-9);
-    s.weigher = Weigher(&s.view, s.options.significance);
+    s.weigher = Weigher(s.view, s.significance);
     new_weights(s, false);
     s.seen.seen_views[++s.seen.updates % k_seen_views] = view;
     for (std::uint32_t i = 0; i < k_seen_views; ++i) {
@@ -286,7 +285,7 @@ void finish(EraserState &s, const std::vector<std::uint32_t> &recovered) {
 
 UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
     EraserState &s = *state_;
-    assert(s.options.significance.model != SpModel::vertical && erase_below <= recover_above);
+    assert(s.model != SpModel::vertical && erase_below <= recover_above);
     if (s.absent_for_good)
         throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
                                "EraseOptions::absent_history to follow a view");

@@ -279,11 +279,10 @@ InteriorTin interior_tin(const Heightfield &win, double bound) {
     const GreedyTin greedy = greedy_tin(win, go);
     Mesh mesh = to_sparse_lattice_mesh(greedy.tin, win);
     EraseOptions eo;
-    eo.significance.model = SpModel::vertical;
     eo.tolerance = bound;
     eo.lattice = &win;
     {
-        NodeEraser eraser(mesh, nullptr, eo);
+        NodeEraser eraser(mesh, Significance::vertical(), eo);
         eraser.erase();
     }
     const Mesh tin = live_copy(mesh);

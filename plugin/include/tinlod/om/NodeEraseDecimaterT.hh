@@ -52,12 +52,14 @@ template <class MeshT> class NodeEraseDecimaterT {
     // tau, pixels: the output keeps every input vertex within it. +inf: only decimate_to's count
     // limits.
     void set_tolerance(double px) { options_.tolerance = px; }
-    // The SP model and its parameters (screen by default, as `tinlod simplify`).
-    void set_significance(const tinlod::SignificanceOptions &options) {
-        options_.significance = options;
+    // The SP model and its parameters (screen by default, as `tinlod simplify`); the screen and
+    // paper models erase for the view set_view gives.
+    void set_significance(tinlod::SpModel model, const tinlod::SignificanceOptions &options = {}) {
+        model_ = model;
+        significance_ = options;
     }
-    // Every other erase option (projection, max_valence, erase_boundary, ...); the tolerance and
-    // the significance are taken from it too. max_nodes is set by each call.
+    // Every other erase option (projection, max_valence, erase_boundary, ...); the tolerance is
+    // taken from it too. max_nodes is set by each call.
     void set_erase_options(const tinlod::EraseOptions &options) { options_ = options; }
 
     // Copies the mesh's live part into the library's type (decimate() calls it when nobody did) and
@@ -140,16 +142,18 @@ template <class MeshT> class NodeEraseDecimaterT {
   private:
     // Without a view only the vertical model erases.
     std::size_t run(std::int64_t max_nodes) {
-        const bool vertical = options_.significance.model == tinlod::SpModel::vertical;
+        const bool vertical = model_ == tinlod::SpModel::vertical;
         if ((!view_ && !vertical) || (!work_ && !initialize()))
             return 0;
         tinlod::EraseOptions options = options_;
         options.max_nodes = max_nodes;
-        const tinlod::View *view = view_ ? &*view_ : nullptr;
+        const tinlod::Significance model =
+            vertical ? tinlod::Significance::vertical()
+                     : tinlod::Significance::of(model_, *view_, significance_);
         if (!eraser_)
-            eraser_ = std::make_unique<tinlod::NodeEraser>(*work_, view, options);
+            eraser_ = std::make_unique<tinlod::NodeEraser>(*work_, model, options);
         else
-            eraser_->set_view(view, options);
+            eraser_->set_view(model, options);
         const std::size_t before = n_live_vertices();
         stats_ = eraser_->erase();
         write_back();
@@ -275,6 +279,8 @@ template <class MeshT> class NodeEraseDecimaterT {
 
     MeshT &mesh_;
     std::optional<tinlod::View> view_;
+    tinlod::SpModel model_ = tinlod::SpModel::screen;
+    tinlod::SignificanceOptions significance_;
     tinlod::EraseOptions options_;
     tinlod::EraseStats stats_;
     std::size_t failed_faces_ = 0;
