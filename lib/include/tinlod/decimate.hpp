@@ -1,6 +1,8 @@
-// Distance decay of a TIN by node erase (paper steps 3-5): the least significant node is erased
-// and the hole it leaves is re-triangulated locally by ear clipping in a projection plane, with
-// an error bound over the whole output and an exact, invertible record of every erase.
+// Distance decay of a TIN by node erase (paper steps 3-5): nodes are erased while their SP allows
+// (cheapest first, in sweeps whose limit rises to the bound; least significant first in the paper
+// model: NodeEraser::erase) and the hole each leaves is re-triangulated locally by ear clipping in
+// a projection plane, with an error bound over the whole output and an exact, invertible record
+// of every erase. The SP model and its view: Significance (significance.hpp).
 //
 // Paper: "Dynamic Data Retrieval and Distance Decay of TIN in Three Dimensional Visualizations"
 // (ring ordering, orientation, the erasing-ability test of an ear). Inverse erase and its
@@ -12,10 +14,10 @@
 // deviation = vertical distance to the face (TINs) or distance to the face, the triangle itself
 // (general meshes); weight = the screen weight (k / OD * peripheral, tinlod/screen_weight.hpp), or
 // 1 in the vertical model. The SP of an erase, the largest weighted deviation its new triangles
-// swallow, is computed in lib/src/erase/erase_cost.cpp (evaluate). An
-// erase is made only when every new triangle keeps all the nodes it covers within `tolerance`, so
-// the output's error over every input node is <= tolerance: in pixels inside the view frustum, and
-// relaxed by 1 / peripheral outside it.
+// swallow, is computed in lib/src/erase/erase_cost.cpp (evaluate). An erase is made only when
+// every new triangle keeps all the nodes it covers within `tolerance`, so the output's error over
+// every input node is <= tolerance: in pixels inside the view frustum, and relaxed by
+// 1 / peripheral outside it.
 //
 // Projection plane: xy for a TIN (every face counter-clockwise seen from above), the area-weighted
 // mean plane of the node's fan for a general surface mesh; a node is erased only when its fan is
@@ -31,12 +33,9 @@
 #include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <span>
 #include <vector>
 
 namespace tinlod {
