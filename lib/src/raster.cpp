@@ -1,18 +1,13 @@
-// Elevation rasters in: SRTM .hgt (our reader), everything else through OpenImageIO, with
-// GeoTIFF georeferencing from libgeotiff and geographic-to-metric conversion with PROJ.
+// Elevation rasters in: SRTM .hgt (our reader); PNG and plain GeoTIFF through libpng and libtiff
+// as OpenImageIO would read them, everything else through OpenImageIO (src/backends/); GeoTIFF
+// georeferencing from its tags, and geographic-to-metric conversion as PROJ computes it (crs.hpp).
 #include "tinlod/raster.hpp"
-#include "oiio_threads.hpp"
+#include "backends/backends.hpp"
+#include "crs.hpp"
 #include "tinlod/error.hpp"
 
-#include <OpenImageIO/imageio.h>
-#include <geotiff/geo_normalize.h>
-#include <geotiff/geotiff.h>
-#include <geotiff/geovalues.h>
-#include <geotiff/xtiffio.h>
 #include <glm/glm.hpp>
-#include <proj.h>
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,6 +19,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 namespace tinlod {
 
@@ -88,27 +84,19 @@ void check_memory(const std::string &path, const LoadOptions &options, std::int6
                           " MiB (--max-memory-mb sets the limit)");
 }
 
-// Checks a TIFF's declared size and tile size before OpenImageIO, which allocates a tile's
-// buffer when it opens the file.
-void check_tiff_memory(const std::string &path, const LoadOptions &options) {
-    TIFFSetWarningHandler(nullptr);
-    TIFFSetErrorHandler(nullptr);
-    const std::unique_ptr<TIFF, void (*)(TIFF *)> tif(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
-    std::uint32_t w = 0, h = 0, tw = 0, th = 0;
-    std::uint16_t spp = 1, bits = 8;
-    if (!tif || !TIFFGetField(tif.get(), TIFFTAG_IMAGEWIDTH, &w) ||
-        !TIFFGetField(tif.get(), TIFFTAG_IMAGELENGTH, &h))
-        return; // OpenImageIO says what is wrong with it
-    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_SAMPLESPERPIXEL, &spp);
-    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_BITSPERSAMPLE, &bits);
-    const int sample_bytes = std::max(1, (bits + 7) / 8);
-    if (TIFFGetField(tif.get(), TIFFTAG_TILEWIDTH, &tw) &&
-        TIFFGetField(tif.get(), TIFFTAG_TILELENGTH, &th))
-        check_memory(path, options, w, h, spp, sample_bytes,
-                     double(tw) * double(th) * spp * sample_bytes,
-                     " in tiles of " + std::to_string(tw) + "x" + std::to_string(th));
+// Checks a TIFF's declared size and tile size before a reader allocates for it (OpenImageIO
+// allocates a tile's buffer when it opens the file).
+void check_tiff_memory(const std::string &path, const LoadOptions &options,
+                       const backends::TiffLayout &l) {
+    const int sample_bytes = std::max(1, (l.bits_per_sample + 7) / 8);
+    if (l.tiled)
+        check_memory(path, options, l.width, l.height, l.samples_per_pixel, sample_bytes,
+                     double(l.tile_width) * double(l.tile_height) * l.samples_per_pixel *
+                         sample_bytes,
+                     " in tiles of " + std::to_string(l.tile_width) + "x" +
+                         std::to_string(l.tile_height));
     else
-        check_memory(path, options, w, h, spp, sample_bytes);
+        check_memory(path, options, l.width, l.height, l.samples_per_pixel, sample_bytes);
 }
 
 void check_size(const std::string &path, std::int64_t w, std::int64_t h) {
@@ -171,54 +159,44 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
     return g;
 }
 
-// --- GeoTIFF tags through libgeotiff. ---
+// --- GeoTIFF georeferencing, from the tags as stored. ---
+
+// GeoKey values (GeoTIFF 1.0, §6.3).
+constexpr std::uint16_t k_model_projected = 1, k_model_geographic = 2;
+constexpr std::uint16_t k_raster_pixel_is_area = 1, k_raster_pixel_is_point = 2;
+constexpr std::uint16_t k_user_defined = 32767;
 
 // A width x height GeoTIFF's georeferencing. Grids whose columns run west or rows run north (a
 // negative pixel scale) are marked to be mirrored into the usual order.
-Georef read_geotiff_tags(const std::string &path, int width, int height) {
+Georef read_geotiff_tags(const std::string &path, int width, int height,
+                         const backends::GeoTags &tags) {
     Georef geo;
-    TIFFSetWarningHandler(nullptr);
-    TIFFSetErrorHandler(nullptr);
-    const std::unique_ptr<TIFF, void (*)(TIFF *)> file(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
-    TIFF *tif = file.get();
-    if (!tif)
-        return geo;
-    unsigned short raster = RasterPixelIsArea;
-    if (GTIF *gtif = GTIFNew(tif)) {
-        unsigned short model = 0, code = 0;
-        GTIFKeyGetSHORT(gtif, GTModelTypeGeoKey, &model, 0, 1);
-        GTIFKeyGetSHORT(gtif, GTRasterTypeGeoKey, &raster, 0, 1);
-        if (model == ModelTypeGeographic) {
-            geo.geographic = true;
-            geo.epsg =
-                GTIFKeyGetSHORT(gtif, GeographicTypeGeoKey, &code, 0, 1) && code != KvUserDefined
-                    ? code
-                    : 4326;
-        } else if (model == ModelTypeProjected &&
-                   GTIFKeyGetSHORT(gtif, ProjectedCSTypeGeoKey, &code, 0, 1) &&
-                   code != KvUserDefined) {
-            geo.epsg = code;
-        }
-        GTIFFree(gtif);
+    const std::uint16_t raster = tags.raster.value_or(k_raster_pixel_is_area);
+    const std::uint16_t model = tags.model.value_or(0);
+    if (model == k_model_geographic) {
+        geo.geographic = true;
+        geo.epsg = tags.geographic_type && *tags.geographic_type != k_user_defined
+                       ? *tags.geographic_type
+                       : 4326;
+    } else if (model == k_model_projected && tags.projected_type &&
+               *tags.projected_type != k_user_defined) {
+        geo.epsg = *tags.projected_type;
     }
     // Pixel corner (i, j) (column i, row j down the file) stands at
     // x = x0 + i * sx, y = y0 - j * sy; a tie point of a pixel-is-point raster names a centre.
-    const double centre = raster == RasterPixelIsPoint ? 0.5 : 0.0;
-    std::uint16_t count = 0;
-    double *scale = nullptr;
-    double *ties = nullptr;
-    double *matrix = nullptr;
+    const double centre = raster == k_raster_pixel_is_point ? 0.5 : 0.0;
+    const std::vector<double> &scale = tags.pixel_scale, &ties = tags.tie_points,
+                              &matrix = tags.matrix;
     double sx = 0, sy = 0, x0 = 0, y0 = 0;
-    if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
-        std::uint16_t tcount = 0;
-        if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &tcount, &ties) && tcount >= 6) {
+    if (scale.size() >= 2) {
+        if (ties.size() >= 6) {
             sx = scale[0];
             sy = scale[1];
             x0 = ties[3] - (ties[0] + centre) * sx;
             y0 = ties[4] + (ties[1] + centre) * sy;
             geo.present = true;
         }
-    } else if (TIFFGetField(tif, TIFFTAG_GEOTRANSMATRIX, &count, &matrix) && count >= 16) {
+    } else if (matrix.size() >= 16) {
         // The model transformation, x = m0 col + m1 row + m3 and y = m4 col + m5 row + m7: without
         // rotation it is what a tie point and a pixel scale say; a rotation needs a resampling.
         if (matrix[1] != 0.0 || matrix[4] != 0.0)
@@ -229,8 +207,8 @@ Georef read_geotiff_tags(const std::string &path, int width, int height) {
         x0 = matrix[3] - centre * sx;
         y0 = matrix[7] + centre * sy;
         geo.present = true;
-    } else if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &count, &ties) && count > 6) {
-        throw Error(path, "georeferenced by " + std::to_string(count / 6) +
+    } else if (ties.size() > 6) {
+        throw Error(path, "georeferenced by " + std::to_string(ties.size() / 6) +
                               " ground control points without a pixel scale; resample it to a "
                               "grid first (gdalwarp)");
     }
@@ -244,11 +222,8 @@ Georef read_geotiff_tags(const std::string &path, int width, int height) {
         geo.west = sx > 0 ? x0 : x0 + width * sx;
         geo.north = sy > 0 ? y0 : y0 - height * sy;
     }
-    // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
-    std::uint16_t ncount = 0;
-    char *nodata = nullptr;
-    if (TIFFGetField(tif, TIFFTAG_GDAL_NODATA, &ncount, &nodata) && nodata && ncount > 0) {
-        std::string text(nodata, strnlen(nodata, ncount));
+    if (tags.nodata) {
+        std::string text = *tags.nodata;
         const auto first = text.find_first_not_of(" \t\r\n");
         text = first == std::string::npos
                    ? ""
@@ -282,7 +257,7 @@ void orient(RawGrid &g, const Georef &geo) {
         mirror(g.is_void, g.width, g.height, geo.flip_columns, geo.flip_rows);
 }
 
-// --- Everything else through OpenImageIO, samples in their native type. ---
+// --- Every other raster: samples in their native type. ---
 
 // Channel `height` of each pixel is its height; where the alpha channel (if any) is 0 the pixel
 // is a void. Alpha is read unassociated: a partly transparent pixel keeps its height.
@@ -297,74 +272,56 @@ void copy_heights(const std::vector<T> &src, int channels, int height, int alpha
 
 // Why an image with `colours` channels besides alpha is no DEM: a palette or colour image, and
 // an 8-bit RGB one most likely Terrain-RGB.
-std::string not_a_dem(const std::string &path, const OIIO::ImageSpec &spec, int colours) {
+std::string not_a_dem(const std::string &path, const backends::RasterSpec &spec, int colours) {
     char header[26] = {};
     std::ifstream(path, std::ios::binary).read(header, sizeof header);
     // OpenImageIO expands a palette to RGB: the PNG header (colour type, byte 25) tells.
     if (std::memcmp(header, "\x89PNG\r\n\x1a\n", 8) == 0 && header[25] == 3)
         return "a palette image is not a DEM (one channel of heights, and optionally alpha)";
     std::string why = "a colour image (" + std::to_string(colours) + " colour channels of " +
-                      spec.format.c_str() + ") is not a DEM (one channel of heights, and " +
+                      spec.type_name + ") is not a DEM (one channel of heights, and " +
                       "optionally alpha)";
-    if (colours == 3 && spec.format == OIIO::TypeDesc::UINT8)
+    if (colours == 3 && spec.type == backends::SampleType::uint8)
         why += "; it looks like Mapbox Terrain-RGB: use --terrain-rgb";
     return why;
 }
 
-// Sends the process's stderr to /dev/null while it lives: libpng prints its errors there itself
-// ("libpng error: IDAT: Read error: hit end of file"), beside the one line tinlod prints for the
-// same error from what OpenImageIO reports.
-class QuietStderr {
-  public:
-    QuietStderr() : saved_(::dup(STDERR_FILENO)) {
-        const int null = ::open("/dev/null", O_WRONLY);
-        if (saved_ >= 0 && null >= 0)
-            ::dup2(null, STDERR_FILENO);
-        if (null >= 0)
-            ::close(null);
-    }
-    ~QuietStderr() {
-        if (saved_ < 0)
-            return;
-        ::dup2(saved_, STDERR_FILENO);
-        ::close(saved_);
-    }
-    QuietStderr(const QuietStderr &) = delete;
-    QuietStderr &operator=(const QuietStderr &) = delete;
+template <typename T> constexpr backends::SampleType sample_type_of() {
+    using backends::SampleType;
+    if constexpr (std::is_same_v<T, std::uint8_t>)
+        return SampleType::uint8;
+    else if constexpr (std::is_same_v<T, std::int8_t>)
+        return SampleType::int8;
+    else if constexpr (std::is_same_v<T, std::uint16_t>)
+        return SampleType::uint16;
+    else if constexpr (std::is_same_v<T, std::int16_t>)
+        return SampleType::int16;
+    else if constexpr (std::is_same_v<T, std::uint32_t>)
+        return SampleType::uint32;
+    else if constexpr (std::is_same_v<T, std::int32_t>)
+        return SampleType::int32;
+    else if constexpr (std::is_same_v<T, double>)
+        return SampleType::float64;
+    else
+        return SampleType::float32;
+}
 
-  private:
-    int saved_;
-};
-
-RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
-    limit_oiio_threads();
-    const QuietStderr quiet;
-    const std::string ext = lower_extension(path);
-    if (ext == ".tif" || ext == ".tiff")
-        check_tiff_memory(path, options);
-    // Alpha as stored: by default OpenImageIO multiplies the other channels by it, and reads a
-    // PNG's tRNS key as alpha 0 (so the key's heights came out as 0 m).
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        std::string why = OIIO::geterror();
-        if (why.empty())
-            why = "not a readable raster";
-        const auto nl = why.find('\n');
-        throw Error(path, "cannot read raster: " + why.substr(0, nl));
-    }
-    const OIIO::ImageSpec &spec = in->spec();
+// The heights (and voids, where alpha is 0) of `file`; nullopt when its reader declines it after
+// all.
+std::optional<RawGrid> read_samples(const std::string &path, const LoadOptions &options,
+                                    backends::RasterFile &file) {
+    using backends::SampleType;
+    const backends::RasterSpec &spec = file.spec();
     check_size(path, spec.width, spec.height);
-    check_memory(path, options, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
+    check_memory(path, options, spec.width, spec.height, spec.channels, spec.type_bytes);
     if (spec.depth > 1)
         throw Error(path, "volume images are not elevation rasters");
-    const int nc = spec.nchannels;
-    const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel : -1;
+    const int nc = spec.channels;
+    const int alpha = spec.alpha >= 0 && spec.alpha < nc ? spec.alpha : -1;
     const int colours = nc - (alpha >= 0);
-    if (options.terrain_rgb && (colours != 3 || spec.format != OIIO::TypeDesc::UINT8))
+    if (options.terrain_rgb && (colours != 3 || spec.type != SampleType::uint8))
         throw Error(path, "--terrain-rgb needs an 8-bit RGB image, this one has " +
-                              std::to_string(nc) + " channel(s) of " + spec.format.c_str());
+                              std::to_string(nc) + " channel(s) of " + spec.type_name);
     if (!options.terrain_rgb && colours != 1)
         throw Error(path, not_a_dem(path, spec, colours));
     RawGrid g;
@@ -373,27 +330,18 @@ RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
     const std::size_t n = std::size_t(g.width) * g.height;
     g.z.resize(n);
     g.is_void.assign(n, 0);
+    bool declined = false;
     auto read = [&](auto tag) {
         using T = decltype(tag);
         std::vector<T> buf(n * nc);
-        // Samples already of type T are asked for as they are (UNKNOWN): naming the type sends
-        // OpenImageIO 2.4 through its conversion path, with a 64 MiB scratch buffer per read
-        // whatever the size of the image.
-        const OIIO::TypeDesc want = OIIO::TypeDescFromC<T>::value();
-        const bool native = want == spec.format && spec.channelformats.empty();
-        // OpenImageIO 2.4 reports a TIFF strip it could not read (a truncated file) as an error
-        // pending on the reader, yet returns success with zeros in its place.
-        if (!in->read_image(0, 0, 0, nc, native ? OIIO::TypeDesc::UNKNOWN : want, buf.data()) ||
-            in->has_error()) {
-            std::string why = in->geterror();
-            const auto nl = why.find('\n');
-            throw Error(path, "cannot read samples (truncated or corrupt): " + why.substr(0, nl));
-        }
+        declined = !file.read(sample_type_of<T>(), buf.data());
         return buf;
     };
     const int height = alpha == 0 ? 1 : 0;
     if (options.terrain_rgb) {
         const auto buf = read(std::uint8_t{});
+        if (declined)
+            return std::nullopt;
         int rgb[3], k = 0;
         for (int c = 0; c < nc; ++c)
             if (c != alpha)
@@ -407,33 +355,68 @@ RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
         }
         return g;
     }
-    switch (spec.format.basetype) {
-    case OIIO::TypeDesc::INT16:
-        copy_heights(read(std::int16_t{}), nc, height, alpha, g);
+    const auto heights = [&](auto tag) {
+        const auto buf = read(tag);
+        if (!declined)
+            copy_heights(buf, nc, height, alpha, g);
+    };
+    switch (spec.type) {
+    case SampleType::int16:
+        heights(std::int16_t{});
         break;
-    case OIIO::TypeDesc::UINT16:
-        copy_heights(read(std::uint16_t{}), nc, height, alpha, g);
+    case SampleType::uint16:
+        heights(std::uint16_t{});
         break;
-    case OIIO::TypeDesc::INT32:
-        copy_heights(read(std::int32_t{}), nc, height, alpha, g);
+    case SampleType::int32:
+        heights(std::int32_t{});
         break;
-    case OIIO::TypeDesc::UINT32:
-        copy_heights(read(std::uint32_t{}), nc, height, alpha, g);
+    case SampleType::uint32:
+        heights(std::uint32_t{});
         break;
-    case OIIO::TypeDesc::UINT8:
-        copy_heights(read(std::uint8_t{}), nc, height, alpha, g);
+    case SampleType::uint8:
+        heights(std::uint8_t{});
         break;
-    case OIIO::TypeDesc::INT8:
-        copy_heights(read(char{}), nc, height, alpha, g);
+    case SampleType::int8:
+        heights(std::int8_t{});
         break;
-    case OIIO::TypeDesc::DOUBLE:
-        copy_heights(read(double{}), nc, height, alpha, g);
+    case SampleType::float64:
+        heights(double{});
         break;
     default:
-        copy_heights(read(float{}), nc, height, alpha, g);
+        heights(float{});
         break; // half and float
     }
+    if (declined)
+        return std::nullopt;
     return g;
+}
+
+// A raster of any format but .hgt, with its GeoTIFF georeferencing (if a TIFF): PNG and plain
+// TIFF through the faster readers, everything else, and what they decline, through OpenImageIO.
+RawGrid read_raster(const std::string &path, const std::string &ext, const LoadOptions &options,
+                    Georef &geo) {
+    std::unique_ptr<backends::TiffFile> tiff;
+    std::unique_ptr<backends::RasterFile> fast;
+    if (ext == ".tif" || ext == ".tiff") {
+        tiff = backends::tiff_files().open(path);
+        if (tiff) {
+            if (const auto layout = tiff->layout())
+                check_tiff_memory(path, options, *layout);
+            fast = tiff->raster();
+        }
+    } else if (ext == ".png") {
+        fast = backends::png_files().open_raster(path);
+    }
+    std::optional<RawGrid> g;
+    if (fast)
+        g = read_samples(path, options, *fast);
+    if (!g) {
+        const auto file = backends::image_files().open_raster(path);
+        g = read_samples(path, options, *file);
+    }
+    if (tiff)
+        geo = read_geotiff_tags(path, g->width, g->height, tiff->geo_tags());
+    return std::move(*g);
 }
 
 // Marks voids (the nodata value; NaN only when NaN is the declared nodata) beside those the
@@ -742,39 +725,8 @@ void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield
     hf.filled = remaining;
 }
 
-// Refuses a CRS PROJ does not know, of another kind than the GeoKeys say, or projected in other
-// units than metres: its place or units would be guesses.
-void check_crs(const std::string &path, int epsg, bool geographic) {
-    const std::unique_ptr<PJ_CONTEXT, void (*)(PJ_CONTEXT *)> ctx(
-        proj_context_create(), [](PJ_CONTEXT *c) { proj_context_destroy(c); });
-    proj_log_level(ctx.get(), PJ_LOG_NONE);
-    const std::string code = "EPSG:" + std::to_string(epsg);
-    const std::unique_ptr<PJ, void (*)(PJ *)> crs(proj_create(ctx.get(), code.c_str()),
-                                                  [](PJ *p) { proj_destroy(p); });
-    if (!crs)
-        throw Error(path, code + " is not a coordinate reference system PROJ knows (or PROJ's "
-                                 "database is missing): the raster's units and place are unknown");
-    const PJ_TYPE type = proj_get_type(crs.get());
-    if (geographic ? type != PJ_TYPE_GEOGRAPHIC_2D_CRS && type != PJ_TYPE_GEOGRAPHIC_3D_CRS
-                   : type != PJ_TYPE_PROJECTED_CRS)
-        throw Error(path, code + " is not a " + (geographic ? "geographic" : "projected") +
-                              " CRS, yet the file's GeoKeys say it is one");
-    if (geographic)
-        return;
-    const std::unique_ptr<PJ, void (*)(PJ *)> cs(
-        proj_crs_get_coordinate_system(ctx.get(), crs.get()), [](PJ *p) { proj_destroy(p); });
-    double to_metres = 0;
-    const char *unit = nullptr;
-    if (!cs ||
-        !proj_cs_get_axis_info(ctx.get(), cs.get(), 0, nullptr, nullptr, nullptr, &to_metres, &unit,
-                               nullptr, nullptr) ||
-        to_metres != 1.0)
-        throw Error(path, code + " measures in " + (unit ? unit : "unknown units") +
-                              ", not metres: reproject the raster to a metric CRS (gdalwarp)");
-}
-
 // Local metric frame: projected CRSs keep their units; geographic ones go to the UTM zone of
-// the centre with PROJ; ground spacing is measured there at the centre of the raster.
+// the centre (crs.hpp); ground spacing is measured there at the centre of the raster.
 void apply_georef(const std::string &path, const Georef &geo, const LoadOptions &options,
                   const RawGrid &g, Heightfield &hf) {
     if (!geo.present) {
@@ -797,11 +749,12 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
         hf.origin_x = sw_x;
         hf.origin_y = sw_y;
         if (geo.epsg)
-            check_crs(path, geo.epsg, false);
+            crs::check(path, geo.epsg, false);
         hf.crs = geo.epsg ? "EPSG:" + std::to_string(geo.epsg) : "projected (unknown EPSG)";
         return;
     }
-    check_crs(path, geo.epsg ? geo.epsg : 4326, true);
+    const int epsg = geo.epsg ? geo.epsg : 4326;
+    crs::check(path, epsg, true);
     const double lon_c = sw_x + (g.width - 1) * geo.sx / 2;
     const double lat_c = sw_y + (g.height - 1) * geo.sy / 2;
     if (!(std::abs(lat_c) <= 84))
@@ -812,33 +765,19 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
                               ", not on Earth");
     const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
-    PJ_CONTEXT *ctx = proj_context_create();
-    const std::string src = "EPSG:" + std::to_string(geo.epsg ? geo.epsg : 4326);
-    const std::string dst = "EPSG:" + std::to_string(utm);
-    PJ *raw = proj_create_crs_to_crs(ctx, src.c_str(), dst.c_str(), nullptr);
-    PJ *pj = raw ? proj_normalize_for_visualization(ctx, raw) : nullptr;
-    if (raw)
-        proj_destroy(raw);
-    if (!pj) {
-        proj_context_destroy(ctx);
-        throw Error(path, "cannot convert " + src + " to " + dst + " (PROJ database missing?)");
-    }
-    auto project = [&](double lon, double lat) {
-        PJ_COORD out = proj_trans(pj, PJ_FWD, proj_coord(lon, lat, 0, 0));
-        return glm::dvec2(out.xy.x, out.xy.y);
-    };
-    const glm::dvec2 c = project(lon_c, lat_c);
-    hf.dx = glm::length(project(lon_c + geo.sx, lat_c) - c);
-    hf.dy = glm::length(project(lon_c, lat_c + geo.sy) - c);
-    const glm::dvec2 sw = project(sw_x, sw_y);
-    proj_destroy(pj);
-    proj_context_destroy(ctx);
+    const auto p = crs::transform(path, epsg, utm,
+                                  {{lon_c, lat_c}, {lon_c + geo.sx, lat_c}, {lon_c, lat_c + geo.sy},
+                                   {sw_x, sw_y}});
+    const glm::dvec2 c(p[0][0], p[0][1]);
+    hf.dx = glm::length(glm::dvec2(p[1][0], p[1][1]) - c);
+    hf.dy = glm::length(glm::dvec2(p[2][0], p[2][1]) - c);
+    const glm::dvec2 sw(p[3][0], p[3][1]);
     if (!std::isfinite(hf.dx) || !std::isfinite(hf.dy) || hf.dx <= 0 || hf.dy <= 0)
         throw Error(path, "georeferencing gives no usable ground spacing");
     hf.origin_x = sw.x;
     hf.origin_y = sw.y;
-    hf.crs = dst + " (UTM zone " + std::to_string(zone) + (lat_c >= 0 ? "N" : "S") + ", from " +
-             src + " degrees)";
+    hf.crs = "EPSG:" + std::to_string(utm) + " (UTM zone " + std::to_string(zone) +
+             (lat_c >= 0 ? "N" : "S") + ", from EPSG:" + std::to_string(epsg) + " degrees)";
 }
 
 } // namespace
@@ -868,9 +807,7 @@ Heightfield load(const std::string &path, const LoadOptions &options) {
     if (ext == ".hgt") {
         g = read_hgt(path, options, geo);
     } else {
-        g = read_oiio(path, options);
-        if (ext == ".tif" || ext == ".tiff")
-            geo = read_geotiff_tags(path, g.width, g.height);
+        g = read_raster(path, ext, options, geo);
     }
     orient(g, geo);
     mark_voids(path, g, geo);
