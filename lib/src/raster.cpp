@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -147,15 +148,20 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
                           "where it lies and its spacing are unknown: rename it, or give --cell");
     }
     geo.nodata = -32768.0;
+    // Read a block at a time: the file's bytes are never held whole beside the heights.
     std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> buf(bytes);
-    if (!in.read(reinterpret_cast<char *>(buf.data()), std::streamsize(bytes)))
-        throw Error(path, "cannot read file");
+    const std::size_t samples = std::size_t(n) * n;
+    std::vector<unsigned char> block(std::size_t(1) << 16);
     RawGrid g;
     g.width = g.height = n;
-    g.z.resize(std::size_t(n) * n);
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        g.z[i] = static_cast<std::int16_t>((buf[2 * i] << 8) | buf[2 * i + 1]);
+    g.z.reserve(samples);
+    while (g.z.size() < samples) {
+        const std::size_t count = std::min(samples - g.z.size(), block.size() / 2);
+        if (!in.read(reinterpret_cast<char *>(block.data()), std::streamsize(2 * count)))
+            throw Error(path, "cannot read file");
+        for (std::size_t i = 0; i < count; ++i)
+            g.z.push_back(static_cast<std::int16_t>((block[2 * i] << 8) | block[2 * i + 1]));
+    }
     return g;
 }
 
@@ -444,15 +450,55 @@ void mark_voids(const std::string &path, RawGrid &g, const Georef &geo) {
     }
 }
 
+// Numbers the voids of a grid in sample order, so that the fills keep their state per void, not
+// per sample: a bit per sample and a count per 64 find a void's number.
+class VoidNumbers {
+  public:
+    explicit VoidNumbers(const std::vector<std::uint8_t> &is_void)
+        : bits_((is_void.size() + 63) / 64), before_(bits_.size() + 1, 0) {
+        for (std::size_t i = 0; i < is_void.size(); ++i)
+            if (is_void[i])
+                bits_[i >> 6] |= std::uint64_t{1} << (i & 63);
+        for (std::size_t k = 0; k < bits_.size(); ++k)
+            before_[k + 1] = before_[k] + std::uint32_t(std::popcount(bits_[k]));
+    }
+    std::size_t count() const { return before_.back(); }
+    // The number of sample i, a void: how many voids come before it.
+    std::size_t operator()(std::size_t i) const {
+        const std::uint64_t below = bits_[i >> 6] & ((std::uint64_t{1} << (i & 63)) - 1);
+        return before_[i >> 6] + std::size_t(std::popcount(below));
+    }
+    // visit(i) for each void sample i, in order.
+    template <typename Visit> void each(Visit &&visit) const {
+        for (std::size_t k = 0; k < bits_.size(); ++k)
+            for (std::uint64_t b = bits_[k]; b != 0; b &= b - 1)
+                visit(k * 64 + std::size_t(std::countr_zero(b)));
+    }
+
+  private:
+    std::vector<std::uint64_t> bits_;
+    std::vector<std::uint32_t> before_; // voids before each block of 64 samples
+};
+
 // First guess of the voids: ring by ring inward, each the average of its known 8 neighbours.
-void ring_fill(RawGrid &g) {
-    // known: 0 void, 1 valid or filled in an earlier ring. Ring k holds the voids k steps (8-way)
-    // from the valid samples; each ring is found from the last, so the fill is linear in the
-    // samples (rescanning every void each ring took minutes for a half-void SRTM1 tile).
+void ring_fill(RawGrid &g, const VoidNumbers &voids) {
+    // Ring k holds the voids k steps (8-way) from the valid samples; each ring is found from the
+    // last, so the fill is linear in the voids (rescanning every void each ring took minutes for a
+    // half-void SRTM1 tile). A void is known once filled in an earlier ring.
     const int w = g.width, h = g.height;
-    std::vector<std::uint8_t> known(g.z.size()), queued(g.z.size());
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        known[i] = !g.is_void[i];
+    constexpr std::uint8_t k_known = 1, k_queued = 2;
+    std::vector<std::uint8_t> state(voids.count(), 0);
+    const auto known = [&](std::size_t i) {
+        return !g.is_void[i] || (state[voids(i)] & k_known) != 0;
+    };
+    // Queues void i unless it is known or queued already.
+    const auto queue = [&](std::size_t i, std::vector<std::size_t> &to) {
+        std::uint8_t &s = state[voids(i)];
+        if (s == 0) {
+            s = k_queued;
+            to.push_back(i);
+        }
+    };
     auto neighbours = [&](std::size_t i, auto &&visit) {
         const int r = int(i / w), c = int(i % w);
         for (int dr = -1; dr <= 1; ++dr)
@@ -463,14 +509,12 @@ void ring_fill(RawGrid &g) {
             }
     };
     std::vector<std::size_t> ring, next;
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        if (!known[i])
-            neighbours(i, [&](std::size_t n) {
-                if (known[n] && !queued[i]) {
-                    queued[i] = 1;
-                    ring.push_back(i);
-                }
-            });
+    voids.each([&](std::size_t i) {
+        neighbours(i, [&](std::size_t n) {
+            if (known(n))
+                queue(i, ring);
+        });
+    });
     std::vector<float> value;
     while (!ring.empty()) {
         value.assign(ring.size(), 0.0f);
@@ -478,7 +522,7 @@ void ring_fill(RawGrid &g) {
             double sum = 0;
             int count = 0;
             neighbours(ring[k], [&](std::size_t n) {
-                if (known[n]) {
+                if (known(n)) {
                     sum += g.z[n];
                     ++count;
                 }
@@ -488,20 +532,19 @@ void ring_fill(RawGrid &g) {
         next.clear();
         for (std::size_t k = 0; k < ring.size(); ++k) {
             g.z[ring[k]] = value[k];
-            known[ring[k]] = 1;
+            state[voids(ring[k])] = k_known;
         }
         for (std::size_t i : ring)
             neighbours(i, [&](std::size_t n) {
-                if (!known[n] && !queued[n]) {
-                    queued[n] = 1;
-                    next.push_back(n);
-                }
+                if (!known(n))
+                    queue(n, next);
             });
         ring.swap(next);
     }
 }
 
-void harmonic_fill(RawGrid &g);
+void harmonic_fill(RawGrid &g, const VoidNumbers &voids);
+
 
 // Regions of fewer voids are solved directly at their own resolution.
 constexpr std::size_t k_coarse_min_voids = 4096;
@@ -549,8 +592,9 @@ void coarse_guess(RawGrid &g, const std::vector<std::size_t> &cells) {
     for (std::size_t k = 0; k < n; ++k)
         if (count[k])
             coarse.z[k] /= float(count[k]), coarse.is_void[k] = 0;
-    ring_fill(coarse);
-    harmonic_fill(coarse);
+    const VoidNumbers coarse_voids(coarse.is_void);
+    ring_fill(coarse, coarse_voids);
+    harmonic_fill(coarse, coarse_voids);
     // Bilinear interpolation: block k's centre is at fine column c0 + 2k + 0.5.
     const auto at = [&](int x, int y) { return coarse.z[std::size_t(y) * coarse.width + x]; };
     for (const std::size_t i : cells) {
@@ -570,9 +614,10 @@ void coarse_guess(RawGrid &g, const std::vector<std::size_t> &cells) {
 // the smoothest surface through the region's boundary, with no terraces. Solved by conjugate
 // gradients (Jacobi-preconditioned) from the ring fill, one region at a time, so the work follows
 // the voids and a small hole is not iterated as long as a large one.
-void harmonic_fill(RawGrid &g) {
+void harmonic_fill(RawGrid &g, const VoidNumbers &voids) {
     const int w = g.width, h = g.height;
-    std::vector<std::int32_t> index(g.z.size(), -1);
+    std::vector<std::int32_t> index(voids.count(), -1); // of each void in its region
+    const auto index_of = [&](std::size_t i) -> std::int32_t & { return index[voids(i)]; };
     std::vector<std::size_t> cells;
     std::vector<std::array<std::int32_t, 4>> links;
     std::vector<double> u, b, diag, r, zr, p, q;
@@ -588,16 +633,16 @@ void harmonic_fill(RawGrid &g) {
         if (col + 1 < w)
             visit(3, i + 1);
     };
-    for (std::size_t seed = 0; seed < g.z.size(); ++seed) {
-        if (!g.is_void[seed] || index[seed] >= 0)
-            continue;
+    voids.each([&](std::size_t seed) {
+        if (index_of(seed) >= 0)
+            return;
         // The region: breadth first from the seed over void 4-neighbours.
         cells.assign(1, seed);
-        index[seed] = 0;
+        index_of(seed) = 0;
         for (std::size_t k = 0; k < cells.size(); ++k)
             neighbours(cells[k], [&](int, std::size_t n) {
-                if (g.is_void[n] && index[n] < 0) {
-                    index[n] = std::int32_t(cells.size());
+                if (g.is_void[n] && index_of(n) < 0) {
+                    index_of(n) = std::int32_t(cells.size());
                     cells.push_back(n);
                 }
             });
@@ -615,7 +660,7 @@ void harmonic_fill(RawGrid &g) {
             neighbours(cells[k], [&](int d, std::size_t n) {
                 diag[k] += 1;
                 if (g.is_void[n]) {
-                    links[k][std::size_t(d)] = index[n];
+                    links[k][std::size_t(d)] = index_of(n);
                 } else {
                     b[k] += g.z[n];
                     scale = std::max(scale, double(std::abs(g.z[n])));
@@ -674,7 +719,7 @@ void harmonic_fill(RawGrid &g) {
         }
         for (std::size_t k = 0; k < m; ++k)
             g.z[cells[k]] = float(u[k]);
-    }
+    });
 }
 
 // Voids are missing data, never heights. Whole rows/columns of voids at the edges are cropped
@@ -713,16 +758,14 @@ void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield
         geo.north -= top * geo.sy;
         g = std::move(cropped);
     }
-    std::int64_t remaining = 0;
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        remaining += g.is_void[i];
-    if (remaining == 0)
+    const VoidNumbers remaining(g.is_void);
+    if (remaining.count() == 0)
         return;
     if (!fill)
-        throw Error(path, std::to_string(remaining) + " void samples inside the terrain");
-    ring_fill(g);
-    harmonic_fill(g);
-    hf.filled = remaining;
+        throw Error(path, std::to_string(remaining.count()) + " void samples inside the terrain");
+    ring_fill(g, remaining);
+    harmonic_fill(g, remaining);
+    hf.filled = std::int64_t(remaining.count());
 }
 
 // Local metric frame: projected CRSs keep their units; geographic ones go to the UTM zone of
@@ -816,19 +859,16 @@ Heightfield load(const std::string &path, const LoadOptions &options) {
     apply_georef(path, geo, options, g, hf);
     hf.width = g.width;
     hf.height = g.height;
-    hf.z.resize(g.z.size());
-    hf.void_mask.assign(g.z.size(), 0);
     // Files run north to south; the Heightfield runs south to north.
-    for (int r = 0; r < g.height; ++r) {
-        const std::size_t src = std::size_t(g.height - 1 - r) * g.width;
-        const std::size_t dst = std::size_t(r) * g.width;
-        for (int c = 0; c < g.width; ++c) {
-            hf.z[dst + c] = static_cast<float>(g.z[src + c] * options.zscale);
-            hf.void_mask[dst + c] = g.is_void[src + c];
-        }
+    mirror(g.z, g.width, g.height, false, true);
+    hf.z = std::move(g.z);
+    if (options.zscale != 1.0)
+        for (float &z : hf.z)
+            z = static_cast<float>(z * options.zscale);
+    if (hf.voids > 0) {
+        mirror(g.is_void, g.width, g.height, false, true);
+        hf.void_mask = std::move(g.is_void);
     }
-    if (hf.voids == 0)
-        hf.void_mask.clear();
     return hf;
 }
 
