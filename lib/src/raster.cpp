@@ -91,11 +91,10 @@ void check_tiff_memory(const std::string &path, const LoadOptions &options,
                        const backends::TiffLayout &l) {
     const int sample_bytes = std::max(1, (l.bits_per_sample + 7) / 8);
     if (l.tiled)
-        check_memory(path, options, l.width, l.height, l.samples_per_pixel, sample_bytes,
-                     double(l.tile_width) * double(l.tile_height) * l.samples_per_pixel *
-                         sample_bytes,
-                     " in tiles of " + std::to_string(l.tile_width) + "x" +
-                         std::to_string(l.tile_height));
+        check_memory(
+            path, options, l.width, l.height, l.samples_per_pixel, sample_bytes,
+            double(l.tile_width) * double(l.tile_height) * l.samples_per_pixel * sample_bytes,
+            " in tiles of " + std::to_string(l.tile_width) + "x" + std::to_string(l.tile_height));
     else
         check_memory(path, options, l.width, l.height, l.samples_per_pixel, sample_bytes);
 }
@@ -545,7 +544,6 @@ void ring_fill(RawGrid &g, const VoidNumbers &voids) {
 
 void harmonic_fill(RawGrid &g, const VoidNumbers &voids);
 
-
 // Regions of fewer voids are solved directly at their own resolution.
 constexpr std::size_t k_coarse_min_voids = 4096;
 
@@ -808,9 +806,9 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
                               ", not on Earth");
     const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
-    const auto p = crs::transform(path, epsg, utm,
-                                  {{lon_c, lat_c}, {lon_c + geo.sx, lat_c}, {lon_c, lat_c + geo.sy},
-                                   {sw_x, sw_y}});
+    const auto p = crs::transform(
+        path, epsg, utm,
+        {{lon_c, lat_c}, {lon_c + geo.sx, lat_c}, {lon_c, lat_c + geo.sy}, {sw_x, sw_y}});
     const glm::dvec2 c(p[0][0], p[0][1]);
     hf.dx = glm::length(glm::dvec2(p[1][0], p[1][1]) - c);
     hf.dy = glm::length(glm::dvec2(p[2][0], p[2][1]) - c);

@@ -115,9 +115,9 @@ struct GeoTags {
     // GeoKeys of type SHORT, as libgeotiff's GTIFKeyGetSHORT reads them (absent when the key
     // directory is unreadable).
     std::optional<std::uint16_t> model, raster, geographic_type, projected_type;
-    std::vector<double> pixel_scale; // ModelPixelScale (33550)
-    std::vector<double> tie_points;  // ModelTiepoint (33922)
-    std::vector<double> matrix;      // ModelTransformation (34264)
+    std::vector<double> pixel_scale;   // ModelPixelScale (33550)
+    std::vector<double> tie_points;    // ModelTiepoint (33922)
+    std::vector<double> matrix;        // ModelTransformation (34264)
     std::optional<std::string> nodata; // GDAL_NODATA (42113) text
 };
 

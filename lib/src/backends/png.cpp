@@ -66,8 +66,8 @@ class PngRaster final : public RasterFile {
     bool read(SampleType type, void *out) override {
         if (type != spec_.type)
             return false;
-        const std::size_t row_bytes = std::size_t(spec_.width) * spec_.channels *
-                                      (spec_.type == SampleType::uint16 ? 2 : 1);
+        const std::size_t row_bytes =
+            std::size_t(spec_.width) * spec_.channels * (spec_.type == SampleType::uint16 ? 2 : 1);
         return row_bytes == png_get_rowbytes(png_, info_) &&
                read_rows(png_, static_cast<unsigned char *>(out), row_bytes, spec_.height);
     }

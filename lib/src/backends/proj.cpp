@@ -56,9 +56,11 @@ class Proj final : public CrsLibrary {
               const std::vector<std::array<double, 2>> &points) override {
         const Context ctx = make_context();
         const std::string src = epsg_code(from), dst = epsg_code(to);
-        const Object raw = object(proj_create_crs_to_crs(ctx.get(), src.c_str(), dst.c_str(), nullptr));
+        const Object raw =
+            object(proj_create_crs_to_crs(ctx.get(), src.c_str(), dst.c_str(), nullptr));
         // Longitude first, whatever the CRS's axis order.
-        const Object pj = object(raw ? proj_normalize_for_visualization(ctx.get(), raw.get()) : nullptr);
+        const Object pj =
+            object(raw ? proj_normalize_for_visualization(ctx.get(), raw.get()) : nullptr);
         if (!pj)
             throw Error(path, "cannot convert " + src + " to " + dst + " (PROJ database missing?)");
         std::vector<std::array<double, 2>> out;

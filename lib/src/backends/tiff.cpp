@@ -250,9 +250,8 @@ class OpenTiff final : public TiffFile {
         // Compressions libtiff decodes alone; OpenImageIO reads JPEG through libtiff's RGBA
         // interface instead.
         static constexpr std::uint16_t k_plain[] = {
-            COMPRESSION_NONE,     COMPRESSION_LZW,  COMPRESSION_ADOBE_DEFLATE,
-            COMPRESSION_DEFLATE,  COMPRESSION_PACKBITS, COMPRESSION_ZSTD,
-            COMPRESSION_LZMA,     COMPRESSION_LERC};
+            COMPRESSION_NONE,     COMPRESSION_LZW,  COMPRESSION_ADOBE_DEFLATE, COMPRESSION_DEFLATE,
+            COMPRESSION_PACKBITS, COMPRESSION_ZSTD, COMPRESSION_LZMA,          COMPRESSION_LERC};
         const bool plain_compression =
             std::find(std::begin(k_plain), std::end(k_plain), compression) != std::end(k_plain) &&
             TIFFIsCODECConfigured(compression);
