@@ -71,9 +71,10 @@ std::string lower_extension(const std::string &path) {
     return ext;
 }
 
-// Bytes the loader holds per sample of a raster of `channels` samples of `sample_bytes` each:
-// the samples as read, the float grid, the void mask, the fill's marks and indices, the
-// heightfield's heights and mask.
+// Bytes the loader holds per sample of a raster of `channels` samples of `sample_bytes` each, at
+// most (docs/decisions/memory-per-sample.md): the samples as read, the float grid, the void mask,
+// the fill's marks and indices, the heightfield's heights and mask. A bound: the fills keep
+// their state per void, and the heightfield takes over the grid's arrays.
 double load_bytes_per_sample(int channels, int sample_bytes) {
     return double(channels) * sample_bytes + 4.0 + 1.0 + 2.0 + 4.0 + 4.0 + 1.0;
 }
