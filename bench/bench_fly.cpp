@@ -236,7 +236,7 @@ struct FrameRow {
     // The share of the heights the refiner's TIN needs for its bound from the frame's view
     // (height_working_set): of the store's tiles, and of 16-cell blocks (rebuild frames).
     double heights_tiles = 0.0, heights_blocks = 0.0;
-    std::int64_t changed() const { return stats.erased + stats.recovered; }
+    std::int64_t changed() const { return stats.update.erased + stats.update.recovered; }
 };
 
 struct PathResult {
@@ -294,7 +294,7 @@ PathResult fly(const Heightfield &hf, const QuadTree &tree, const FlightPath &p,
     Stopwatch clock;
     if (result.built) {
         RefineOptions options;
-        options.tol_px = k_tau;
+        options.tolerance = k_tau;
         const double rss0 = rss_mb();
         refiner = std::make_unique<Refiner>(hf, views.front(), options);
         result.first_ms = clock.ms();
@@ -493,7 +493,7 @@ Summary summarise(const std::vector<FrameRow> &rows) {
 std::int64_t entered(const PathResult &p) {
     std::int64_t n = 0;
     for (const FrameRow &r : p.rows)
-        n += r.stats.entered;
+        n += r.stats.update.entered;
     return n;
 }
 
@@ -512,9 +512,10 @@ void write_csv(const std::string &file, const Flight &flight) {
             for (const FrameRow &r : p.rows) {
                 out << p.name << "," << fmt("%.0f", fps) << "," << r.frame << ","
                     << fmt("%.3f", r.t) << "," << fmt("%.4f", r.ms) << "," << fmt("%.4f", r.cpu_ms)
-                    << "," << r.changed() << "," << r.stats.erased << "," << r.stats.recovered
-                    << "," << r.stats.reerased << "," << r.stats.entered << ","
-                    << r.stats.candidates << "," << r.stats.nodes << "," << r.stats.triangles << ","
+                    << "," << r.changed() << "," << r.stats.update.erased << ","
+                    << r.stats.update.recovered << "," << r.stats.update.reerased << ","
+                    << r.stats.update.entered << "," << r.stats.update.candidates << ","
+                    << r.stats.nodes << "," << r.stats.triangles << ","
                     << fmt("%.2f", r.bytes_per_node) << ",";
                 if (r.rebuilt)
                     out << fmt("%.2f", r.rebuild_ms) << "," << fmt("%.2f", r.rebuild_cpu_ms) << ","
@@ -859,8 +860,8 @@ std::string section(const Flight &flight, const std::vector<Summary> &sums, cons
     const auto undone = [](const PathResult &p) {
         double recovered = 0, reerased = 0;
         for (const FrameRow &r : p.rows) {
-            recovered += double(r.stats.recovered);
-            reerased += double(r.stats.reerased);
+            recovered += double(r.stats.update.recovered);
+            reerased += double(r.stats.update.reerased);
         }
         return fmt("%.0f %%", 100 * reerased / std::max(1.0, recovered));
     };

@@ -46,7 +46,6 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -56,13 +55,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
-#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,8 +67,9 @@
 namespace {
 
 using namespace tinlod;
+using bench::cell;
+using bench::fmt;
 using json = nlohmann::json;
-namespace fs = std::filesystem;
 
 struct SuiteOptions {
     std::string data;  // ../shared/data (dem/, mesh/)
@@ -133,41 +131,6 @@ json in_child(const std::function<json()> &body) {
     return json::parse(text);
 }
 
-struct ProcessResult {
-    std::string out;
-    int status = 0;
-    double peak_mb = 0.0; // the process's own peak resident memory (wait4)
-};
-
-// Runs argv[0] with its arguments, stdout captured; stderr passes through.
-ProcessResult run_process(const std::vector<std::string> &argv) {
-    int fd[2];
-    if (pipe(fd) != 0)
-        throw std::runtime_error("pipe failed");
-    std::fflush(stdout);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        close(fd[0]);
-        dup2(fd[1], 1);
-        std::vector<char *> args;
-        for (const auto &a : argv)
-            args.push_back(const_cast<char *>(a.c_str()));
-        args.push_back(nullptr);
-        execvp(args[0], args.data());
-        _exit(127);
-    }
-    close(fd[1]);
-    ProcessResult result;
-    char buffer[4096];
-    for (ssize_t n; (n = read(fd[0], buffer, sizeof buffer)) > 0;)
-        result.out.append(buffer, std::size_t(n));
-    close(fd[0]);
-    rusage usage{};
-    wait4(pid, &result.status, 0, &usage);
-    result.peak_mb = double(usage.ru_maxrss) / 1024.0;
-    return result;
-}
-
 // ---- Inputs and views -------------------------------------------------------------------------
 
 struct Input {
@@ -194,9 +157,7 @@ std::unique_ptr<Input> terrain_input(std::string name, std::string source, Heigh
     in->hf = std::move(hf);
     in->tree = std::make_unique<QuadTree>(in->hf);
     in->grid_path = options.tmp + "/" + in->name + ".f32";
-    std::ofstream(in->grid_path, std::ios::binary)
-        .write(reinterpret_cast<const char *>(in->hf.z.data()),
-               std::streamsize(in->hf.z.size() * sizeof(float)));
+    bench::write_grid_f32(in->hf, in->grid_path);
     return in;
 }
 
@@ -315,19 +276,6 @@ json spread(std::vector<double> ms, std::vector<double> cpu) {
             {"reps", ms.size()}};
 }
 
-// Peer triangles come in either orientation: turn them counter-clockwise when most are clockwise.
-void orient_ccw(const Heightfield &hf, std::vector<std::uint32_t> &tris) {
-    auto pt = [&](std::uint32_t id) {
-        return Mesh::Point(float((id % hf.width) * hf.dx), float((id / hf.width) * hf.dy), 0.0f);
-    };
-    std::int64_t negative = 0;
-    for (std::size_t t = 0; t < tris.size(); t += 3)
-        negative += bench::xy_area2(pt(tris[t]), pt(tris[t + 1]), pt(tris[t + 2])) < 0.0;
-    if (2 * negative > std::int64_t(tris.size() / 3))
-        for (std::size_t t = 0; t < tris.size(); t += 3)
-            std::swap(tris[t + 1], tris[t + 2]);
-}
-
 // The live faces of a TIN as grid sample ids (its origin property), 3 per triangle.
 std::vector<std::uint32_t> sample_triangles(const Mesh &mesh) {
     const auto origin = find_origin_property(mesh);
@@ -337,17 +285,6 @@ std::vector<std::uint32_t> sample_triangles(const Mesh &mesh) {
             for (auto v : f.vertices())
                 ids.push_back(std::uint32_t(mesh.property(origin, v)));
     return ids;
-}
-
-// Triangles (grid sample ids) whose xy area is <= 0: fold-overs and zero-area slivers.
-std::int64_t folded_triangles(const Heightfield &hf, const std::vector<std::uint32_t> &tris) {
-    auto pt = [&](std::uint32_t id) {
-        return Mesh::Point(float((id % hf.width) * hf.dx), float((id / hf.width) * hf.dy), 0.0f);
-    };
-    std::int64_t n = 0;
-    for (std::size_t t = 0; t < tris.size(); t += 3)
-        n += bench::xy_area2(pt(tris[t]), pt(tris[t + 1]), pt(tris[t + 2])) <= 0.0;
-    return n;
 }
 
 RenderOptions render_options(const Case &c) {
@@ -424,7 +361,7 @@ json run_case(const std::string &name, const Contender &contender, const Case &c
             r["rms_vertical"] = e.rms_vertical;
             r["max_screen_px"] = e.max_screen_px;
             r["uncovered"] = e.uncovered;
-            r["folded"] = folded_triangles(hf, o.tris);
+            r["folded"] = bench::folded_triangles(hf, o.tris);
         } else {
             HausdorffOptions ho;
             ho.view = &c.view; // each sample's distance seen from where it lies, as on terrains
@@ -515,7 +452,7 @@ Outcome dem_erase(const Case &c, const EraseOptions &eo) {
     o.extra["evaluations"] = st.erase.evaluations;
     o.extra["retrieved_nodes"] = st.retrieved_nodes;
     o.extra["retrieve_ms"] = st.retrieve_ms;
-    o.extra["erase_ms"] = st.erase.ms;
+    o.extra["erase_ms"] = st.erase.erase_ms;
     o.extra["first_stage"] = first_stage_name(st.first_stage);
     o.input_tris = std::int64_t(c.input->hf.width - 1) * (c.input->hf.height - 1) * 2;
     return o;
@@ -640,30 +577,18 @@ Outcome openmesh(const Case &c, Stock kind) {
 
 // delatin or martini through Node, to c.target_nodes or (without one) to the vertical bound c.tol.
 Outcome node_peer(const Case &c, const std::string &tool, const SuiteOptions &options) {
-    const std::string prefix = options.tmp + "/" + tool + "-" + std::to_string(getpid());
     const bool by_nodes = c.target_nodes > 0;
-    std::ostringstream value;
-    value.precision(17);
-    value << (by_nodes ? double(c.target_nodes) : c.tol);
-    const ProcessResult p =
-        run_process({"node", options.peers + "/run_peers.mjs", c.input->grid_path,
-                     std::to_string(c.input->hf.width), std::to_string(c.input->hf.height), prefix,
-                     tool, by_nodes ? "nodes" : "max_error", value.str(), std::to_string(c.reps)});
-    if (p.status != 0 || p.out.empty())
-        throw std::runtime_error(tool + " failed (status " + std::to_string(p.status) + ")");
-    const json r = json::parse(p.out);
+    bench::NodePeerRun run = bench::run_node_peer(
+        options.peers, c.input->grid_path, c.input->hf,
+        options.tmp + "/" + tool + "-" + std::to_string(getpid()), tool,
+        by_nodes ? "nodes" : "max_error", by_nodes ? double(c.target_nodes) : c.tol, c.reps);
     Outcome o;
-    o.ms = r["ms"].get<std::vector<double>>();
-    o.cpu_ms = r["cpu_ms"].get<std::vector<double>>();
+    o.ms = run.report["ms"].get<std::vector<double>>();
+    o.cpu_ms = run.report["cpu_ms"].get<std::vector<double>>();
     o.input_tris = std::int64_t(c.input->hf.width - 1) * (c.input->hf.height - 1) * 2;
-    o.extra["peak_rss_mb"] = p.peak_mb;
-    o.extra["peer_max_error"] = r["max_error"];
-    std::ifstream in(prefix + ".tri", std::ios::binary | std::ios::ate);
-    o.tris.resize(std::size_t(in.tellg()) / 4);
-    in.seekg(0);
-    in.read(reinterpret_cast<char *>(o.tris.data()), std::streamsize(o.tris.size() * 4));
-    fs::remove(prefix + ".tri");
-    orient_ccw(c.input->hf, o.tris);
+    o.extra["peak_rss_mb"] = run.peak_mb;
+    o.extra["peer_max_error"] = run.report["max_error"];
+    o.tris = std::move(run.tris);
     return o;
 }
 
@@ -893,38 +818,6 @@ void derive(std::vector<json> &rows) {
     }
 }
 
-std::string cell(const json &r, const std::string &key) {
-    const bool top = r.contains(key) && !r[key].is_null();
-    if (!top && !(r.contains("extra") && r["extra"].contains(key)))
-        return "";
-    const json &v = top ? r[key] : r["extra"][key];
-    if (v.is_string())
-        return v.get<std::string>();
-    if (v.is_number_integer())
-        return std::to_string(v.get<std::int64_t>());
-    if (v.is_boolean())
-        return v.get<bool>() ? "1" : "0";
-    char text[64];
-    std::snprintf(text, sizeof text, "%.6g", v.get<double>());
-    return text;
-}
-
-void write_csv(const std::string &path, const std::vector<json> &rows) {
-    std::ofstream out(path);
-    for (std::size_t i = 0; i < k_columns.size(); ++i)
-        out << (i ? "," : "") << k_columns[i];
-    out << "\n";
-    for (const json &r : rows) {
-        for (std::size_t i = 0; i < k_columns.size(); ++i) {
-            std::string v = cell(r, k_columns[i]);
-            if (v.find_first_of(",\"") != std::string::npos)
-                v = "\"" + v + "\"";
-            out << (i ? "," : "") << v;
-        }
-        out << "\n";
-    }
-}
-
 // gnuplot series: one block per group (title line first), blocks two blank lines apart (between
 // blocks only: a trailing pair would count as an empty block).
 void write_series(const std::string &path, const std::vector<json> &rows,
@@ -961,12 +854,6 @@ const json *find_row(const std::vector<json> &rows, const std::string &input,
             !r.contains("error"))
             return &r;
     return nullptr;
-}
-
-std::string fmt(const char *format, double v) {
-    char text[64];
-    std::snprintf(text, sizeof text, format, v);
-    return text;
 }
 
 std::string machine() {
@@ -1490,11 +1377,11 @@ void run(const SuiteOptions &options) {
     derive(s.scaling);
     derive(s.max_error);
     derive(s.mesh_taus);
-    write_csv(options.out + "/compare.csv", s.compare);
-    write_csv(options.out + "/frontier.csv", s.frontier);
-    write_csv(options.out + "/scaling.csv", s.scaling);
-    write_csv(options.out + "/max_error.csv", s.max_error);
-    write_csv(options.out + "/mesh_taus.csv", s.mesh_taus);
+    bench::write_csv(options.out + "/compare.csv", k_columns, s.compare);
+    bench::write_csv(options.out + "/frontier.csv", k_columns, s.frontier);
+    bench::write_csv(options.out + "/scaling.csv", k_columns, s.scaling);
+    bench::write_csv(options.out + "/max_error.csv", k_columns, s.max_error);
+    bench::write_csv(options.out + "/mesh_taus.csv", k_columns, s.mesh_taus);
     std::ofstream(options.tmp + "/frontier_input.txt") << s.frontier_input;
     write_series(
         options.tmp + "/frontier.dat", s.frontier,

@@ -1,5 +1,6 @@
 // Pieces the benchmarks share: larger terrains made from real ones (Catmull-Rom enlargement plus
-// value-noise detail), crops, and the xy fold-over count of a TIN.
+// value-noise detail), crops, the xy fold-over count of a TIN, child processes (run and timed as a
+// whole), the npm peers (delatin, martini) on a grid, and result rows as CSV.
 //
 // Enlargement: bicubic (Catmull-Rom) resampling of a real DEM to (cells*s + 1) samples per side
 // over the same ground (cells s times smaller), plus fractal detail at the new scale: 4 octaves of
@@ -9,10 +10,26 @@
 
 #include "tinlod/raster.hpp"
 #include "tinlod/tin.hpp"
+#include "tinlod/util.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fcntl.h>
+#include <sched.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace tinlod::bench {
@@ -106,6 +123,185 @@ inline std::int64_t folded_faces(const Mesh &mesh) {
         n += xy_area2(p[0], p[1], p[2]) <= 0.0;
     }
     return n;
+}
+
+// ---- Triangles as grid sample ids (id = row * width + column) -----------------------------------
+
+inline Mesh::Point grid_point(const Heightfield &hf, std::uint32_t id) {
+    return Mesh::Point(float((id % hf.width) * hf.dx), float((id / hf.width) * hf.dy), 0.0f);
+}
+
+// Peer triangles come in either orientation: turn them counter-clockwise when most are clockwise.
+inline void orient_ccw(const Heightfield &hf, std::vector<std::uint32_t> &tris) {
+    std::int64_t negative = 0;
+    for (std::size_t t = 0; t < tris.size(); t += 3)
+        negative += xy_area2(grid_point(hf, tris[t]), grid_point(hf, tris[t + 1]),
+                             grid_point(hf, tris[t + 2])) < 0.0;
+    if (2 * negative > std::int64_t(tris.size() / 3))
+        for (std::size_t t = 0; t < tris.size(); t += 3)
+            std::swap(tris[t + 1], tris[t + 2]);
+}
+
+// Triangles whose xy area is <= 0: fold-overs and zero-area slivers.
+inline std::int64_t folded_triangles(const Heightfield &hf,
+                                     const std::vector<std::uint32_t> &tris) {
+    std::int64_t n = 0;
+    for (std::size_t t = 0; t < tris.size(); t += 3)
+        n += xy_area2(grid_point(hf, tris[t]), grid_point(hf, tris[t + 1]),
+                      grid_point(hf, tris[t + 2])) <= 0.0;
+    return n;
+}
+
+// ---- Child processes ----------------------------------------------------------------------------
+
+struct ProcessResult {
+    std::string out;
+    int status = 0;
+    // Peak resident memory from wait4; a spawned child's count starts from this process's own peak
+    // (the kernel carries it over at exec), so it is an upper bound of the child's.
+    double peak_mb = 0.0;
+    double wall_ms = 0.0; // spawn to exit, as the parent sees it: the whole process
+    double cpu_ms = 0.0;  // its user + system CPU time
+};
+
+// Runs argv[0] with its arguments (PATH searched), stdout captured; stderr passes through (or, with
+// `quiet`, goes to /dev/null). `core` >= 0 pins the process to that core, as `taskset -c CORE`
+// would without an exec of its own. The child is spawned (posix_spawn: no copy of this process's
+// page tables, whose cost would otherwise land in the child's time and grow with this process's
+// size).
+inline ProcessResult run_process(const std::vector<std::string> &argv, int core = -1,
+                                 bool quiet = false) {
+    int fd[2];
+    if (pipe(fd) != 0)
+        throw std::runtime_error("pipe failed");
+    std::fflush(stdout);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addclose(&actions, fd[0]);
+    posix_spawn_file_actions_adddup2(&actions, fd[1], 1);
+    posix_spawn_file_actions_addclose(&actions, fd[1]);
+    if (quiet)
+        posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    std::vector<char *> args;
+    for (const auto &a : argv)
+        args.push_back(const_cast<char *>(a.c_str()));
+    args.push_back(nullptr);
+    // The child inherits the affinity of the thread that spawns it.
+    cpu_set_t before;
+    CPU_ZERO(&before);
+    sched_getaffinity(0, sizeof before, &before);
+    if (core >= 0) {
+        cpu_set_t one;
+        CPU_ZERO(&one);
+        CPU_SET(core, &one);
+        if (sched_setaffinity(0, sizeof one, &one) != 0)
+            throw std::runtime_error("cannot run on core " + std::to_string(core));
+    }
+    Stopwatch clock;
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+    if (core >= 0)
+        sched_setaffinity(0, sizeof before, &before);
+    posix_spawn_file_actions_destroy(&actions);
+    close(fd[1]);
+    if (spawned != 0) {
+        close(fd[0]);
+        throw std::runtime_error(argv[0] + ": cannot run it: " + std::strerror(spawned));
+    }
+    ProcessResult result;
+    char buffer[4096];
+    for (ssize_t n; (n = read(fd[0], buffer, sizeof buffer)) > 0;)
+        result.out.append(buffer, std::size_t(n));
+    close(fd[0]);
+    rusage usage{};
+    wait4(pid, &result.status, 0, &usage);
+    result.wall_ms = clock.ms();
+    result.peak_mb = double(usage.ru_maxrss) / 1024.0;
+    auto ms = [](const timeval &t) { return double(t.tv_sec) * 1e3 + double(t.tv_usec) / 1e3; };
+    result.cpu_ms = ms(usage.ru_utime) + ms(usage.ru_stime);
+    return result;
+}
+
+// ---- The npm heightmap meshers (peers/run_peers.mjs) --------------------------------------------
+
+// The grid as the node peers read it: float32 heights, row-major, row 0 = south.
+inline void write_grid_f32(const Heightfield &hf, const std::string &path) {
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char *>(hf.z.data()),
+               std::streamsize(hf.z.size() * sizeof(float)));
+}
+
+struct NodePeerRun {
+    nlohmann::json report;           // run_peers.mjs's line: ms, cpu_ms, max_error, ...
+    std::vector<std::uint32_t> tris; // the last run's triangles, counter-clockwise
+    double peak_mb = 0.0;            // Node's own peak
+};
+
+// delatin or martini through Node on the grid `grid_path` (write_grid_f32 of `hf`), `reps` times:
+// mode "max_error" (value = the vertical bound) or "nodes" (value = the node count to reach).
+inline NodePeerRun run_node_peer(const std::string &peers, const std::string &grid_path,
+                                 const Heightfield &hf, const std::string &prefix,
+                                 const std::string &tool, const std::string &mode, double value,
+                                 int reps) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    const ProcessResult p =
+        run_process({"node", peers + "/run_peers.mjs", grid_path, std::to_string(hf.width),
+                     std::to_string(hf.height), prefix, tool, mode, text, std::to_string(reps)});
+    if (p.status != 0 || p.out.empty())
+        throw std::runtime_error(tool + " failed (status " + std::to_string(p.status) + ")");
+    NodePeerRun run;
+    run.report = nlohmann::json::parse(p.out);
+    run.peak_mb = p.peak_mb;
+    std::ifstream in(prefix + ".tri", std::ios::binary | std::ios::ate);
+    run.tris.resize(std::size_t(in.tellg()) / 4);
+    in.seekg(0);
+    in.read(reinterpret_cast<char *>(run.tris.data()), std::streamsize(run.tris.size() * 4));
+    std::filesystem::remove(prefix + ".tri");
+    orient_ccw(hf, run.tris);
+    return run;
+}
+
+// ---- Result rows --------------------------------------------------------------------------------
+
+// A row's value as text: a top-level key, else the same key in its "extra" object; "" if absent.
+inline std::string cell(const nlohmann::json &r, const std::string &key) {
+    const bool top = r.contains(key) && !r[key].is_null();
+    if (!top && !(r.contains("extra") && r["extra"].contains(key)))
+        return "";
+    const nlohmann::json &v = top ? r[key] : r["extra"][key];
+    if (v.is_string())
+        return v.get<std::string>();
+    if (v.is_number_integer())
+        return std::to_string(v.get<std::int64_t>());
+    if (v.is_boolean())
+        return v.get<bool>() ? "1" : "0";
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", v.get<double>());
+    return text;
+}
+
+inline void write_csv(const std::string &path, const std::vector<std::string> &columns,
+                      const std::vector<nlohmann::json> &rows) {
+    std::ofstream out(path);
+    for (std::size_t i = 0; i < columns.size(); ++i)
+        out << (i ? "," : "") << columns[i];
+    out << "\n";
+    for (const nlohmann::json &r : rows) {
+        for (std::size_t i = 0; i < columns.size(); ++i) {
+            std::string v = cell(r, columns[i]);
+            if (v.find_first_of(",\"") != std::string::npos)
+                v = "\"" + v + "\"";
+            out << (i ? "," : "") << v;
+        }
+        out << "\n";
+    }
+}
+
+inline std::string fmt(const char *format, double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, format, v);
+    return text;
 }
 
 } // namespace tinlod::bench

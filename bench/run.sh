@@ -1,8 +1,9 @@
 #!/bin/sh
-# The benchmark suite end to end (`make bench`, `make bench ARGS=--quick`): set-up (gnuplot, the
-# npm peers), the flight benchmark (bench_fly), the side-by-side suite (bench_suite, which puts the
-# flight's claims and section into RESULTS.md), the Google Benchmark micro-benchmarks (bench_micro),
-# the plots; everything lands in bench/results/.
+# The benchmark suite end to end (`make bench`, `make bench ARGS=--quick`): set-up (gnuplot,
+# /usr/bin/time, the npm peers), the flight benchmark (bench_fly), the side-by-side suite
+# (bench_suite, which puts the flight's claims and section into RESULTS.md), tinlod against hmm as
+# whole processes (bench_heightmap, its section appended to RESULTS.md), the Google Benchmark
+# micro-benchmarks (bench_micro), the plots; everything lands in bench/results/.
 #
 # usage: bench/run.sh BIN_DIR [--quick]
 set -eu
@@ -26,7 +27,7 @@ for f in dem/N42E001.hgt dem/N48W125.hgt.zip; do
     }
 done
 
-"$ROOT/scripts/setup.sh" gnuplot-nox
+"$ROOT/scripts/setup.sh" gnuplot-nox time
 command -v node >/dev/null || "$ROOT/scripts/setup.sh" nodejs npm
 (cd "$ROOT/bench/peers" && npm ci --no-audit --no-fund --loglevel=error) ||
     { [ -d "$ROOT/bench/peers/node_modules/delatin" ] && echo "run.sh: npm ci failed; using the installed peers" >&2; } ||
@@ -41,6 +42,9 @@ COMMAND="make bench${QUICK:+ ARGS=--quick}"
 "$BIN/bench_fly" $QUICK --data "$DATA" --out "$OUT" --tmp "$TMP"
 "$BIN/bench_suite" $QUICK --data "$DATA" --peers "$ROOT/bench/peers" --out "$OUT" --tmp "$TMP" \
     --command "$COMMAND" --flight "$TMP/flight.json"
+"$BIN/bench_heightmap" $QUICK --bin "$BIN" --meshes "$ROOT/meshes" --peers "$ROOT/bench/peers" \
+    --out "$OUT" --tmp "$TMP" --command "$COMMAND"
+cat "$OUT/hmm.md" >>"$OUT/RESULTS.md"
 
 MIN_TIME=0.5
 [ -n "$QUICK" ] && MIN_TIME=0.1

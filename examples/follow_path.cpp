@@ -21,17 +21,17 @@ int main(int argc, char **argv) {
         const std::vector<tinlod::View> views = path.sample(std::atoi(argv[3]), tinlod::View{});
         tinlod::RefineOptions options;
         if (argc == 5)
-            options.tol_px = std::atof(argv[4]);
+            options.tolerance = std::atof(argv[4]);
         tinlod::Refiner refiner(hf, views.front(), options);
         std::printf("samples %lld first_frame_bound_px %.4f tol_px %g\n",
                     static_cast<long long>(hf.size()), refiner.first_frame().bound_px,
-                    options.tol_px);
+                    options.tolerance);
         for (std::size_t i = 1; i < views.size(); ++i) {
             const tinlod::FrameStats s = refiner.update(views[i]);
             std::printf("frame %zu nodes %lld triangles %lld erased %lld recovered %lld ms %.1f\n",
                         i, static_cast<long long>(s.nodes), static_cast<long long>(s.triangles),
-                        static_cast<long long>(s.erased), static_cast<long long>(s.recovered),
-                        s.ms_total);
+                        static_cast<long long>(s.update.erased),
+                        static_cast<long long>(s.update.recovered), s.total_ms);
         }
     } catch (const tinlod::Error &e) {
         std::fprintf(stderr, "follow_path: error: %s\n", e.what());

@@ -6,12 +6,23 @@ PKGS="cmake g++ make pkg-config libopenmesh-dev libglm-dev libopenimageio-dev op
 libtiff-dev libpng-dev libproj-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev
 libbenchmark-dev libmeshoptimizer-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
 libosmesa6-dev libgbm-dev libglfw3-dev libimgui-dev xvfb xauth unzip clang-format dpkg-dev file
-binutils $*"
+binutils zlib1g-dev $*"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
 done
-[ -z "$missing" ] && exit 0
+# The tile tests read tinlod's tiles with a decoder from npm (tests/tiles), installed here so the
+# tests run offline.
+npm_tiles() {
+    tiles="$(dirname "$0")/../tests/tiles"
+    [ -d "$tiles/node_modules/@here/quantized-mesh-decoder" ] && return 0
+    command -v npm >/dev/null || [ "$(id -u)" != 0 ] ||
+        { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm; } ||
+        true
+    (cd "$tiles" && npm ci --no-audit --no-fund --loglevel=error) ||
+        echo "setup: npm ci in tests/tiles failed; test_tiles will fail" >&2
+}
+[ -z "$missing" ] && { npm_tiles; exit 0; }
 echo "setup: installing$missing"
 if [ "$(id -u)" != 0 ]; then
     echo "setup: missing Debian packages:$missing (run as root, or install them)" >&2
@@ -20,3 +31,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq || apt-get update
 apt-get install -y -qq --no-install-recommends $missing
+npm_tiles

@@ -284,7 +284,7 @@ TEST_P(DemErase, RetrievalThenEraseBoundsEverySample) {
             // retrieval's TIN with a vertex for every sample (the others deleted) gives the same
             // triangles over the same samples.
             RetrieveOptions ro;
-            ro.tol_px = share * options.tolerance;
+            ro.tolerance = share * options.tolerance;
             ro.peripheral = &options.significance;
             Mesh dense = to_lattice_mesh(retrieve(QuadTree(hf), view, ro), hf);
             erase_nodes(dense, &view, options);
@@ -1011,15 +1011,15 @@ TEST(Erase, BunnyRefinerFlightKeepsTopology) {
         return view;
     };
     RefineOptions options;
-    options.tol_px = 4.0;
+    options.tolerance = 4.0;
     Refiner refiner(input, view_from(0.6), options);
     const std::int64_t far_nodes = refiner.first_frame().nodes;
     std::int64_t recovered = 0, erased = 0, nearest_nodes = 0;
     for (const double distance : {0.45, 0.3, 0.15, 0.3, 0.6}) {
         SCOPED_TRACE(distance);
         const FrameStats f = refiner.update(view_from(distance));
-        recovered += f.recovered;
-        erased += f.erased;
+        recovered += f.update.recovered;
+        erased += f.update.erased;
         if (distance == 0.15)
             nearest_nodes = f.nodes;
         Mesh out = refiner.mesh();
@@ -1033,7 +1033,7 @@ TEST(Erase, BunnyRefinerFlightKeepsTopology) {
         every_vertex.samples = 0;
         every_vertex.view = &view;
         EXPECT_LE(hausdorff(input, out, every_vertex).max_screen_px_a_to_b,
-                  options.tol_px * (1.0 + 1e-9));
+                  options.tolerance * (1.0 + 1e-9));
     }
     EXPECT_GT(nearest_nodes, far_nodes);
     EXPECT_GT(recovered, 0);

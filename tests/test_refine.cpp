@@ -69,18 +69,19 @@ TEST(Refiner, EveryFrameWithinTauWhileFlyingAcrossARealDem) {
     for (double tau : {0.5, 2.0}) {
         SCOPED_TRACE(tau);
         RefineOptions options;
-        options.tol_px = tau;
+        options.tolerance = tau;
         const auto views = path.sample(13, View{});
         Refiner refiner(hf, views[0], options);
         std::int64_t recovered = 0, erased = 0;
         for (std::size_t i = 0; i < views.size(); ++i) {
             if (i > 0) {
                 const FrameStats f = refiner.update(views[i]);
-                recovered += f.recovered;
-                erased += f.erased;
+                recovered += f.update.recovered;
+                erased += f.update.erased;
                 // Erased again by the update that recovered it: a subset of both counts of this
                 // frame (a mark left from an earlier update would count beyond its recoveries).
-                EXPECT_LE(f.reerased, std::min(f.erased, f.recovered)) << "frame " << i;
+                EXPECT_LE(f.update.reerased, std::min(f.update.erased, f.update.recovered))
+                    << "frame " << i;
             }
             ErrorOptions eo;
             eo.view = &views[i];
@@ -103,18 +104,18 @@ TEST(Refiner, EveryFrameOfTheShippedPathsIsWithinTau) {
         const CameraPath path = read_camera_path(asset(std::string("paths/") + name + ".csv"));
         const std::vector<View> views = path.sample(int(path.duration() * 4) + 1, View{});
         RefineOptions options;
-        options.tol_px = 1.0;
+        options.tolerance = 1.0;
         Refiner refiner(hf, views.front(), options);
         std::int64_t changed = 0;
         for (std::size_t i = 0; i < views.size(); ++i) {
             if (i > 0) {
                 const FrameStats f = refiner.update(views[i]);
-                changed += f.erased + f.recovered;
+                changed += f.update.erased + f.update.recovered;
             }
             ErrorOptions eo;
             eo.view = &views[i];
             const TinError e = measure_error(hf, refiner.mesh(), eo);
-            EXPECT_LE(e.max_screen_px, options.tol_px) << "frame " << i;
+            EXPECT_LE(e.max_screen_px, options.tolerance) << "frame " << i;
             EXPECT_EQ(e.uncovered, 0) << "frame " << i;
             EXPECT_EQ(tinlod::test::count_folded_faces(refiner.mesh()), 0) << "frame " << i;
         }
@@ -135,15 +136,15 @@ TEST(Refiner, ApproachingRecoversThereRecedingErasesThere) {
     const auto before = nodes_by_half(refiner, split);
     const FrameStats in = refiner.update(near_east);
     const auto close = nodes_by_half(refiner, split);
-    EXPECT_GT(in.recovered, 0);
+    EXPECT_GT(in.update.recovered, 0);
     EXPECT_GT(close.second, before.second) << "the east half, now close, must gain nodes";
     const FrameStats out = refiner.update(far);
     const auto after = nodes_by_half(refiner, split);
-    EXPECT_GT(out.erased, 0);
+    EXPECT_GT(out.update.erased, 0);
     EXPECT_LT(after.second, close.second) << "the east half, far again, must lose nodes";
     ErrorOptions eo;
     eo.view = &far;
-    EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px);
+    EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tolerance);
 }
 
 // The first frame is a retrieval thinned by the erase: samples it left out come in by local edits
@@ -159,12 +160,12 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
     RefineOptions whole = options;
     whole.retrieve_share = 0.0;
     Refiner from_grid(hf, high, whole);
-    EXPECT_GT(refiner.first_frame().ms_retrieve, 0.0);
-    EXPECT_EQ(from_grid.first_frame().ms_retrieve, 0.0);
+    EXPECT_GT(refiner.first_frame().retrieve_ms, 0.0);
+    EXPECT_EQ(from_grid.first_frame().retrieve_ms, 0.0);
 
     // What the first frame retrieved, by RefineOptions' rule.
     RetrieveOptions ro;
-    ro.tol_px = options.retrieve_share * options.tol_px * (1.0 - options.hysteresis);
+    ro.tolerance = options.retrieve_share * options.tolerance * (1.0 - options.hysteresis);
     const Retrieval first = retrieve(QuadTree(hf), high, ro);
     std::vector<std::uint8_t> retrieved(std::size_t(hf.size()), 0);
     for (std::uint32_t id : first.nodes)
@@ -198,9 +199,10 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
         const std::size_t vertices = refiner.mesh().n_vertices();
         const FrameStats f = refiner.update(view);
         const FrameStats g = from_grid.update(view);
-        EXPECT_EQ(g.entered, 0);
+        EXPECT_EQ(g.update.entered, 0);
         check_vertices(f.nodes);
-        EXPECT_LE(refiner.mesh().n_vertices(), std::max(vertices, std::size_t(f.nodes + f.erased)));
+        EXPECT_LE(refiner.mesh().n_vertices(),
+                  std::max(vertices, std::size_t(f.nodes + f.update.erased)));
         const auto origin = find_origin_property(refiner.mesh());
         std::int64_t new_live = 0;
         for (auto v : refiner.mesh().vertices())
@@ -208,11 +210,11 @@ TEST(Refiner, SamplesTheFirstRetrievalLeftOutEnterWhereTheObserverComes) {
         if (&view != &high) { // close: samples the first retrieval did not take are live
             EXPECT_GT(new_live, 0);
         }
-        EXPECT_LE(f.entered, f.recovered);
+        EXPECT_LE(f.update.entered, f.update.recovered);
         ErrorOptions eo;
         eo.view = &view;
         const TinError e = measure_error(hf, refiner.mesh(), eo);
-        EXPECT_LE(e.max_screen_px, options.tol_px);
+        EXPECT_LE(e.max_screen_px, options.tolerance);
         EXPECT_EQ(e.uncovered, 0);
         EXPECT_EQ(tinlod::test::count_folded_faces(refiner.mesh()), 0);
         // The refiner from the grid erases every sample in about the order of its cost; the
@@ -242,7 +244,7 @@ TEST(Refiner, SmallStepsTowardTheGroundAndPanningKeepTauAtEverySample) {
                                             d.x * std::sin(a) + d.y * std::cos(a), d.z);
         }
         const FrameStats f = refiner.update(view);
-        recovered += f.recovered;
+        recovered += f.update.recovered;
         ErrorOptions eo;
         eo.view = &view;
         EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0) << "frame " << i;
@@ -259,18 +261,18 @@ TEST(Refiner, LargeFacesKeepTauWithTileBoundsAndKeptFans) {
     const CameraPath path = read_camera_path(asset("paths/n42_descent.csv"));
     const std::vector<View> views = path.sample(int(path.duration() * 4) + 1, View{});
     RefineOptions options;
-    options.tol_px = 16.0;
+    options.tolerance = 16.0;
     Refiner refiner(hf, views.front(), options);
     std::int64_t kept = 0, recovered = 0;
     for (std::size_t i = 1; i < views.size(); ++i) {
         const FrameStats f = refiner.update(views[i]);
-        EXPECT_LE(f.fans_kept, f.recovered);
-        kept += f.fans_kept;
-        recovered += f.recovered;
+        EXPECT_LE(f.update.fans_kept, f.update.recovered);
+        kept += f.update.fans_kept;
+        recovered += f.update.recovered;
         ErrorOptions eo;
         eo.view = &views[i];
         const TinError e = measure_error(hf, refiner.mesh(), eo);
-        EXPECT_LE(e.max_screen_px, options.tol_px) << "frame " << i;
+        EXPECT_LE(e.max_screen_px, options.tolerance) << "frame " << i;
         EXPECT_EQ(e.uncovered, 0) << "frame " << i;
     }
     EXPECT_GE(kept, 20) << "of " << recovered << " recoveries";
@@ -290,7 +292,7 @@ TEST(Refiner, ThinAndOddCropsKeepTauAsSamplesEnter) {
             const double t = i / 6.0;
             const View view = look({(t - 0.5) * w, 0.5 * h * t, top + 200 + 3000 * (1 - t)},
                                    {w, h / 2, hf.min_z()});
-            entered += refiner.update(view).entered;
+            entered += refiner.update(view).update.entered;
             ErrorOptions eo;
             eo.view = &view;
             EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, 1.0)
@@ -320,7 +322,7 @@ TEST(Refiner, PowerOfTwoCropsLetSamplesEnterWithoutAReplay) {
                                   : look({(t - 0.5) * w, 0.5 * h * t, top + 100 + 3000 * (1 - t)},
                                          {w, h / 2, hf.min_z()});
             const FrameStats stats = refiner.update(view);
-            entered += stats.entered;
+            entered += stats.update.entered;
             (i == 6 ? lowest : back) = stats.nodes;
             ErrorOptions eo;
             eo.view = &view;
@@ -344,13 +346,13 @@ TEST(Refiner, RoundTripReturnsCloseToTheFirstFrameAndHysteresisHoldsStill) {
     refiner.update(start);
     const FrameStats back = refiner.update(start);
     // Standing still changes nothing: the hysteresis band keeps every node where it is.
-    EXPECT_EQ(back.erased, 0);
-    EXPECT_EQ(back.recovered, 0);
+    EXPECT_EQ(back.update.erased, 0);
+    EXPECT_EQ(back.update.recovered, 0);
     // Back at the first view the TIN is as coarse as the first frame, within a tenth.
     EXPECT_NEAR(double(back.nodes), double(first), 0.1 * double(first));
     ErrorOptions eo;
     eo.view = &start;
-    EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px);
+    EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tolerance);
 }
 
 // --hysteresis h trades triangles for changes: erasing down to (1 - h) tau keeps more nodes, and
@@ -377,11 +379,11 @@ TEST(Refiner, WiderHysteresisKeepsMoreNodesAndChangesFewer) {
         for (std::size_t i = 1; i < views.size(); ++i) {
             const FrameStats stats = refiner.update(views[i]);
             f.nodes += double(stats.nodes) / double(views.size() - 1);
-            f.changed += stats.erased + stats.recovered;
+            f.changed += stats.update.erased + stats.update.recovered;
             if (i % 5 == 0) {
                 ErrorOptions eo;
                 eo.view = &views[i];
-                EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tol_px)
+                EXPECT_LE(measure_error(hf, refiner.mesh(), eo).max_screen_px, options.tolerance)
                     << "h " << hysteresis << " frame " << i;
             }
         }

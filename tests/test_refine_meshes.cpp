@@ -91,8 +91,8 @@ Flight fly_and_check(const Mesh &input, const std::vector<double> &distances) {
         const View view = view_at(distances[i]);
         const FrameStats f = i == 0 ? refiner.first_frame() : refiner.update(view);
         if (i > 0) {
-            flight.recovered += f.recovered;
-            flight.erased += f.erased;
+            flight.recovered += f.update.recovered;
+            flight.erased += f.update.erased;
         }
         Mesh out = refiner.mesh();
         out.garbage_collection();
@@ -107,7 +107,7 @@ Flight fly_and_check(const Mesh &input, const std::vector<double> &distances) {
         every_vertex.samples = 0;
         every_vertex.view = &view;
         EXPECT_LE(hausdorff(input, out, every_vertex).max_screen_px_a_to_b,
-                  options.tol_px * (1.0 + 1e-9));
+                  options.tolerance * (1.0 + 1e-9));
         (i == 0 ? flight.first_nodes : flight.last_nodes) = f.nodes;
     }
     return flight;

@@ -6,7 +6,7 @@
 #include "tinlod/focal.hpp"
 #include "tinlod/significance.hpp"
 
-#include "../lib/src/weigher.hpp" // internal: the weights the erase and the retrieval bound
+#include "tinlod/screen_weight.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,10 +85,10 @@ TEST(Significance, NodeSignificanceOnARealTinFallsFarAway) {
     EXPECT_EQ(lower, interior);
 }
 
-// The Weigher (lib/src/weigher.hpp) computes the screen model's weight k / OD * peripheral(OA)
-// for the erase and the retrieval, and bounds it over boxes: the erase skips nodes, and the
-// retrieval leaves nodes unsplit, on those bounds. Random boxes around views of every kind, and
-// points in each (corners, and points pulled toward the frustum's margin band and the cone's
+// The Weigher (lib/include/tinlod/screen_weight.hpp) computes the screen model's weight k / OD *
+// peripheral(OA) for the erase and the retrieval, and bounds it over boxes: the erase skips nodes,
+// and the retrieval leaves nodes unsplit, on those bounds. Random boxes around views of every kind,
+// and points in each (corners, and points pulled toward the frustum's margin band and the cone's
 // edge, where the factor steps and the shortcuts by cosines decide).
 TEST(Weigher, MatchesScreenWeightAndBoundsItOverEveryBox) {
     std::mt19937 rng(7);

@@ -147,17 +147,19 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             }
         }
 
-        Stopwatch clock;
+        StageTimes first_frame; // the run up to the first frame: load, retrieval and erase
         std::optional<Heightfield> hf;
         std::optional<Refiner> refiner;
         std::int64_t store_tiles = 0;
         RefineOptions options;
-        options.tol_px = args->tol;
+        options.tolerance = args->tol;
         options.hysteresis = args->hysteresis;
         options.retrieve_share = args->retrieve_share;
         options.significance.model = args->model == "paper" ? SpModel::paper : SpModel::screen;
         if (is_mesh_path(args->input)) {
-            refiner.emplace(read_mesh(args->input), views.front(), options);
+            Mesh input = read_mesh(args->input);
+            first_frame.lap("load");
+            refiner.emplace(std::move(input), views.front(), options);
         } else {
             // A store's first retrieval reads the bounds it holds: no quad-tree is built.
             std::unique_ptr<TileStore> store;
@@ -175,12 +177,13 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
                 check_eye_above(*hf, k.eye, args->path);
             for (const View &v : views)
                 check_eye_above(*hf, v.eye, args->path);
+            first_frame.lap("load");
             if (store)
                 refiner.emplace(*hf, std::move(store), views.front(), options);
             else
                 refiner.emplace(*hf, views.front(), options);
         }
-        const double ms_start = clock.ms();
+        first_frame.lap("refine");
 
         std::unique_ptr<Renderer> renderer;
         RenderOptions ro;
@@ -219,16 +222,17 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
         std::int64_t evaluations_all = 0, erased_after_first = 0;
         Progress progress("fly", frames);
         for (int i = 0; i < frames; ++i) {
-            FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
+            const FrameStats f = i == 0 ? refiner->first_frame() : refiner->update(views[i]);
+            const UpdateStats &u = f.update;
             if (i > 0)
-                totals.push_back(f.ms_total);
-            recovered_all += f.recovered;
-            erased_all += f.erased;
-            reerased_all += f.reerased;
-            entered_all += f.entered;
+                totals.push_back(f.total_ms);
+            recovered_all += u.recovered;
+            erased_all += u.erased;
+            reerased_all += u.reerased;
+            entered_all += u.entered;
             if (i > 0) {
-                evaluations_all += f.evaluations;
-                erased_after_first += f.erased;
+                evaluations_all += u.evaluations;
+                erased_after_first += u.erased;
             }
             double max_px = -1.0; // not measured
             if (args->check) {
@@ -255,11 +259,11 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
             char line[256];
             std::snprintf(line, sizeof line,
                           "%.3f,%lld,%lld,%lld,%lld,%lld,%.3f,%.3f,%.3f,%.3f,%s,%lld,%lld", t,
-                          (long long)f.nodes, (long long)f.triangles, (long long)f.erased,
-                          (long long)f.recovered, (long long)(i == 0 ? store_tiles : 0),
-                          f.ms_retrieve, f.ms_erase + f.ms_weights, f.ms_recover, f.ms_total,
-                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)f.entered,
-                          (long long)(i == 0 ? 0 : f.evaluations));
+                          (long long)f.nodes, (long long)f.triangles, (long long)u.erased,
+                          (long long)u.recovered, (long long)(i == 0 ? store_tiles : 0),
+                          f.retrieve_ms, u.erase_ms + u.weights_ms, u.recover_ms, f.total_ms,
+                          max_px < 0 ? "" : std::to_string(max_px).c_str(), (long long)u.entered,
+                          (long long)(i == 0 ? 0 : u.evaluations));
             csv << line << '\n';
             progress.update(i + 1);
         }
@@ -276,14 +280,15 @@ static Register fly("fly", 50, [](CLI::App &cmd) {
                     throw Error(args->stats, "cannot write: " + std::string(std::strerror(errno)));
             });
         const auto &m = refiner->mesh();
-        std::printf("%d frames, tau %.2f px: first frame %.0f ms (load + retrieve + erase), "
+        std::printf("%d frames, tau %.2f px: first frame %s, "
                     "then per frame p50 %.1f ms, p99 %.1f ms; %lld erased, %lld recovered in all "
                     "(%lld there for the first time, %lld erased again by the update that "
                     "recovered them); %.0f erases tried per frame, %.0f made; %.0f bytes per "
                     "node (TIN + history)%s\n",
-                    frames, args->tol, ms_start, percentile(totals, 0.5), percentile(totals, 0.99),
-                    (long long)erased_all, (long long)recovered_all, (long long)entered_all,
-                    (long long)reerased_all, double(evaluations_all) / std::max(frames - 1, 1),
+                    frames, args->tol, first_frame.summary().c_str(), percentile(totals, 0.5),
+                    percentile(totals, 0.99), (long long)erased_all, (long long)recovered_all,
+                    (long long)entered_all, (long long)reerased_all,
+                    double(evaluations_all) / std::max(frames - 1, 1),
                     double(erased_after_first) / std::max(frames - 1, 1),
                     double(refiner->bytes()) /
                         double(hf ? hf->size() : std::int64_t(m.n_vertices())),

@@ -90,7 +90,6 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
         if (!args->full)
             view = args->camera.view();
 
-        Stopwatch clock;
         StageTimes times;
         std::optional<Heightfield> hf;
         std::optional<QuadTree> tree;
@@ -107,19 +106,18 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                 hf = store->heightfield();
             else
                 lod = std::make_unique<QuadTreeLod>(std::move(owned));
-            times.add("load", clock.ms());
+            times.lap("load");
         } else {
             LoadOptions lo = args->raster.load_options();
             // Peak memory per DEM sample, measured (docs/decisions/memory-per-sample.md): the
             // full grid as a mesh, or the quad-tree and one view's TIN.
             lo.bytes_per_sample = args->full ? 340 : 120;
             hf = load_heightfield(args->input, lo);
-            times.add("load", clock.ms());
+            times.lap("load");
             if (!args->full) {
-                clock.reset();
                 tree.emplace(*hf);
                 lod = std::make_unique<QuadTreeLod>(*tree);
-                times.add("build", clock.ms());
+                times.lap("build");
             }
         }
         const GridFrame frame =
@@ -132,24 +130,21 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
         nlohmann::json stats;
         std::vector<std::uint32_t> triangles;
         if (args->full) {
-            clock.reset();
             mesh = grid_tin(*hf);
-            times.add("retrieve", clock.ms());
+            times.lap("retrieve");
             stats["error"] = {{"max_screen_px", 0.0}, {"max_vertical", 0.0}, {"measured", true}};
         } else {
             RetrieveOptions ro;
-            ro.tol_px = args->tol;
+            ro.tolerance = args->tol;
             ro.cull = args->cull;
-            clock.reset();
             const Retrieval &r = lod->retrieve(*view, ro);
-            times.add("retrieve", clock.ms());
+            times.lap("retrieve");
             if (const auto ground = surface_under(r, frame, view->eye);
                 ground && view->eye.z < *ground)
                 throw Error("--eye", "the eye is below the terrain surface (" +
                                          std::to_string(*ground) + " there)");
-            clock.reset();
             mesh = to_mesh(r, frame);
-            times.add("convert", clock.ms());
+            times.lap("convert");
             triangles = r.triangles;
             stats["retrieve"] = {{"tol_px", args->tol},
                                  {"cull", args->cull},
@@ -168,12 +163,10 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                                   {"file_bytes", store->file_bytes()},
                                   {"cache_mb", args->cache_mb}};
         }
-        clock.reset();
         write_mesh(mesh, args->output);
-        times.add("write", clock.ms());
+        times.lap("write");
 
         if (args->check && !args->full) {
-            clock.reset();
             if (!hf)
                 hf = store->heightfield();
             ErrorOptions eo;
@@ -189,7 +182,7 @@ static Register retrieve("retrieve", 30, [](CLI::App &cmd) {
                               {"uncovered_samples", all.uncovered},
                               {"bound_px", stats["retrieve"]["bound_px"]},
                               {"measured", true}};
-            times.add("check", clock.ms());
+            times.lap("check");
         }
         stats["input"] = {{"file", args->input},
                           {"kind", from_store ? "store" : "raster"},

@@ -132,7 +132,6 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             view = args->camera.view();
 
         StageTimes times;
-        Stopwatch clock;
         std::optional<Heightfield> hf;
         Mesh mesh;
         if (mesh_input)
@@ -141,7 +140,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             hf = args->raster.load(args->input);
         if (hf && view)
             check_eye_above(*hf, view->eye, "--eye");
-        times.add("load", clock.ms());
+        times.lap("load");
         std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
         std::int64_t input_triangles = std::int64_t(mesh.n_faces());
         if (hf) {
@@ -161,17 +160,15 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         EraseStats erased;
         bool stopped_by_budget = false;
         if (greedy) {
-            clock.reset();
             const GreedyTin g =
                 greedy_to_budget(*hf, args->max_error, args->max_nodes, args->max_triangles);
-            times.add("retrieve", clock.ms());
+            times.lap("retrieve");
             stopped_by_budget = g.stopped;
             dem.first_stage = FirstStage::greedy;
             dem.retrieved_nodes = std::int64_t(g.tin.nodes.size());
             dem.retrieve_tol = bound ? args->max_error : 0.0;
-            clock.reset();
             mesh = tin_from_indices(*hf, g.tin.triangles);
-            times.add("convert", clock.ms());
+            times.lap("convert");
         } else {
             Progress bar("erase", 1000);
             options.progress = [&bar](double done) { bar.update(std::int64_t(done * 1000.0)); };
@@ -191,7 +188,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                 erased = erase_nodes(mesh, view ? &*view : nullptr, options);
             }
             bar.finish();
-            times.add("simplify", erased.ms);
+            times.lap("simplify");
             stopped_by_budget =
                 args->max_nodes > 0 && std::int64_t(mesh.n_vertices()) <= args->max_nodes;
         }
@@ -200,17 +197,15 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         // bound over every swallowed input node.
         double max_screen = erased.max_screen_px, max_vertical = erased.max_vertical;
         if (hf) {
-            clock.reset();
             ErrorOptions eo;
             eo.view = view ? &*view : nullptr;
             const TinError measured = measure_error(*hf, mesh, eo);
             max_screen = measured.max_screen_px;
             max_vertical = measured.max_vertical;
-            times.add("measure", clock.ms());
+            times.lap("measure");
         }
-        clock.reset();
         write_mesh(mesh, args->output);
-        times.add("write", clock.ms());
+        times.lap("write");
 
         nlohmann::json stats = {
             {"input",
@@ -243,9 +238,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         // The first stage's time is named by what it was; a mesh's deviation is vertical only when
         // it is a TIN (a node's distance to the surface otherwise, see EraseStats::max_vertical).
         StageTimes shown = times;
-        for (auto &stage : shown.stages)
-            if (stage.first == "retrieve")
-                stage.first = first_stage_name(dem.first_stage);
+        shown.rename("retrieve", first_stage_name(dem.first_stage));
         const char *deviation = hf ? "vertical error" : "deviation";
         char text[160];
         if (view)

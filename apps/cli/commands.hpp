@@ -5,6 +5,7 @@
 #include "tinlod/error.hpp"
 #include "tinlod/json_io.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/util.hpp"
 #include "tinlod/view.hpp"
 
 #include <CLI/CLI.hpp>
@@ -87,13 +88,30 @@ struct RasterOptions {
 };
 
 // The stages a command ran, in order, with their wall times: the stats' time_ms and the summary's
-// "T ms (load a, retrieve b, ...)" come from one list, so the parts add up to the whole.
-struct StageTimes {
-    std::vector<std::pair<std::string, double>> stages;
-    void add(const std::string &name, double ms) { stages.emplace_back(name, ms); }
-    double total() const;
-    nlohmann::json json() const; // {"load": a, ...}
-    std::string summary() const; // "T ms (load a, retrieve b)"
+// "T ms (start a, load b, ...)" come from one list, and each lap() closes the stage begun where the
+// last one ended, so the parts add up to the whole run. The first stage, "start", runs from the
+// process's start (loading the program and its libraries, parsing the command line) to the list's
+// construction.
+class StageTimes {
+  public:
+    StageTimes();
+    // Ends the running stage as `name`: the time since the last lap, less what add() took from it.
+    // Returns that time.
+    double lap(const std::string &name);
+    // A part of the running stage timed elsewhere (e.g. inside the library), as its own stage.
+    void add(const std::string &name, double ms);
+    // Renames a stage (the first stage of a DEM is named by what it was).
+    void rename(const std::string &from, const std::string &to);
+    double total() const;        // from the process's start to the last lap
+    nlohmann::json json() const; // {"start": a, "load": b, ..., "total": T}
+    std::string summary() const; // "T ms (start a, load b, ...)"
+
+  private:
+    std::vector<std::pair<std::string, double>> stages_;
+    Stopwatch clock_;       // since the last lap
+    double started_ms_;     // the process's age when the list was made
+    double laps_ms_ = 0.0;  // the stages lap() closed, the "start" one included
+    double added_ms_ = 0.0; // what add() took from the running stage
 };
 
 // Whether `path` names a quad-tree store: its magic bytes, or a .tlq name (whose store errors then

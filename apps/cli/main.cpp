@@ -14,9 +14,13 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <string>
+
+#include <unistd.h>
 
 namespace tinlod::cli {
 
@@ -25,17 +29,62 @@ std::vector<Command> &registry() {
     return commands;
 }
 
-double StageTimes::total() const {
-    double sum = 0.0;
-    for (const auto &stage : stages)
-        sum += stage.second;
-    return sum;
+// The process's age, ms: the kernel's record of its start (clock ticks since boot, 10 ms apart)
+// against the boot clock; 0 where /proc cannot tell.
+static double process_age_ms() {
+    std::FILE *f = std::fopen("/proc/self/stat", "r");
+    if (!f)
+        return 0.0;
+    char line[1024];
+    const bool read = std::fgets(line, sizeof line, f) != nullptr;
+    std::fclose(f);
+    const char *fields = read ? std::strrchr(line, ')') : nullptr; // the name may hold spaces
+    unsigned long long start_ticks = 0;
+    // Field 22, starttime, is the 20th after the name.
+    if (!fields || std::sscanf(fields + 1,
+                               "%*s %*s %*s %*s %*s %*s %*s %*s %*s %*s %*s %*s %*s "
+                               "%*s %*s %*s %*s %*s %*s %llu",
+                               &start_ticks) != 1)
+        return 0.0;
+    timespec now{};
+    clock_gettime(CLOCK_BOOTTIME, &now);
+    const double age = (double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6) -
+                       double(start_ticks) * 1e3 / double(sysconf(_SC_CLK_TCK));
+    return std::max(age, 0.0);
 }
+
+StageTimes::StageTimes() : started_ms_(process_age_ms()) {
+    stages_.emplace_back("start", started_ms_);
+    laps_ms_ = started_ms_;
+}
+
+double StageTimes::lap(const std::string &name) {
+    const double ms = clock_.ms();
+    clock_.reset();
+    stages_.emplace_back(name, std::max(ms - added_ms_, 0.0));
+    laps_ms_ += ms;
+    added_ms_ = 0.0;
+    return stages_.back().second;
+}
+
+void StageTimes::add(const std::string &name, double ms) {
+    stages_.emplace_back(name, ms);
+    added_ms_ += ms;
+}
+
+void StageTimes::rename(const std::string &from, const std::string &to) {
+    for (auto &stage : stages_)
+        if (stage.first == from)
+            stage.first = to;
+}
+
+double StageTimes::total() const { return laps_ms_; }
 
 nlohmann::json StageTimes::json() const {
     nlohmann::json j = nlohmann::json::object();
-    for (const auto &[name, ms] : stages)
+    for (const auto &[name, ms] : stages_)
         j[name] = ms;
+    j["total"] = total();
     return j;
 }
 
@@ -43,9 +92,9 @@ std::string StageTimes::summary() const {
     char part[96];
     std::snprintf(part, sizeof part, "%.0f ms (", total());
     std::string text = part;
-    for (std::size_t i = 0; i < stages.size(); ++i) {
-        std::snprintf(part, sizeof part, "%s%s %.0f", i > 0 ? ", " : "", stages[i].first.c_str(),
-                      stages[i].second);
+    for (std::size_t i = 0; i < stages_.size(); ++i) {
+        std::snprintf(part, sizeof part, "%s%s %.0f", i > 0 ? ", " : "", stages_[i].first.c_str(),
+                      stages_[i].second);
         text += part;
     }
     return text + ")";

@@ -173,7 +173,8 @@ class GridEngine final : public EngineBase {
         if (lattice && !hf_)
             hf_ = store_->heightfield();
         RetrieveOptions ro;
-        ro.tol_px = lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
+        ro.tolerance =
+            lattice ? DemEraseOptions{}.retrieve_share * settings.tol_px : settings.tol_px;
         ro.cull = settings.cull;
         if (lattice && settings.significance.model == SpModel::screen)
             ro.peripheral = &settings.significance; // the erase's weighted bound, as erase_dem
@@ -197,16 +198,16 @@ class GridEngine final : public EngineBase {
             if (!hf_)
                 hf_ = store_->heightfield();
             RefineOptions options;
-            options.tol_px = settings.tol_px;
+            options.tolerance = settings.tol_px;
             options.significance = settings.significance;
             refiner_.reset();
             refiner_ = std::make_unique<Refiner>(*hf_, view, options);
             refined_tol_ = settings.tol_px;
             refined_model_ = settings.significance.model;
-            result->erase_ms = refiner_->first_frame().ms_total;
+            result->erase_ms = refiner_->first_frame().total_ms;
         } else {
             const FrameStats f = refiner_->update(view);
-            result->erase_ms = f.ms_total;
+            result->erase_ms = f.total_ms;
         }
         result->mesh = live_copy(refiner_->mesh());
         LodSettings shown = settings;

@@ -184,17 +184,36 @@ void check(const std::string &path, int epsg, bool geographic) {
                               " CRS, yet the file's GeoKeys say it is one");
 }
 
-std::vector<std::array<double, 2>> transform(const std::string &path, int from, int to,
-                                             const std::vector<std::array<double, 2>> &points) {
-    bool south = false;
-    const int zone = utm_zone(to, south);
-    if (from != k_wgs84 || zone == 0)
-        return backends::crs_library().transform(path, from, to, points);
-    const Zone z = make_zone(zone, south);
-    std::vector<std::array<double, 2>> out;
-    out.reserve(points.size());
-    for (const auto &p : points)
-        out.push_back(project(z, p[0] * k_radians_per_degree, p[1] * k_radians_per_degree));
+Transformation::Transformation(const std::string &path, int from, int to) {
+    if (from == to)
+        return;
+    utm_zone_ = from == k_wgs84 ? utm_zone(to, south_) : 0;
+    if (utm_zone_ == 0)
+        proj_ = backends::crs_library().transformation(path, from, to);
+}
+
+Transformation::~Transformation() = default;
+
+std::vector<glm::dvec2> Transformation::apply(std::span<const glm::dvec2> points) const {
+    std::vector<std::array<double, 2>> xy;
+    xy.reserve(points.size());
+    for (const glm::dvec2 &p : points)
+        xy.push_back({p.x, p.y});
+    if (utm_zone_ > 0) {
+        const Zone z = make_zone(utm_zone_, south_);
+        for (auto &p : xy)
+            p = project(z, p[0] * k_radians_per_degree, p[1] * k_radians_per_degree);
+    } else if (proj_) {
+        proj_->apply(xy);
+    }
+    std::vector<glm::dvec2> out;
+    out.reserve(xy.size());
+    // Outside the domain, PROJ and project() give HUGE_VAL.
+    for (const auto &p : xy)
+        out.push_back(std::isfinite(p[0]) && std::isfinite(p[1]) && std::abs(p[0]) < 1e30 &&
+                              std::abs(p[1]) < 1e30
+                          ? glm::dvec2(p[0], p[1])
+                          : glm::dvec2(NAN));
     return out;
 }
 

@@ -4,9 +4,17 @@
 // other CRS goes to PROJ (backends::crs_library()).
 #pragma once
 
+#include <glm/glm.hpp>
+
 #include <array>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
+
+namespace tinlod::backends {
+class CrsTransformation;
+}
 
 namespace tinlod::crs {
 
@@ -14,11 +22,23 @@ namespace tinlod::crs {
 // or projected), or is projected in other units than metres.
 void check(const std::string &path, int epsg, bool geographic);
 
-// (longitude, latitude) points in degrees of EPSG:`from`, in EPSG:`to`: what PROJ's
-// proj_create_crs_to_crs gives, non-finite where the point is outside the projection's domain.
-// Throws Error(path, ...) when there is no transformation.
-std::vector<std::array<double, 2>> transform(const std::string &path, int from, int to,
-                                             const std::vector<std::array<double, 2>> &points);
+// The transformation from EPSG:`from` to EPSG:`to` as PROJ's proj_create_crs_to_crs makes it,
+// made once and applied to many points, x east / longitude first whatever the CRSs' axis order.
+class Transformation {
+  public:
+    // Throws Error(path, ...) when there is no transformation between the two.
+    Transformation(const std::string &path, int from, int to);
+    ~Transformation();
+    Transformation(const Transformation &) = delete;
+    Transformation &operator=(const Transformation &) = delete;
+    // The points transformed; one outside the transformation's domain comes back as NaN.
+    std::vector<glm::dvec2> apply(std::span<const glm::dvec2> points) const;
+
+  private:
+    int utm_zone_ = 0; // from WGS 84 to this UTM zone, without PROJ
+    bool south_ = false;
+    std::unique_ptr<backends::CrsTransformation> proj_; // else this, or null for the identity
+};
 
 // A WGS 84 point (degrees) in UTM zone `zone` (1..60), metres: PROJ 9's pipeline
 // "+proj=unitconvert +xy_in=deg +xy_out=rad +step +proj=utm +zone=Z [+south] +ellps=WGS84"

@@ -1,6 +1,6 @@
 // The lattice samples inside a triangle whose corners are lattice samples, row by row, exactly
 // (integer edge tests in lattice coordinates): the node erase's scans of a grid TIN's faces
-// (decimate.cpp) and the greedy inserter's (greedy.cpp).
+// (lib/src/erase/lattice_scan.hpp) and the greedy inserter's (greedy.cpp).
 #pragma once
 
 #include <algorithm>

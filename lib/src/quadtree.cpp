@@ -4,9 +4,10 @@
 // paper's method 1), kept restricted as in Röttger et al. 1998 / Pajarola 1998 so the per-node
 // triangle fans meet without cracks.
 #include "tinlod/quadtree.hpp"
-#include "weigher.hpp"
 
+#include "float_rounding.hpp"
 #include "tinlod/error.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/util.hpp"
 
 #include <algorithm>
@@ -100,13 +101,6 @@ struct Plane {
         gr = (e1c * d2 - e2c * d1) / det;
     }
 };
-
-float round_up(double e) {
-    float f = static_cast<float>(e);
-    if (static_cast<double>(f) < e)
-        f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-}
 
 struct OwnBound {
     double error = 0.0;
@@ -295,7 +289,7 @@ void QuadTree::build(const Heightfield &hf, Progress *progress) {
                                 own.box(child.zmax);
                             }
                     }
-                    level[std::size_t{j} * nx + i] = {std::max(round_up(own.error), children),
+                    level[std::size_t{j} * nx + i] = {std::max(float_up(own.error), children),
                                                       own.zmin, own.zmax};
                 }
         };
@@ -398,15 +392,12 @@ struct QuadTreeLod::Impl {
     void set_view(const View &view, const RetrieveOptions &options) {
         eye = view.eye;
         k = view.k();
-        tol = options.tol_px;
+        tol = options.tolerance;
         cull = options.cull;
         weigh = options.peripheral != nullptr;
         if (weigh)
             weigher = Weigher(&view, *options.peripheral);
-        const glm::dvec3 f = view.axis();
-        const glm::dvec3 up = std::abs(f.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-        const glm::dvec3 r = glm::normalize(glm::cross(f, up));
-        const glm::dvec3 u = glm::cross(r, f);
+        const auto [f, r, u] = view.frame();
         const double hw = view.viewport_w / 2.0, hh = view.viewport_h / 2.0;
         planes[0] = k * r - hw * f;
         planes[1] = -k * r - hw * f;
@@ -639,7 +630,9 @@ struct QuadTreeLod::Impl {
     }
 
     const Retrieval &run(const View &view, const RetrieveOptions &options) {
-        assert(options.tol_px >= 0.0);
+        if (!(options.tolerance >= 0.0))
+            throw Error("RetrieveOptions::tolerance",
+                        "must be 0 or more (pixels), not " + std::to_string(options.tolerance));
         reset();
         set_view(view, options);
         source->begin_retrieval();
@@ -731,10 +724,9 @@ Mesh to_mesh(const Retrieval &retrieval, const GridFrame &frame) {
 }
 
 // Adds the triangles t (3 vertex indices each, over `vertices` vertices) in the order of their
-// first vertex, so the half-edges of nearby nodes lie near each other in memory: an erase sweeping
-// the nodes row by row walked the retrieval's level order before, 16 % slower on N42E001. A
-// counting sort on the first vertex, stable (ties keep the retrieval's order): a comparison sort of
-// the keys took 24 ms of N42E001's 352 k-node budget retrieval.
+// first vertex, so the half-edges of nearby nodes lie near each other in memory for an erase that
+// sweeps the nodes row by row: a stable counting sort on the first vertex (ties keep the
+// retrieval's order; docs/decisions/022-row-order-triangles.md).
 static void add_in_row_order(Mesh &mesh, const std::vector<std::uint32_t> &t,
                              std::size_t vertices) {
     const std::size_t faces = t.size() / 3;

@@ -840,6 +840,12 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
     // Centre of the SW sample in CRS units.
     const double sw_x = geo.west + geo.sx / 2;
     const double sw_y = geo.north - (g.height - 0.5) * geo.sy;
+    hf.native_epsg = geo.epsg ? geo.epsg : geo.geographic ? 4326 : 0;
+    hf.native_geographic = geo.geographic;
+    hf.native_x0 = sw_x;
+    hf.native_y0 = sw_y;
+    hf.native_dx = geo.sx;
+    hf.native_dy = geo.sy;
     if (!geo.geographic) {
         hf.dx = geo.sx;
         hf.dy = geo.sy;
@@ -862,13 +868,13 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
                               ", not on Earth");
     const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
-    const auto p = crs::transform(
-        path, epsg, utm,
-        {{lon_c, lat_c}, {lon_c + geo.sx, lat_c}, {lon_c, lat_c + geo.sy}, {sw_x, sw_y}});
-    const glm::dvec2 c(p[0][0], p[0][1]);
-    hf.dx = glm::length(glm::dvec2(p[1][0], p[1][1]) - c);
-    hf.dy = glm::length(glm::dvec2(p[2][0], p[2][1]) - c);
-    const glm::dvec2 sw(p[3][0], p[3][1]);
+    const auto p =
+        crs::Transformation(path, epsg, utm)
+            .apply(std::vector<glm::dvec2>{
+                {lon_c, lat_c}, {lon_c + geo.sx, lat_c}, {lon_c, lat_c + geo.sy}, {sw_x, sw_y}});
+    hf.dx = glm::length(p[1] - p[0]);
+    hf.dy = glm::length(p[2] - p[0]);
+    const glm::dvec2 sw = p[3];
     if (!std::isfinite(hf.dx) || !std::isfinite(hf.dy) || hf.dx <= 0 || hf.dy <= 0)
         throw Error(path, "georeferencing gives no usable ground spacing");
     hf.origin_x = sw.x;

@@ -3,6 +3,7 @@
 #include "tinlod/significance.hpp"
 
 #include "tinlod/focal.hpp"
+#include "tinlod/screen_weight.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -20,22 +21,11 @@ double observation_angle(const View &view, const glm::dvec3 &p) {
 
 double peripheral_factor(const View &view, const glm::dvec3 &p,
                          const SignificanceOptions &options) {
-    if (view.in_frustum(p, options.cone_margin_px))
-        return 1.0;
-    const double half_diagonal = 0.5 * std::hypot(double(view.viewport_w), double(view.viewport_h));
-    const double cone = std::atan(half_diagonal / view.k());
-    const double beyond = observation_angle(view, p) - cone;
-    if (beyond <= 0.0)
-        return 1.0; // outside the frustum but inside the cone around it
-    const double falloff = std::max(options.falloff_deg, 1e-6) * M_PI / 180.0;
-    return std::max(options.floor, std::exp(-beyond / falloff));
+    return Weigher(view, options).peripheral(p);
 }
 
 double screen_weight(const View &view, const glm::dvec3 &p, const SignificanceOptions &options) {
-    const double od = glm::length(p - view.eye);
-    if (!(od > 0.0))
-        return INFINITY;
-    return view.k() / od * peripheral_factor(view, p, options);
+    return Weigher(view, options)(p);
 }
 
 double significance(const NodeTerms &terms, const View *view, const SignificanceOptions &options,
@@ -63,9 +53,10 @@ std::vector<float> node_weights(const Mesh &mesh, const View *view,
     std::vector<float> weight(mesh.n_vertices(), 1.0f);
     if (!view || options.model == SpModel::vertical)
         return weight;
+    const Weigher weigher(*view, options);
     for (auto v : mesh.all_vertices()) { // erased nodes too: the bound weighs what faces swallowed
         const auto &p = mesh.point(v);
-        weight[v.idx()] = float(screen_weight(*view, glm::dvec3(p[0], p[1], p[2]), options));
+        weight[v.idx()] = float(weigher(glm::dvec3(p[0], p[1], p[2])));
     }
     return weight;
 }
@@ -74,6 +65,7 @@ std::vector<float> node_significance(const Mesh &mesh, const View *view,
                                      const SignificanceOptions &options) {
     assert(view || options.model == SpModel::vertical);
     std::vector<float> sp(mesh.n_vertices(), 0.0f);
+    const Weigher weigher(view ? *view : View{}, options);
     const double focal_distance =
         view && options.model == SpModel::paper ? focal_point(mesh, *view).distance : 1.0;
     for (auto v : mesh.vertices()) {
@@ -109,7 +101,7 @@ std::vector<float> node_significance(const Mesh &mesh, const View *view,
         if (view) {
             terms.od = glm::length(c - view->eye);
             terms.oa = observation_angle(*view, c);
-            terms.peripheral = peripheral_factor(*view, c, options);
+            terms.peripheral = weigher.peripheral(c);
         }
         sp[v.idx()] = float(significance(terms, view, options, focal_distance));
     }

@@ -19,6 +19,12 @@ static glm::dvec3 up_for(const glm::dvec3 &axis) {
     return std::abs(axis.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
 }
 
+View::Frame View::frame() const {
+    const glm::dvec3 f = axis();
+    const glm::dvec3 r = glm::normalize(glm::cross(f, up_for(f)));
+    return {f, r, glm::cross(r, f)};
+}
+
 glm::dmat4 View::view_matrix() const { return glm::lookAt(eye, at, up_for(axis())); }
 
 glm::dmat4 View::projection_matrix(double near, double far) const {
@@ -26,16 +32,14 @@ glm::dmat4 View::projection_matrix(double near, double far) const {
 }
 
 bool View::in_frustum(const glm::dvec3 &p, double margin_px) const {
-    const glm::dvec3 f = axis();
-    const glm::dvec3 r = glm::normalize(glm::cross(f, up_for(f)));
-    const glm::dvec3 u = glm::cross(r, f);
+    const Frame fr = frame();
     const glm::dvec3 d = p - eye;
-    const double depth = glm::dot(d, f);
+    const double depth = glm::dot(d, fr.forward);
     if (depth <= 0.0)
         return false;
     const double kk = k();
-    const double sx = glm::dot(d, r) * kk / depth;
-    const double sy = glm::dot(d, u) * kk / depth;
+    const double sx = glm::dot(d, fr.right) * kk / depth;
+    const double sy = glm::dot(d, fr.up) * kk / depth;
     return std::abs(sx) <= viewport_w / 2.0 + margin_px &&
            std::abs(sy) <= viewport_h / 2.0 + margin_px;
 }

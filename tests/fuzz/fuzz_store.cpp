@@ -142,7 +142,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
         }
         // The full grid reads every tile; on small grids only, where it costs little.
         if (frame.width * frame.height <= 4096) {
-            ro.tol_px = 0;
+            ro.tolerance = 0;
             check_retrieval(lod.retrieve(near, ro), frame);
         }
         const tinlod::Heightfield hf = store.heightfield();

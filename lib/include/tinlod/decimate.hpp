@@ -9,8 +9,10 @@
 //
 // The bound. Every erased node stays attached to the face that covers it (in the projection
 // plane), so a face's error is the largest weighted deviation of the nodes it has swallowed;
-// deviation = vertical distance to the face (TINs) or distance to its plane (general meshes);
-// weight = screen_weight (k / OD * peripheral, significance.hpp), or 1 in the vertical model. An
+// deviation = vertical distance to the face (TINs) or distance to the face, the triangle itself
+// (general meshes); weight = the screen weight (k / OD * peripheral, tinlod/screen_weight.hpp), or
+// 1 in the vertical model. The SP of an erase, the largest weighted deviation its new triangles
+// swallow, is computed in lib/src/erase/erase_cost.cpp (evaluate). An
 // erase is made only when every new triangle keeps all the nodes it covers within `tolerance`, so
 // the output's error over every input node is <= tolerance: in pixels inside the view frustum, and
 // relaxed by 1 / peripheral outside it.
@@ -40,6 +42,10 @@
 namespace tinlod {
 
 class QuadTree;
+
+namespace erase {
+struct EraserState; // the eraser's state (lib/src/erase/state.hpp)
+}
 
 // ---- Hole re-triangulation in the projection plane (paper steps 3-4) --------------------------
 
@@ -75,7 +81,8 @@ inline constexpr int k_max_ring = 48;
 enum class Projection { automatic, xy, mean_plane };
 
 struct EraseOptions {
-    // tau: pixels (screen, paper models) or world units (vertical); may be +inf
+    // tau: pixels (screen, paper models) or world units (vertical); may be +inf, 0 erases only
+    // nodes that lie exactly on their neighbours' surface
     double tolerance = 1.0;
     std::int64_t max_nodes = 0;       // stop once this many live nodes remain (0: no budget)
     SignificanceOptions significance; // SP model and its parameters
@@ -97,9 +104,9 @@ struct EraseOptions {
     // With absent_history: the TIN is a quad-tree retrieval's (to_lattice_mesh of retrieve). On a
     // square 2^k + 1 grid every ring of a sample it left out is then the regular one (each leaf's
     // fan holds its centre, and each sample enters on the edge RegularRings names), so the
-    // constructor takes them from the lattice without replaying the insertions: 3.4 s of the
-    // refiner's 11 s first frame on 4097², and the replay's 32 bytes per sample while it runs.
-    // Other sizes replay as without it.
+    // constructor takes them from the lattice without replaying the insertions, which took a third
+    // of the refiner's first frame and 32 bytes per sample while they ran
+    // (docs/decisions/019-erase-dem-first-stage.md). Other sizes replay as without it.
     bool retrieval_tin = false;
     // A sparse grid TIN: the mesh's vertices are some of this lattice's samples (the origin
     // property names each, its point as grid_vertices has it), triangulated over the lattice's
@@ -130,7 +137,7 @@ struct EraseStats {
     double max_screen_px = 0.0;
     double max_vertical = 0.0; // max deviation over all swallowed nodes, world units: vertical in
                                // a TIN, the distance to the covering triangle on a surface mesh
-    double ms = 0.0;           // wall time of the erase
+    double erase_ms = 0.0;     // wall time of the erase
 };
 
 // The ring of an erased node's last erase, enough to undo it exactly (counter-clockwise; for a
@@ -157,9 +164,9 @@ struct UpdateStats {
     std::int64_t evaluations = 0; // erases tried: the candidates, then the ring nodes of the erases
                                   // made (an erase that fails keeps its node)
     std::int64_t faces_checked = 0; // faces whose swallowed nodes were re-measured
-    double ms_weights = 0.0;        // the new view's weigher (node weights follow on demand)
-    double ms_recover = 0.0;        // the recover pass
-    double ms_erase = 0.0;          // the erase pass
+    double weights_ms = 0.0;        // the new view's weigher (node weights follow on demand)
+    double recover_ms = 0.0;        // the recover pass
+    double erase_ms = 0.0;          // the erase pass
 };
 
 // An update (NodeEraser::update) does not erase a node whose fan covers more input nodes than
@@ -175,7 +182,9 @@ inline constexpr std::size_t k_update_cap = 4096;
 class NodeEraser {
   public:
     // `mesh`: triangles only, no deleted elements, status attributes (tinlod::Mesh has them).
-    // `view` may be null only for SpModel::vertical; it is copied.
+    // `view` may be null only for SpModel::vertical; it is copied. Throws Error naming the option
+    // for a tolerance < 0 or NaN, max_nodes < 0, max_valence outside [3, k_max_ring], or a screen
+    // or paper model without a view (set_view too).
     NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options);
     ~NodeEraser();
     NodeEraser(NodeEraser &&) noexcept;
@@ -251,10 +260,8 @@ class NodeEraser {
     // Bytes held by the eraser beside the mesh: per-node state, records, rings, free lists.
     std::size_t history_bytes() const;
 
-    struct Impl; // the state, opaque (decimate.cpp)
-
   private:
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<erase::EraserState> state_;
 };
 
 // One-off: erases nodes of `mesh` in place from `view` (null for SpModel::vertical), then removes
@@ -263,6 +270,8 @@ EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options
 
 // ---- Both methods on a DEM ---------------------------------------------------------------------
 
+// erase_dem throws Error naming the option for a share outside its range (retrieve_share and
+// greedy_cap in [0, 1], budget_share finite and >= 0).
 struct DemEraseOptions {
     // With a tolerance: the quad-tree retrieval keeps retrieve_share * tolerance, the erase the
     // rest of the budget (0: the erase starts from the full grid).
@@ -305,7 +314,7 @@ struct DemEraseStats {
 // erase would do node by node where the terrain is smooth. Only the screen model retrieves: the
 // paper model's SP is not a screen error a retrieval could share, and for the vertical model the
 // quad-tree's bounds (any subset of side midpoints) are too loose to spare the erase any work
-// (N42E001 at 1, 5 and 20 m: 0.7-1.3x the time): it starts from greedy insertion instead, where
+// (docs/decisions/019-erase-dem-first-stage.md): it starts from greedy insertion instead, where
 // that keeps few samples (DemEraseOptions::greedy_cap), and erases from there. The others erase
 // from the full grid. Returns the TIN's live nodes and faces (live_copy: the nodes and triangles
 // erase_nodes leaves, in sample order; origin = sample id).

@@ -140,12 +140,14 @@ class QuadTree {
 };
 
 struct RetrieveOptions {
-    double tol_px = 1.0; // screen-space error the output may show, pixels; 0 gives the full grid
-    bool cull = false;   // nodes wholly outside the view frustum are not split
+    // tau: the screen-space error the output may show, pixels (0: the full grid, +inf: the root's
+    // two triangles); Error when negative or NaN
+    double tolerance = 1.0;
+    bool cull = false; // nodes wholly outside the view frustum are not split
     // With the screen model's options: a node splits when its bound times the largest weight over
     // its box (k over the distance, times the peripheral factor; significance.hpp) exceeds
-    // tol_px, the weighted error the node erase bounds, which relaxes the screen bound outside the
-    // view. Null: the screen bound everywhere.
+    // tolerance, the weighted error the node erase bounds, which relaxes the screen bound outside
+    // the view. Null: the screen bound everywhere.
     const SignificanceOptions *peripheral = nullptr;
 };
 
@@ -174,7 +176,7 @@ class QuadTreeLod {
     QuadTreeLod &operator=(const QuadTreeLod &) = delete;
 
     // Retrieves the restricted quad-tree TIN of `view`: a node splits when its bound seen from the
-    // nearest point of its box exceeds options.tol_px. The result lives until the next call.
+    // nearest point of its box exceeds options.tolerance. The result lives until the next call.
     const Retrieval &retrieve(const View &view, const RetrieveOptions &options = {});
 
     const QuadLayout &layout() const;

@@ -22,6 +22,12 @@ struct Heightfield {
     double origin_x = 0.0; // CRS coordinates of sample (0, 0) (the SW sample), for reference
     double origin_y = 0.0;
     std::string crs; // description of the CRS of the local frame, e.g. "EPSG:32631 (UTM 31N)"
+    // The file's own CRS (georeferenced rasters; 0 otherwise) and where sample (c, r) stands in
+    // it: (native_x0 + c * native_dx, native_y0 + r * native_dy), degrees for a geographic CRS.
+    // The local frame above is metric; a geographic raster's samples are a lattice in degrees.
+    int native_epsg = 0;
+    bool native_geographic = false;
+    double native_x0 = 0.0, native_y0 = 0.0, native_dx = 0.0, native_dy = 0.0;
     std::vector<std::uint8_t> void_mask; // empty, or 1 where the sample was a void (now filled)
     std::int64_t voids = 0;              // void samples in the file (cropped ones included)
     std::int64_t filled = 0;             // number of voids filled from valid neighbours

@@ -3,6 +3,28 @@
 // replaced"), the refiner keeps the record of every erase and brings nodes back exactly (Hoppe's
 // view-dependent progressive meshes; De Floriani and Puppo's multi-triangulation), so each frame
 // costs what changed, with the screen-space bound checked on every frame.
+//
+// A frame, Refiner::update(view) (lib/src/refine/update.cpp), with the thresholds derived from tau
+// (RefineOptions::tolerance) and h (hysteresis): recover above tau, erase below (1 - h) tau. The
+// files named are under lib/src/refine:
+//
+//   new view: the weigher, and how far the eye moved and the axis turned since each kept view
+//   recover, top down (the recoveries a frame makes are chosen here):
+//       work = the faces whose swallowed nodes may exceed tau
+//              (the cells' and the live nodes' fan bounds clear the rest unwalked: fan_bounds.hpp)
+//       while work is not empty: f = pop(work)
+//           u = f's worst swallowed node over tau, if any          (face_check.hpp)
+//           x = ready_dependency(u): the erase u's recovery waits on that can be undone now
+//           reinsert(x); mark x and its ring dirty; push x's faces and f
+//   erase:
+//       candidates = the dirty live nodes, and those whose cost may have fallen to (1 - h) tau:
+//                    their star's deviation times its weight now (a lower bound of the cost) is
+//                    not over it; bounds carried from earlier views settle the rest unweighed
+//                    (motion_bounds.hpp)
+//       sweep_dirty(candidates, (1 - h) tau): the candidates, then the rings their erases changed
+//
+// Afterwards every swallowed node's weighted deviation is <= tau. A frame costs a few operations
+// per live node in the cells the grid cannot clear (update_grid.hpp), plus the nodes that change.
 #pragma once
 
 #include "tinlod/decimate.hpp"
@@ -18,8 +40,12 @@ namespace tinlod {
 
 class NodeSource;
 
+namespace refine {
+struct RefinerState; // the refiner's state (lib/src/refine/refiner.cpp)
+}
+
 struct RefineOptions {
-    double tol_px = 1.0;      // tau: screen-space error every frame may show, pixels
+    double tolerance = 1.0;   // tau: screen-space error every frame may show, pixels
     double hysteresis = 0.25; // erase only down to (1 - hysteresis) * tau, recover above tau, so a
                               // node near the threshold does not flicker; in [0, 1)
     SignificanceOptions significance; // SP model (screen or paper) and its parameters
@@ -32,25 +58,17 @@ struct RefineOptions {
 };
 
 struct FrameStats {
-    std::int64_t nodes = 0;       // live nodes after the update
-    std::int64_t triangles = 0;   // live triangles after the update
-    std::int64_t erased = 0;      // nodes erased by this update
-    std::int64_t recovered = 0;   // nodes recovered by this update
-    std::int64_t entered = 0;     // of those, samples there for the first time (left out by the
-                                  // first frame's retrieval)
-    std::int64_t fans_kept = 0;   // of the recovered, nodes whose large fan's faces took back what
-                                  // they knew of their samples at the erase (UpdateStats)
-    std::int64_t reerased = 0;    // nodes this update recovered and then erased again
-    std::int64_t candidates = 0;  // live nodes re-evaluated for erase
-    std::int64_t evaluations = 0; // erases tried (UpdateStats): those that fail keep their node
-    double ms_retrieve = 0.0;     // the first frame: quad-tree build and retrieval
-    double ms_weights = 0.0;      // per-node weights for the new view
-    double ms_recover = 0.0;
-    double ms_erase = 0.0;
-    double ms_total = 0.0;
+    std::int64_t nodes = 0;     // live nodes after the update
+    std::int64_t triangles = 0; // live triangles after the update
+    // What the update did. The first frame's: the initial erase and its update together (erased
+    // counts both, recovered the update's, candidates the erase's evaluations, weights_ms the
+    // eraser's construction, erase_ms the erase and the update; the other counts stay 0).
+    UpdateStats update;
+    double retrieve_ms = 0.0; // the first frame: quad-tree build and retrieval
+    double total_ms = 0.0;
     // The first frame's erase bound: max weighted deviation of every erased node (pixels inside
-    // the frustum, relaxed outside), <= tol_px. update() leaves it 0: it keeps every deviation
-    // within tol_px without measuring the largest (measure_error does, over every sample).
+    // the frustum, relaxed outside), <= tolerance. update() leaves it 0: it keeps every deviation
+    // within tolerance without measuring the largest (measure_error does, over every sample).
     double bound_px = 0.0;
 };
 
@@ -86,10 +104,8 @@ class Refiner {
     // Bytes of the whole structure: the mesh's arrays and the erase history.
     std::size_t bytes() const;
 
-    struct Impl; // the state, opaque (refine.cpp)
-
   private:
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<refine::RefinerState> state_;
 };
 
 } // namespace tinlod

@@ -1,12 +1,16 @@
-// The significance parameter SP of a TIN node (paper step 2: SP = f(OD, OA, sration)), in two
+// The significance parameter SP of a TIN node (paper step 2: SP = f(OD, OA, sration)), in three
 // models behind one interface, plus the per-node screen weight the erase bound is measured with.
+// The erase computes the SP of erasing a node (its deviation measured against the re-triangulated
+// hole) in lib/src/erase/erase_cost.cpp, evaluate() into Hole::sp; the weight's one definition
+// is the Weigher of tinlod/screen_weight.hpp. Formulas: docs/method.md.
 //
 // Terms of a node P seen from a View (all in the local world frame, metres):
 //   OD      observation distance |P - eye|
 //   OA      observation angle between the observation axis (eye -> at, which meets the surface at
 //           the focal point, see focal.hpp) and the line of sight eye -> P, radians
 //   delta   deviation of P from the surface its neighbours span once it is gone: the vertical
-//           distance (TINs) or the plane distance (general meshes) to the re-triangulated hole
+//           distance (TINs) or the distance to the nearest new triangle (general meshes) of the
+//           re-triangulated hole
 //   sration terrain projection ratio, simplified as in the paper to delta / L, L = mean distance
 //           from P to its ring neighbours (dimensionless)
 //
@@ -59,11 +63,12 @@ struct NodeTerms {
 // OA of p: angle between view.axis() and p - eye, radians.
 double observation_angle(const View &view, const glm::dvec3 &p);
 
-// peripheral(OA) of p, in [floor, 1] (1 inside the frustum).
+// peripheral(OA) of p, in [floor, 1] (1 inside the frustum): Weigher(view, options).peripheral(p).
 double peripheral_factor(const View &view, const glm::dvec3 &p, const SignificanceOptions &options);
 
 // k / OD * peripheral(OA): pixels per world unit of deviation at p; the weight by which the erase
-// bound turns a node's deviation into pixels. Infinite at the eye.
+// bound turns a node's deviation into pixels (Weigher(view, options)(p), whatever options.model).
+// Infinite at the eye.
 double screen_weight(const View &view, const glm::dvec3 &p, const SignificanceOptions &options);
 
 // SP of a node from its terms. `view` may be null only for SpModel::vertical; `focal_distance`

@@ -48,9 +48,8 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners);
 // The mesh's vertices and faces that are not marked deleted, as a compact mesh of their own, in
 // the input's order (garbage_collection instead fills the holes from the arrays' ends); the
 // origin property is kept, or set to the input's vertex index when the input has none. For a
-// mesh whose live part is small (an erased TIN), much faster than garbage_collection through
-// Debian's assertion-enabled OpenMesh (an erased N42E001 lattice, 1.44 M vertices of which 39 k
-// live: 42 ms against 130).
+// mesh whose live part is small (an erased TIN), faster than garbage_collection through Debian's
+// assertion-enabled OpenMesh (docs/decisions/021-live-copy.md).
 Mesh live_copy(const Mesh &mesh);
 
 // Sample (c, r)'s node point in grid_tin(hf): the local frame, in the mesh's floats. Every TIN

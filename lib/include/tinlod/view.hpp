@@ -20,6 +20,13 @@ struct View {
     double k() const;
     // Unit vector of the observation axis.
     glm::dvec3 axis() const;
+    // The projection frame: the axis and the screen's right and up as unit vectors (up is z, or
+    // north when the axis is vertical). The one frame of in_frustum, the screen weight, the
+    // retrieval's frustum planes; view_matrix() takes the same up.
+    struct Frame {
+        glm::dvec3 forward, right, up;
+    };
+    Frame frame() const;
     // Right-handed look-at matrix with z up (y up when the axis is vertical).
     glm::dmat4 view_matrix() const;
     // Perspective projection for the viewport aspect; near/far in world units.

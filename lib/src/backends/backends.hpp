@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -150,6 +151,15 @@ class PngFiles {
 
 // --- PROJ: any coordinate reference system of its database. ---
 
+// A transformation between two CRSs, made once (PROJ reads its database) and applied to many
+// points.
+class CrsTransformation {
+  public:
+    virtual ~CrsTransformation() = default;
+    // Transforms `points` in place; one PROJ cannot transform becomes non-finite.
+    virtual void apply(std::span<std::array<double, 2>> points) const = 0;
+};
+
 class CrsLibrary {
   public:
     virtual ~CrsLibrary() = default;
@@ -157,12 +167,11 @@ class CrsLibrary {
     // says (`geographic` or projected), or when a projected one measures in other units than
     // metres.
     virtual void check_crs(const std::string &path, int epsg, bool geographic) = 0;
-    // `points` (longitude, latitude in degrees of EPSG:`from`) in EPSG:`to`, as PROJ's
-    // proj_create_crs_to_crs transforms them (non-finite where it cannot). Throws Error(path, ...)
-    // when PROJ has no transformation.
-    virtual std::vector<std::array<double, 2>>
-    transform(const std::string &path, int from, int to,
-              const std::vector<std::array<double, 2>> &points) = 0;
+    // The transformation from EPSG:`from` to EPSG:`to` that PROJ's proj_create_crs_to_crs makes,
+    // x east / longitude first whatever the CRSs' axis order. Throws Error(path, ...) when PROJ
+    // has none.
+    virtual std::unique_ptr<CrsTransformation> transformation(const std::string &path, int from,
+                                                              int to) = 0;
 };
 
 // Each backend, made ready for use: the linked ones, or the command line's modules (loaded the

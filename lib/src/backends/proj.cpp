@@ -23,6 +23,22 @@ Object object(PJ *p) {
 
 std::string epsg_code(int epsg) { return "EPSG:" + std::to_string(epsg); }
 
+class Transformation final : public CrsTransformation {
+  public:
+    Transformation(Context ctx, Object pj) : ctx_(std::move(ctx)), pj_(std::move(pj)) {}
+    void apply(std::span<std::array<double, 2>> points) const override {
+        if (points.empty())
+            return;
+        const std::size_t stride = sizeof(points[0]);
+        proj_trans_generic(pj_.get(), PJ_FWD, &points[0][0], stride, points.size(), &points[0][1],
+                           stride, points.size(), nullptr, 0, 0, nullptr, 0, 0);
+    }
+
+  private:
+    Context ctx_; // outlives pj_: members are destroyed in reverse order
+    Object pj_;
+};
+
 class Proj final : public CrsLibrary {
   public:
     void check_crs(const std::string &path, int epsg, bool geographic) override {
@@ -51,25 +67,17 @@ class Proj final : public CrsLibrary {
                                   ", not metres: reproject the raster to a metric CRS (gdalwarp)");
     }
 
-    std::vector<std::array<double, 2>>
-    transform(const std::string &path, int from, int to,
-              const std::vector<std::array<double, 2>> &points) override {
-        const Context ctx = make_context();
+    std::unique_ptr<CrsTransformation> transformation(const std::string &path, int from,
+                                                      int to) override {
+        Context ctx = make_context();
         const std::string src = epsg_code(from), dst = epsg_code(to);
         const Object raw =
             object(proj_create_crs_to_crs(ctx.get(), src.c_str(), dst.c_str(), nullptr));
         // Longitude first, whatever the CRS's axis order.
-        const Object pj =
-            object(raw ? proj_normalize_for_visualization(ctx.get(), raw.get()) : nullptr);
+        Object pj = object(raw ? proj_normalize_for_visualization(ctx.get(), raw.get()) : nullptr);
         if (!pj)
             throw Error(path, "cannot convert " + src + " to " + dst + " (PROJ database missing?)");
-        std::vector<std::array<double, 2>> out;
-        out.reserve(points.size());
-        for (const auto &p : points) {
-            const PJ_COORD c = proj_trans(pj.get(), PJ_FWD, proj_coord(p[0], p[1], 0, 0));
-            out.push_back({c.xy.x, c.xy.y});
-        }
-        return out;
+        return std::make_unique<Transformation>(std::move(ctx), std::move(pj));
     }
 };
 

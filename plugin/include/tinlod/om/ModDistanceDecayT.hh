@@ -7,10 +7,10 @@
 // the two the collapse removes, with v0 moved onto v1). A collapse is legal only when every such
 // point stays within tolerance of those faces in screen pixels:
 //
-//   distance(point, surface) * screen_weight(point)    (k / OD * peripheral(OA), significance.hpp)
+//   distance(point, surface) * screen_weight(point)    (k / OD * peripheral(OA), screen_weight.hpp)
 //
 // so the output holds every input vertex within tolerance pixels of its surface inside the view
-// frustum, relaxed by 1 / peripheral outside it (DESIGN.md). A collapse changes the corners and
+// frustum, relaxed by 1 / peripheral outside it (docs/method.md). A collapse changes the corners and
 // the points of v0's faces alone, whose corners are v0's one-ring, the vertices DecimaterT
 // re-scores after it: no stale priority can let a later collapse break the bound.
 //
@@ -24,6 +24,7 @@
 #pragma once
 
 #include "tinlod/closest_point.hpp"
+#include "tinlod/screen_weight.hpp"
 #include "tinlod/significance.hpp"
 #include "tinlod/view.hpp"
 
@@ -52,12 +53,17 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
     void set_view(const tinlod::View &view) {
         view_ = view;
         has_view_ = true;
+        weigher_ = tinlod::Weigher(view_, options_);
     }
     // tau, pixels: a collapse that leaves a removed point farther than this is illegal.
     void set_tolerance(double px) { tolerance_ = px; }
     double tolerance() const { return tolerance_; }
     // Peripheral-factor parameters (the model is always screen).
-    void set_significance(const tinlod::SignificanceOptions &options) { options_ = options; }
+    void set_significance(const tinlod::SignificanceOptions &options) {
+        options_ = options;
+        if (has_view_)
+            weigher_ = tinlod::Weigher(view_, options_);
+    }
 
     // A fresh start: no face holds a removed point.
     void initialize() override {
@@ -135,7 +141,7 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
                 delta = std::min(delta, face_distance(p0, fh, ci.v0, p1));
         if (!std::isfinite(delta))
             delta = glm::length(p1 - p0); // every face touches v1: the move itself
-        return delta * tinlod::screen_weight(view_, p0, options_);
+        return delta * weigher_(p0);
     }
 
   private:
@@ -175,7 +181,7 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
 
     Attached sample(const typename Mesh::Point &p) const {
         const glm::dvec3 q = to_glm(p);
-        return {q, tinlod::screen_weight(view_, q, options_)};
+        return {q, weigher_(q)};
     }
 
     // Distance from p to face fh, with vertex `moved` (when valid) standing at `to`.
@@ -195,6 +201,7 @@ template <class MeshT> class ModDistanceDecayT : public OpenMesh::Decimater::Mod
     bool has_view_ = false;
     double tolerance_ = 1.0;
     tinlod::SignificanceOptions options_;
+    tinlod::Weigher weigher_; // the screen weight of view_ under options_
     std::vector<typename Mesh::FaceHandle> faces_, covering_;
     std::vector<Attached> points_, moving_;
 };

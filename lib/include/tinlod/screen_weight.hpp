@@ -1,6 +1,7 @@
-// The weight of a deviation seen from one view, k / OD * peripheral(OA), with bounds over boxes:
-// shared by the node erase (decimate.cpp) and the quad-tree retrieval when it bounds the same
-// weighted error (RetrieveOptions::peripheral).
+// The screen weight of a deviation seen from one view, k / OD * peripheral(OA) (the formula in
+// significance.hpp), with bounds over boxes: the one definition used by significance.hpp's
+// screen_weight and peripheral_factor, the node erase (lib/src/erase), the refiner and the
+// quad-tree retrieval when it bounds the same weighted error (RetrieveOptions::peripheral).
 #pragma once
 
 #include "tinlod/significance.hpp"
@@ -13,25 +14,27 @@
 
 namespace tinlod {
 
-// Pixels per unit of deviation at a point for one view: k / OD * peripheral(OA), the
-// significance.hpp screen_weight with the view's frame computed once; 1 without a view.
+// Pixels per unit of deviation at a point for one view: k / OD * peripheral(OA), with the view's
+// frame computed once; 1 without a view or in the vertical model.
 class Weigher {
   public:
     Weigher() = default;
     Weigher(const View *view, const SignificanceOptions &options) {
-        if (!view || options.model == SpModel::vertical)
-            return;
+        if (view && options.model != SpModel::vertical)
+            *this = Weigher(*view, options);
+    }
+    // The screen model's weight for this view, whatever options.model says.
+    Weigher(const View &view, const SignificanceOptions &options) {
         unit_ = false;
-        eye_ = view->eye;
-        f_ = view->axis();
-        const glm::dvec3 up = std::abs(f_.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-        r_ = glm::normalize(glm::cross(f_, up));
-        u_ = glm::cross(r_, f_);
-        k_ = view->k();
-        half_w_ = view->viewport_w / 2.0 + options.cone_margin_px;
-        half_h_ = view->viewport_h / 2.0 + options.cone_margin_px;
-        cone_ =
-            std::atan(0.5 * std::hypot(double(view->viewport_w), double(view->viewport_h)) / k_);
+        eye_ = view.eye;
+        const View::Frame frame = view.frame();
+        f_ = frame.forward;
+        r_ = frame.right;
+        u_ = frame.up;
+        k_ = view.k();
+        half_w_ = view.viewport_w / 2.0 + options.cone_margin_px;
+        half_h_ = view.viewport_h / 2.0 + options.cone_margin_px;
+        cone_ = std::atan(0.5 * std::hypot(double(view.viewport_w), double(view.viewport_h)) / k_);
         cos_cone_ = std::cos(cone_);
         sin_cone_ = std::sin(cone_);
         // The cone through the corners of the frustum widened by the margin: the factor is 1 in
@@ -50,6 +53,7 @@ class Weigher {
             sin_floored_ = std::sin(floored);
         }
     }
+    // The weight at p; infinite at the eye.
     double operator()(const glm::dvec3 &p) const {
         if (unit_)
             return 1.0;
@@ -57,16 +61,16 @@ class Weigher {
         const double od = glm::length(d);
         if (!(od > 0.0))
             return INFINITY;
-        const double depth = glm::dot(d, f_);
-        if (depth > 0.0 && std::abs(glm::dot(d, r_)) * k_ <= half_w_ * depth &&
-            std::abs(glm::dot(d, u_)) * k_ <= half_h_ * depth)
-            return k_ / od; // inside the frustum
-        if (depth >= cos_cone_ * od)
-            return k_ / od; // inside the view cone
-        if (depth < floor_cos_ * od)
-            return k_ / od * floor_; // far outside the view cone: no arc cosine
-        const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
-        return beyond <= 0.0 ? k_ / od : k_ / od * std::max(floor_, std::exp(-beyond / falloff_));
+        return k_ / od * peripheral(d, od);
+    }
+    // peripheral(OA) at p, in [floor, 1]: 1 inside the margin-widened frustum and the view cone
+    // (and at the eye).
+    double peripheral(const glm::dvec3 &p) const {
+        if (unit_)
+            return 1.0;
+        const glm::dvec3 d = p - eye_;
+        const double od = glm::length(d);
+        return od > 0.0 ? peripheral(d, od) : 1.0;
     }
     // An upper bound of the weight at p without the peripheral factor's transcendental functions:
     // k / OD (the factor is at most 1).
@@ -140,6 +144,20 @@ class Weigher {
     double falloff() const { return falloff_; } // the peripheral factor's e-folding, radians
 
   private:
+    // peripheral(OA) at eye + d, |d| = od > 0.
+    double peripheral(const glm::dvec3 &d, double od) const {
+        const double depth = glm::dot(d, f_);
+        if (depth > 0.0 && std::abs(glm::dot(d, r_)) * k_ <= half_w_ * depth &&
+            std::abs(glm::dot(d, u_)) * k_ <= half_h_ * depth)
+            return 1.0; // inside the frustum
+        if (depth >= cos_cone_ * od)
+            return 1.0; // inside the view cone
+        if (depth < floor_cos_ * od)
+            return floor_; // far outside the view cone: no arc cosine
+        const double beyond = std::acos(std::clamp(depth / od, -1.0, 1.0)) - cone_;
+        return beyond <= 0.0 ? 1.0 : std::max(floor_, std::exp(-beyond / falloff_));
+    }
+
     // in_cone for the sphere of centre eye + c (at distance dc) and the given radius.
     bool sphere_in_cone(const glm::dvec3 &c, double dc, double radius) const {
         const double rho = radius / dc;

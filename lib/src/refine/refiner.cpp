@@ -1,5 +1,6 @@
 // The refiner (refine.hpp): a NodeEraser kept alive between frames, moved view to view.
 #include "tinlod/refine.hpp"
+
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
 
@@ -7,13 +8,19 @@
 
 namespace tinlod {
 
-struct Refiner::Impl {
+namespace refine {
+
+struct RefinerState {
     std::unique_ptr<Mesh> mesh;
     RefineOptions options;
     std::unique_ptr<NodeEraser> eraser;
     const Heightfield *lattice = nullptr; // the grid a heightfield's TIN holds samples of
     FrameStats first;
 };
+
+} // namespace refine
+
+using refine::RefinerState;
 
 // `retrieval`: the mesh is the quad-tree retrieval's TIN (EraseOptions::retrieval_tin).
 static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
@@ -22,20 +29,20 @@ static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
     eo.lattice = lattice;
     eo.absent_history = true;
     eo.retrieval_tin = retrieval;
-    eo.tolerance = options.tol_px * (1.0 - options.hysteresis);
+    eo.tolerance = options.tolerance * (1.0 - options.hysteresis);
     eo.significance = options.significance;
     eo.max_valence = options.max_valence;
     eo.shallow_history = true; // a recover must not undo a whole row of erases
     return eo;
 }
 
-static void start(Refiner::Impl &s, const View &first, bool retrieval) {
-    assert(s.options.tol_px > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
+static void start(RefinerState &s, const View &first, bool retrieval) {
+    assert(s.options.tolerance > 0 && s.options.hysteresis >= 0 && s.options.hysteresis < 1);
     assert(s.options.significance.model != SpModel::vertical);
     Stopwatch clock;
     s.eraser = std::make_unique<NodeEraser>(*s.mesh, &first,
                                             erase_options(s.options, retrieval, s.lattice));
-    s.first.ms_weights = clock.ms();
+    const double weights_ms = clock.ms();
     clock.reset();
     const EraseStats e = s.eraser->erase();
     // The grid's erased edges and faces leave memory (a copy gets arrays of the compacted size),
@@ -51,16 +58,18 @@ static void start(Refiner::Impl &s, const View &first, bool retrieval) {
     // An update from the same view makes the bounds that later updates carry over (each fan's and
     // face's weighted deviation, each node's least cost), so the first move does not pay for
     // them all at once.
-    const UpdateStats warm =
-        s.eraser->update(first, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
-    s.first.ms_erase = clock.ms();
-    s.first.erased = e.erased + warm.erased;
-    s.first.recovered = warm.recovered;
-    s.first.candidates = e.evaluations;
+    const UpdateStats warm = s.eraser->update(first, s.options.tolerance,
+                                              s.options.tolerance * (1.0 - s.options.hysteresis));
+    UpdateStats &first_update = s.first.update;
+    first_update.weights_ms = weights_ms;
+    first_update.erase_ms = clock.ms();
+    first_update.erased = e.erased + warm.erased;
+    first_update.recovered = warm.recovered;
+    first_update.candidates = e.evaluations;
     s.first.nodes = s.eraser->live_nodes();
     s.first.triangles = s.eraser->live_triangles();
     s.first.bound_px = e.max_weighted;
-    s.first.ms_total = s.first.ms_retrieve + s.first.ms_weights + s.first.ms_erase;
+    s.first.total_ms = s.first.retrieve_ms + weights_ms + first_update.erase_ms;
 }
 
 // Starts from the TIN `retrieved(options)` gives, the quad-tree retrieval at the first retrieval's
@@ -68,17 +77,17 @@ static void start(Refiner::Impl &s, const View &first, bool retrieval) {
 // leaves memory before the erase), or from the full grid when the options ask for no retrieval
 // (a 0 share, or a model other than the screen one).
 template <class Retrieved>
-static void start_on_grid(Refiner::Impl &s, const Heightfield &hf, const View &first,
+static void start_on_grid(RefinerState &s, const Heightfield &hf, const View &first,
                           Retrieved retrieved) {
     const Stopwatch clock;
     const double share =
         s.options.significance.model == SpModel::screen ? s.options.retrieve_share : 0;
     if (share > 0) {
         RetrieveOptions ro;
-        ro.tol_px = share * s.options.tol_px * (1.0 - s.options.hysteresis);
+        ro.tolerance = share * s.options.tolerance * (1.0 - s.options.hysteresis);
         ro.peripheral = &s.options.significance;
         s.mesh = std::make_unique<Mesh>(retrieved(ro));
-        s.first.ms_retrieve = clock.ms();
+        s.first.retrieve_ms = clock.ms();
     } else {
         s.mesh = std::make_unique<Mesh>(grid_tin(hf));
     }
@@ -87,9 +96,9 @@ static void start_on_grid(Refiner::Impl &s, const Heightfield &hf, const View &f
 }
 
 Refiner::Refiner(const Heightfield &hf, const View &first, const RefineOptions &options)
-    : impl_(std::make_unique<Impl>()) {
-    impl_->options = options;
-    start_on_grid(*impl_, hf, first, [&](const RetrieveOptions &ro) {
+    : state_(std::make_unique<RefinerState>()) {
+    state_->options = options;
+    start_on_grid(*state_, hf, first, [&](const RetrieveOptions &ro) {
         const QuadTree tree(hf);
         return to_sparse_lattice_mesh(retrieve(tree, first, ro), hf);
     });
@@ -97,54 +106,45 @@ Refiner::Refiner(const Heightfield &hf, const View &first, const RefineOptions &
 
 Refiner::Refiner(const Heightfield &hf, std::unique_ptr<NodeSource> tree, const View &first,
                  const RefineOptions &options)
-    : impl_(std::make_unique<Impl>()) {
+    : state_(std::make_unique<RefinerState>()) {
     assert(tree->frame().width == hf.width && tree->frame().height == hf.height);
-    impl_->options = options;
-    start_on_grid(*impl_, hf, first, [&](const RetrieveOptions &ro) {
+    state_->options = options;
+    start_on_grid(*state_, hf, first, [&](const RetrieveOptions &ro) {
         QuadTreeLod lod(std::move(tree));
         return to_sparse_lattice_mesh(lod.retrieve(first, ro), hf);
     });
 }
 
 Refiner::Refiner(Mesh mesh, const View &first, const RefineOptions &options)
-    : impl_(std::make_unique<Impl>()) {
-    impl_->mesh = std::make_unique<Mesh>(std::move(mesh));
-    impl_->options = options;
-    start(*impl_, first, false);
+    : state_(std::make_unique<RefinerState>()) {
+    state_->mesh = std::make_unique<Mesh>(std::move(mesh));
+    state_->options = options;
+    start(*state_, first, false);
 }
 
 Refiner::~Refiner() = default;
 
-const FrameStats &Refiner::first_frame() const { return impl_->first; }
+const FrameStats &Refiner::first_frame() const { return state_->first; }
 
 FrameStats Refiner::update(const View &view) {
-    Impl &s = *impl_;
+    RefinerState &s = *state_;
     Stopwatch clock;
-    const UpdateStats u =
-        s.eraser->update(view, s.options.tol_px, s.options.tol_px * (1.0 - s.options.hysteresis));
+    const UpdateStats u = s.eraser->update(view, s.options.tolerance,
+                                           s.options.tolerance * (1.0 - s.options.hysteresis));
     FrameStats f;
-    f.erased = u.erased;
-    f.recovered = u.recovered;
-    f.entered = u.entered;
-    f.fans_kept = u.fans_kept;
-    f.reerased = u.reerased;
-    f.candidates = u.candidates;
-    f.evaluations = u.evaluations;
-    f.ms_weights = u.ms_weights;
-    f.ms_recover = u.ms_recover;
-    f.ms_erase = u.ms_erase;
+    f.update = u;
     f.nodes = s.eraser->live_nodes();
     f.triangles = s.eraser->live_triangles();
-    f.ms_total = clock.ms();
+    f.total_ms = clock.ms();
     return f;
 }
 
-const Mesh &Refiner::mesh() const { return *impl_->mesh; }
+const Mesh &Refiner::mesh() const { return *state_->mesh; }
 
-bool Refiner::is_erased(Mesh::VertexHandle v) const { return impl_->eraser->is_erased(v); }
+bool Refiner::is_erased(Mesh::VertexHandle v) const { return state_->eraser->is_erased(v); }
 
 std::size_t Refiner::bytes() const {
-    const Mesh &m = *impl_->mesh;
+    const Mesh &m = *state_->mesh;
     // OpenMesh's arrays, each entry as large as the mesh's types make it (a malloc count of the
     // mesh's copy agrees): per vertex a point, its item (an outgoing halfedge), a status word (4
     // bytes, not 1), the traits' data (an empty struct, still a byte) and the origin property if
@@ -165,7 +165,7 @@ std::size_t Refiner::bytes() const {
         m.property(m.vertex_status_pph()).data_vector().capacity() * per_vertex +
         m.property(m.edge_status_pph()).data_vector().capacity() * per_edge +
         m.property(m.face_status_pph()).data_vector().capacity() * per_face;
-    return mesh_bytes + impl_->eraser->history_bytes();
+    return mesh_bytes + state_->eraser->history_bytes();
 }
 
 } // namespace tinlod

@@ -1,0 +1,144 @@
+// `tinlod tiles DEM... -o DIR [--min-zoom Z] [--max-zoom Z] [--normals] [--fill-height H]
+// [--stats J]`: a Cesium quantized-mesh-1.0 tile pyramid (lib/src/tiles, docs/tiles.md).
+#include "commands.hpp"
+#include "outputs.hpp"
+
+#include "tinlod/error.hpp"
+#include "tinlod/json_io.hpp"
+#include "tinlod/tiles.hpp"
+#include "tinlod/util.hpp"
+
+#include <cstdio>
+#include <memory>
+
+namespace tinlod::cli {
+
+static Register tiles("tiles", 75, [](CLI::App &cmd) {
+    cmd.description(
+        "Write a Cesium quantized-mesh-1.0 terrain tile pyramid (geographic TMS, gzip, "
+        "layer.json): each tile within CesiumJS's geometric error for its level at every DEM "
+        "sample, and neighbours sharing their edges vertex for vertex");
+    struct Args {
+        std::vector<std::string> inputs;
+        std::string output, stats;
+        int min_zoom = 0, max_zoom = 0;
+        double fill_height = 0.0;
+        bool normals = false;
+        RasterOptions raster;
+    };
+    auto args = std::make_shared<Args>();
+    cmd.add_option("DEM", args->inputs,
+                   "georeferenced DEM files, one coverage (adjacent SRTM tiles, say); any CRS")
+        ->required();
+    cmd.add_option("-o,--output", args->output, "folder of the tile set (created when missing)")
+        ->required();
+    cmd.add_option("--stats", args->stats, "write statistics as JSON");
+    auto *min_zoom = cmd.add_option("--min-zoom", args->min_zoom, "first level written")
+                         ->check(whole_in(0, k_max_tile_level))
+                         ->capture_default_str();
+    auto *max_zoom =
+        cmd.add_option("--max-zoom", args->max_zoom,
+                       "last level written (default: the first whose tiles are at most 64 DEM "
+                       "spacings across, the DEM's resolution for CesiumJS's error estimate)")
+            ->check(whole_in(0, k_max_tile_level));
+    cmd.add_option("--fill-height", args->fill_height,
+                   "height outside the DEMs in partly covered tiles, metres above the ellipsoid")
+        ->check(real_in(-12000.0, 12000.0))
+        ->capture_default_str();
+    cmd.add_flag("--normals", args->normals,
+                 "add the oct-encoded vertex normals extension (normals of the DEM)");
+    args->raster.add(cmd);
+    declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}},
+                    "The tile set is staged inside DIR and its levels moved in at the end: a "
+                    "failed run leaves DIR as it was. Serve the .terrain files with "
+                    "`Content-Encoding: gzip` (docs/tiles.md).");
+    return [args, min_zoom, max_zoom] {
+        (void)min_zoom;
+        if (max_zoom->count() > 0 && args->min_zoom > args->max_zoom)
+            throw UsageError("--min-zoom", "is past --max-zoom");
+        for (const std::string &path : args->inputs)
+            if (is_store_path(path))
+                throw UsageError(path, "is a store: tiles need the DEM file, georeferenced");
+        check_writable_folder(args->output);
+        check_writable({args->stats});
+        StageTimes times;
+        const GeoLattice lattice = load_coverage(args->inputs, args->raster.load_options());
+        times.lap("load");
+        const int finest = finest_zoom(lattice);
+        const int last = max_zoom->count() > 0 ? args->max_zoom : default_max_zoom(lattice);
+        if (last > finest)
+            throw UsageError("--max-zoom", "level " + std::to_string(last) +
+                                               " has tiles narrower than 4 DEM spacings: the "
+                                               "DEMs reach level " +
+                                               std::to_string(finest));
+        if (args->min_zoom > last)
+            throw UsageError("--min-zoom", "is past the last level, " + std::to_string(last));
+        PyramidOptions po;
+        po.min_zoom = args->min_zoom;
+        po.max_zoom = last;
+        po.tile.fill_height = args->fill_height;
+        po.tile.normals = args->normals;
+        po.threads = max_threads();
+        std::unique_ptr<Progress> bar;
+        po.progress = [&bar](std::int64_t done, std::int64_t total) {
+            if (!bar)
+                bar = std::make_unique<Progress>("tiles", total);
+            bar->update(done);
+        };
+        const PyramidStats ps = write_pyramid(lattice, args->output, po);
+        if (bar)
+            bar->finish();
+        times.lap("tiles");
+
+        std::int64_t tiles = 0, triangles = 0, vertices = 0, bytes = 0;
+        double worst = 0.0, max_vertical = 0.0;
+        nlohmann::json levels = nlohmann::json::array();
+        for (const LevelStats &l : ps.levels) {
+            tiles += l.tiles, triangles += l.triangles, vertices += l.vertices, bytes += l.bytes;
+            worst = std::max(worst, l.worst_ratio);
+            max_vertical = std::max(max_vertical, l.max_error);
+            levels.push_back({{"z", l.z},
+                              {"tiles", l.tiles},
+                              {"triangles", l.triangles},
+                              {"vertices", l.vertices},
+                              {"bytes", l.bytes},
+                              {"bound_m", l.bound},
+                              {"max_error_m", l.max_error},
+                              {"worst_ratio", l.worst_ratio},
+                              {"rebuilt", l.rebuilt}});
+        }
+        if (!args->stats.empty())
+            write_json(args->stats,
+                       {{"input",
+                         {{"files", args->inputs},
+                          {"nodes", std::int64_t(lattice.width) * lattice.height},
+                          {"triangles", 2 * std::int64_t(lattice.width - 1) * (lattice.height - 1)},
+                          {"covered", lattice.covered},
+                          {"resampled", lattice.resampled},
+                          {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
+                        {"output",
+                         {{"dir", args->output},
+                          {"tiles", tiles},
+                          {"nodes", vertices},
+                          {"triangles", triangles},
+                          {"bytes", bytes},
+                          {"min_zoom", args->min_zoom},
+                          {"max_zoom", last}}},
+                        {"levels", levels},
+                        {"error",
+                         {{"worst_ratio", worst},
+                          {"max_vertical", max_vertical},
+                          {"max_screen_px", nullptr}}},
+                        {"time_ms", times.json()},
+                        {"tiles_per_s", double(tiles) / (ps.ms / 1000.0)},
+                        {"threads", max_threads()},
+                        {"peak_rss_mb", peak_rss_mb()}});
+        std::printf("%s: %lld tiles on levels %d to %d, %lld triangles, %.1f MB in %s; worst "
+                    "error %.3g of the level's bound\n",
+                    args->output.c_str(), static_cast<long long>(tiles), args->min_zoom, last,
+                    static_cast<long long>(triangles), double(bytes) / 1e6, times.summary().c_str(),
+                    worst);
+    };
+});
+
+} // namespace tinlod::cli

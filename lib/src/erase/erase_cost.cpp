@@ -1,0 +1,315 @@
+// The SP of an erase (erase_cost.hpp).
+#include "erase/erase_cost.hpp"
+
+#include "erase/lattice_scan.hpp"
+#include "tinlod/significance.hpp"
+
+#include <algorithm>
+
+namespace tinlod::erase {
+
+void new_weights(EraserState &s, bool keep) {
+    s.unit_weights = !s.has_view || s.options.significance.model == SpModel::vertical;
+    if (s.unit_weights || !keep) {
+        std::vector<float>().swap(s.weight);
+        return;
+    }
+    s.weight.resize(s.nodes);
+    for (std::uint32_t x = 0; x < s.nodes; ++x)
+        s.weight[x] = float_up(s.weigher(to_glm(node_point(s, x))));
+}
+
+void classify_nodes(EraserState &s) {
+    const Mesh &m = *s.mesh;
+    s.flags.resize(s.nodes);
+    for (std::uint8_t &f : s.flags)
+        f &= k_unread;
+    if (s.node_keys)
+        for (LiveNode &l : s.live_list)
+            l.stamp = 0;
+    else
+        s.stamp.assign(s.nodes, 0);
+    s.pass = 0;
+    for (auto v : m.vertices()) {
+        const HH he = m.halfedge_handle(v);
+        if (!he.is_valid() || (m.is_boundary(he) && (!s.xy || !s.options.erase_boundary)))
+            s.flags[node_of(s, v)] |= k_locked;
+    }
+    for (std::size_t x = 0; x < s.record_of.size(); ++x)
+        if (s.record_of[x] == k_absent)
+            s.flags[x] |= k_locked;
+    s.weigher = Weigher(s.has_view ? &s.view : nullptr, s.options.significance);
+    new_weights(s, true);
+}
+
+bool raise_pending(const EraserState &s, Hole &h, double limit) {
+    std::vector<Hole::Pending> &p = h.pending;
+    for (Hole::Pending &q : p)
+        if (q.upper > limit) {
+            q.weighted = weighted(s, q.node, q.dev);
+            if (q.weighted > limit) {
+                h.sp = q.weighted;
+                h.star = q.node;
+                h.star_dev = q.dev;
+                p.clear();
+                return false;
+            }
+        }
+    std::vector<std::uint32_t> &order = h.pending_order;
+    order.resize(p.size());
+    for (std::uint32_t i = 0; i < std::uint32_t(p.size()); ++i)
+        order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return p[a].upper > p[b].upper; });
+    double best = h.sp;
+    std::int64_t best_at = -1; // -1: the SP before the band
+    for (const std::uint32_t i : order) {
+        Hole::Pending &q = p[i];
+        if (q.upper < best)
+            break; // nor any after it: its weighted deviation is at most its bound
+        if (q.weighted < 0.0)
+            q.weighted = weighted(s, q.node, q.dev);
+        if (q.weighted > best || (q.weighted == best && best_at > std::int64_t(i))) {
+            best = q.weighted;
+            best_at = i;
+        }
+    }
+    if (best_at >= 0) {
+        h.sp = best;
+        h.star = p[std::size_t(best_at)].node;
+        h.star_dev = p[std::size_t(best_at)].dev;
+    }
+    p.clear();
+    return true;
+}
+
+// evaluate's walk over the nodes a grid TIN's hole swallows (v at pv among them): each new
+// triangle's samples, with their largest deviation and worst sample kept for retriangulate. A
+// sample whose deviation times the largest weight in its band's box (within the old fan's largest
+// deviation of its corners' heights) could raise the SP waits for the band's end
+// (raise_pending), which weighs few of them: raised one by one in scan order, each raise made the
+// next sample's weight look worth computing. A sample whose bound exceeds `limit` settles the
+// band's samples so far at once, so a failing evaluation stops where it did
+// (docs/decisions/011-deferred-weighing.md). Stops once the SP exceeds `limit`; sets h.deferred
+// instead when the hole holds more than `max_swallowed` samples.
+static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, double limit,
+                      std::size_t max_swallowed) {
+    if (std::size_t(lattice_inside(s, h)) > max_swallowed) {
+        h.deferred = true;
+        return;
+    }
+    const Mesh &m = *s.mesh;
+    float fan_dev = 0.0f;
+    double zlo = pv.z, zhi = pv.z;
+    for (int i = 0; i < h.n; ++i) {
+        zlo = std::min(zlo, h.p[i].z);
+        zhi = std::max(zhi, h.p[i].z);
+        const FH f = m.face_handle(h.h[i]);
+        if (f.is_valid())
+            fan_dev = std::max(fan_dev, s.face_maxdev[f.idx()]);
+    }
+    const double dz = 1.001 * double(fan_dev);
+    const auto band = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
+        return s.unit_weights ? 1.0
+                              : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
+    };
+    for (int t = 0; t < h.ntri; ++t) {
+        const PlaneDev deviation(h.frame[t], h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
+        double maxdev = 0.0;
+        std::int32_t worst = -1;
+        const bool whole = scan_lattice(
+            s, node_of(s, h.r[h.tri[t].a]), node_of(s, h.r[h.tri[t].b]),
+            node_of(s, h.r[h.tri[t].c]), band,
+            [&](std::uint32_t u, const Mesh::Point &p, double bound) {
+                const double dev = deviation(p);
+                if (dev > maxdev) {
+                    maxdev = dev;
+                    worst = std::int32_t(u);
+                }
+                const double upper = dev * bound;
+                if (!(upper > h.sp))
+                    return true;
+                h.pending.push_back({u, dev, upper, -1.0});
+                return !(upper > limit) || raise_pending(s, h, limit);
+            },
+            [&] { return raise_pending(s, h, limit); });
+        h.tri_maxdev[t] = float_up(maxdev);
+        h.tri_worst[t] = worst;
+        if (!whole)
+            return;
+    }
+}
+
+bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
+    ++s.evaluations;
+    Hole &h = s.hole;
+    h.deferred = false;
+    const Mesh &m = *s.mesh;
+    if (!gather_ring(m, v, h, s.options.max_valence))
+        return false;
+    const int n = h.n;
+    const glm::dvec3 pv = to_glm(m.point(v));
+    for (int i = 0; i < n; ++i)
+        h.p[i] = to_glm(m.point(h.r[i]));
+    const int fans = h.boundary ? n - 1 : n;
+    if (s.xy) {
+        h.origin = glm::dvec3(0.0);
+        h.ex = {1, 0, 0};
+        h.ey = {0, 1, 0};
+        for (int i = 0; i < n; ++i)
+            h.q[i] = {h.p[i].x, h.p[i].y};
+        if (h.boundary) {
+            const glm::dvec2 c(pv.x, pv.y);
+            if (orient(h.q[0], c, h.q[n - 1]) != 0.0 || glm::dot(h.q[0] - c, h.q[n - 1] - c) >= 0.0)
+                return false; // erasing it would move the outline
+        }
+    } else {
+        glm::dvec3 normal(0.0);
+        for (int i = 0; i < fans; ++i)
+            normal += glm::cross(h.p[i] - pv, h.p[(i + 1) % n] - pv);
+        const double len = glm::length(normal);
+        if (!(len > 0.0))
+            return false;
+        const glm::dvec3 ez = normal / len;
+        const glm::dvec3 helper = std::abs(ez.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        h.origin = pv;
+        h.ex = glm::normalize(glm::cross(helper, ez));
+        h.ey = glm::cross(ez, h.ex);
+        for (int i = 0; i < n; ++i)
+            h.q[i] = project(h, h.p[i]);
+        for (int i = 0; i < fans; ++i)
+            if (orient(glm::dvec2(0.0), h.q[i], h.q[(i + 1) % n]) <= 0.0)
+                return false; // the fan is not star-shaped in its mean plane
+    }
+    h.ntri = clip_ears(h.q.data(), n, h.tri.data());
+    if (h.ntri != n - 2)
+        return false;
+    frame_triangles(h, s.xy);
+    if (!s.xy)
+        for (int t = 0; t < h.ntri; ++t) {
+            const std::uint8_t c[3] = {h.tri[t].a, h.tri[t].b, h.tri[t].c};
+            for (int k = 0; k < 3; ++k) {
+                const int a = c[k], b = c[(k + 1) % 3];
+                if (b == (a + 1) % n)
+                    continue; // a ring edge
+                if (find_halfedge(m, h.r[a], h.r[b]).is_valid())
+                    return false; // the diagonal exists outside the hole: non-manifold
+            }
+        }
+    s.assign.clear();
+    double dev = 0.0;
+    const std::uint8_t own = locate(h, s.xy, pv, dev);
+    const std::uint32_t x = node_of(s, v);
+    s.assign.push_back({x, own, float(dev)});
+    h.delta = dev;
+    h.sp = weighted(s, x, dev);
+    h.star = x;
+    h.star_dev = dev;
+    auto raise = [&](std::uint32_t node, double d) {
+        const double w = weighted(s, node, d);
+        if (w > h.sp) {
+            h.sp = w;
+            h.star = node;
+            h.star_dev = d;
+        }
+    };
+    // The SP so far is a lower bound of the erase's SP under any view: remembered for update().
+    auto remember = [&] {
+        LiveNode &l = live_node(s, x);
+        l.star = h.star;
+        l.star_dev = float_down(h.star_dev);
+        Cell &cell = s.grid.cells[l.cell];
+        cell.star_dev = std::min(cell.star_dev, l.star_dev);
+        return true;
+    };
+    if (s.xy) {
+        // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
+        // triangle next to it must not read more than the bound there either. Each ring node is
+        // weighed once, for its steepest triangle, and only when k / OD says that could matter (the
+        // margins are a few ulp; docs/decisions/011-deferred-weighing.md).
+        std::array<double, k_max_ring> steepest;
+        std::fill_n(steepest.begin(), n, 0.0);
+        for (int t = 0; t < h.ntri; ++t)
+            for (const std::uint8_t k : {h.tri[t].a, h.tri[t].b, h.tri[t].c})
+                steepest[k] = std::max(steepest[k], h.frame[t].slope);
+        for (int i = 0; i < n; ++i) {
+            const double margin =
+                rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);
+            if (margin * s.weigher.upper(h.p[i]) * k_rounded_weight > h.sp)
+                raise(node_of(s, h.r[i]), margin);
+        }
+    }
+    // The node whose deviation gave this node's last SP is tried first: when it still lies under
+    // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
+    // deviation settles most evaluations that fail without walking the fan.
+    const std::uint32_t last_star = live_node(s, x).star;
+    if (s.xy && h.sp <= limit && last_star != x && s.record_of[last_star] >= k_absent) {
+        bool inside = false;
+        locate(h, s.xy, to_glm(node_point(s, last_star)), dev, &inside);
+        if (inside) {
+            raise(last_star, dev);
+            if (h.sp > limit)
+                return remember();
+        }
+    }
+    // Then each fan face's worst node (its list's head, see push_swallowed): one of them is most
+    // often what breaks the limit, found before any list is walked.
+    for (int i = 0; i < fans && h.sp <= limit; ++i) {
+        const std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()];
+        if (u >= 0 && std::uint32_t(u) != last_star) {
+            locate(h, s.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
+            raise(std::uint32_t(u), dev);
+        }
+    }
+    if (h.sp > limit)
+        return remember();
+    // A scan that finds the SP over the limit goes on to k_scan_reach times the limit. Stopped
+    // at the first sample over it, the scan left an SP (the node's key and lower bound) barely
+    // over the limit, which the next frame's motion took back below it: the node turned candidate
+    // frame after frame as the eye drew away, each time scanning its hole again.
+    if (s.grid_w > 0) {
+        scan_hole(s, h, pv, k_scan_reach * limit, max_swallowed);
+        return remember();
+    }
+    for (int i = 0; i < fans && h.sp <= limit; ++i) {
+        const FH f = m.face_handle(h.h[i]);
+        // A node's weight is looked up only when its deviation times the largest weight where the
+        // face's swallowed nodes lie (its corners' box, within their largest deviation in z) could
+        // raise the SP: each update asks for fresh weights.
+        const double weight_bound =
+            s.xy && !s.unit_weights && s.face_head[f.idx()] >= 0
+                ? swallowed_weight_bound(s, pv, h.p[i], h.p[(i + 1) % n], s.face_maxdev[f.idx()])
+                : INFINITY;
+        for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u]) {
+            if (s.assign.size() > max_swallowed) {
+                h.deferred = true;
+                return remember();
+            }
+            const std::uint8_t t = locate(h, s.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
+            s.assign.push_back({std::uint32_t(u), t, float(dev)});
+            if (!(dev * weight_bound > h.sp))
+                continue;
+            raise(std::uint32_t(u), dev);
+            if (h.sp > limit)
+                break; // over the bound: the exact excess does not matter
+        }
+    }
+    return remember();
+}
+
+float key_of(const EraserState &s, const Hole &h) {
+    if (s.options.significance.model != SpModel::paper || !s.has_view)
+        return float(h.sp);
+    const glm::dvec3 p = to_glm(s.mesh->point(h.v));
+    NodeTerms terms;
+    terms.od = glm::length(p - s.view.eye);
+    terms.oa = observation_angle(s.view, p);
+    terms.delta = h.delta;
+    double ring_length = 0.0;
+    for (int i = 0; i < h.n; ++i)
+        ring_length += glm::length(h.p[i] - p);
+    terms.ration = ring_length > 0.0 ? h.delta * h.n / ring_length : 0.0;
+    return float(significance(terms, &s.view, s.options.significance, s.focal_distance));
+}
+
+} // namespace tinlod::erase

@@ -1,0 +1,374 @@
+// The NodeEraser facade (decimate.hpp): the constructor that reads the input, the view, erase(),
+// measure() and erase_cost(), and the one-off erase_nodes().
+#include "tinlod/decimate.hpp"
+
+#include "erase/edits.hpp"
+#include "erase/erase_cost.hpp"
+#include "erase/history.hpp"
+#include "erase/lattice_scan.hpp"
+#include "erase/state.hpp"
+#include "erase/swallowed.hpp"
+#include "erase/sweep.hpp"
+#include "refine/update_grid.hpp"
+#include "tinlod/error.hpp"
+#include "tinlod/focal.hpp"
+#include "tinlod/util.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace tinlod {
+
+using namespace erase;
+using refine::regrid;
+
+namespace {
+
+// The vertices marked deleted (samples a grid TIN left out); throws for one that still has edges.
+std::int64_t deleted_vertices(const Mesh &m) {
+    std::int64_t deleted = 0;
+    for (auto v : m.all_vertices())
+        if (m.status(v).deleted()) {
+            if (m.halfedge_handle(v).is_valid())
+                throw std::invalid_argument("NodeEraser: a deleted vertex still has edges");
+            ++deleted;
+        }
+    return deleted;
+}
+
+// Node ids: the mesh's vertices, or a sparse lattice's samples (EraseOptions::lattice), whose
+// columns' x and rows' y it reads, checking that each vertex is the sample its origin property
+// names. Returns each sample's vertex (-1: none; empty without a lattice) and sets `absent` to
+// the samples without one.
+std::vector<std::int32_t> bind_nodes(EraserState &s, const Heightfield *lattice,
+                                     std::int64_t &absent) {
+    s.nodes = std::uint32_t(s.mesh->n_vertices());
+    std::vector<std::int32_t> vertex_of;
+    if (!lattice)
+        return vertex_of;
+    const Heightfield &hf = *lattice;
+    if (absent > 0)
+        throw std::invalid_argument("NodeEraser: a sparse lattice TIN with deleted vertices");
+    s.origin = find_origin_property(*s.mesh);
+    if (!s.origin.is_valid())
+        throw std::invalid_argument("NodeEraser: a sparse lattice TIN without its samples");
+    s.lattice = &hf;
+    s.nodes = std::uint32_t(hf.size());
+    s.inverse_width = 1.0 / double(hf.width);
+    s.lattice_x.resize(std::size_t(hf.width));
+    s.lattice_y.resize(std::size_t(hf.height));
+    for (int c = 0; c < hf.width; ++c)
+        s.lattice_x[std::size_t(c)] = grid_point(hf, c, 0)[0];
+    for (int r = 0; r < hf.height; ++r)
+        s.lattice_y[std::size_t(r)] = grid_point(hf, 0, r)[1];
+    vertex_of.assign(s.nodes, -1);
+    s.sample_of.resize(s.mesh->n_vertices());
+    for (auto v : s.mesh->vertices()) {
+        const std::int64_t x = s.mesh->property(s.origin, v);
+        if (x < 0 || x >= hf.size() || vertex_of[std::size_t(x)] >= 0 ||
+            s.mesh->point(v) != node_point(s, std::uint32_t(x)))
+            throw std::invalid_argument("NodeEraser: a sparse lattice TIN's vertex is not "
+                                        "its sample");
+        vertex_of[std::size_t(x)] = v.idx();
+        s.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
+    }
+    absent = std::int64_t(s.nodes) - std::int64_t(s.mesh->n_vertices());
+    return vertex_of;
+}
+
+// The projection plane (xy for a TIN: every face counter-clockwise seen from above, or as the
+// options say) and whether the mesh is a grid TIN, whose faces' swallowed nodes are scanned from
+// the lattice (grid_width).
+void choose_projection(EraserState &s, Projection projection, std::int64_t absent) {
+    bool all_ccw = true;
+    for (auto f : s.mesh->faces()) {
+        auto he = s.mesh->halfedge_handle(f);
+        const auto &a = s.mesh->point(s.mesh->from_vertex_handle(he));
+        const auto &b = s.mesh->point(s.mesh->to_vertex_handle(he));
+        const auto &c = s.mesh->point(s.mesh->to_vertex_handle(s.mesh->next_halfedge_handle(he)));
+        if (orient({a[0], a[1]}, {b[0], b[1]}, {c[0], c[1]}) <= 0.0) {
+            all_ccw = false;
+            break;
+        }
+    }
+    s.xy = projection == Projection::xy || (projection == Projection::automatic && all_ccw);
+    s.grid_w = !s.xy ? 0 : s.lattice ? std::uint32_t(s.lattice->width) : grid_width(*s.mesh);
+    if (s.lattice && s.grid_w == 0)
+        throw std::invalid_argument("NodeEraser: a sparse lattice TIN is not counter-clockwise");
+    if (absent > 0 && s.grid_w == 0)
+        throw std::invalid_argument(
+            "NodeEraser: deleted vertices in a mesh that is not a grid TIN");
+}
+
+// The per-face and per-node arrays: the face index (empty lists), the records, the live list.
+void allocate(EraserState &s) {
+    if (s.grid_w == 0) {
+        s.next_swallowed.assign(s.nodes, -1);
+        s.swallowed_by.assign(s.nodes, -1);
+    }
+    s.face_head.assign(s.mesh->n_faces(), -1);
+    s.face_blocked.assign(s.mesh->n_faces(), 0);
+    s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
+    s.seen.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
+    s.seen.face_seen.assign(s.mesh->n_faces(), 0);
+    s.record_of.resize(s.nodes);
+    s.live_list.reserve(std::size_t(s.live));
+}
+
+// The update's grid, over the input's extent, sized for its live nodes.
+void place_grid(EraserState &s) {
+    glm::dvec2 lo(INFINITY), hi(-INFINITY);
+    for (auto v : s.mesh->vertices()) {
+        const glm::dvec3 p = to_glm(s.mesh->point(v));
+        lo = glm::min(lo, glm::dvec2(p));
+        hi = glm::max(hi, glm::dvec2(p));
+    }
+    if (s.nodes > 0) {
+        const glm::dvec2 extent = hi - lo;
+        s.area_per_node = extent.x * extent.y / double(s.nodes);
+        s.grid.grid_lo = lo;
+        s.grid.grid_hi = hi;
+    }
+    regrid(s);
+}
+
+// Every node with a live vertex enters the live set; the others are absent (k_absent). Takes
+// bind_nodes' vertex_of, freed on return (before the absent samples' rings are made).
+void build_live_set(EraserState &s, std::vector<std::int32_t> vertex_of) {
+    for (std::uint32_t x = 0; x < s.nodes; ++x) {
+        const VH v = s.lattice ? VH(vertex_of[x]) : VH(int(x));
+        if (!v.is_valid() || s.mesh->status(v).deleted())
+            s.record_of[x] = k_absent;
+        else
+            add_live(s, x, -1, v);
+    }
+}
+
+// The option values a user can reach, checked in Release too (an assert is compiled out): each
+// Error names the option at fault.
+void check_options(const View *view, const EraseOptions &options) {
+    if (!(options.tolerance >= 0.0))
+        throw Error("EraseOptions::tolerance",
+                    "must be 0 or more (or +inf), not " + std::to_string(options.tolerance));
+    if (options.max_nodes < 0)
+        throw Error("EraseOptions::max_nodes",
+                    "must be 0 (no budget) or more, not " + std::to_string(options.max_nodes));
+    if (options.max_valence < 3 || options.max_valence > k_max_ring)
+        throw Error("EraseOptions::max_valence", "must be in [3, " + std::to_string(k_max_ring) +
+                                                     "], not " +
+                                                     std::to_string(options.max_valence));
+    if (!view && options.significance.model != SpModel::vertical)
+        throw Error("EraseOptions::significance",
+                    "the screen and paper models need a view (only the vertical model has none)");
+}
+
+} // namespace
+
+NodeEraser::NodeEraser(Mesh &mesh, const View *view, const EraseOptions &options)
+    : state_(std::make_unique<erase::EraserState>()) {
+    check_options(view, options);
+    EraserState &s = *state_;
+    s.mesh = &mesh;
+    assert(s.mesh->is_trimesh());
+    std::int64_t absent = deleted_vertices(*s.mesh);
+    std::vector<std::int32_t> vertex_of = bind_nodes(s, options.lattice, absent);
+    s.live = std::int64_t(s.nodes) - absent;
+    s.live_faces = std::int64_t(s.mesh->n_faces());
+    choose_projection(s, options.projection, absent);
+    allocate(s);
+    place_grid(s);
+    build_live_set(s, std::move(vertex_of));
+    s.absent_for_good = absent > 0 && !options.absent_history;
+    if (absent > 0 && options.absent_history)
+        record_absent_samples(s, options.retrieval_tin);
+    if (absent > 0)
+        swallow_absent(s);
+    set_view(view, options);
+}
+
+NodeEraser::~NodeEraser() = default;
+NodeEraser::NodeEraser(NodeEraser &&) noexcept = default;
+NodeEraser &NodeEraser::operator=(NodeEraser &&) noexcept = default;
+
+void NodeEraser::set_view(const View *view, const EraseOptions &options) {
+    check_options(view, options);
+    EraserState &s = *state_;
+    s.options = options;
+    s.has_view = view != nullptr;
+    std::fill(s.seen.face_seen_dev.begin(), s.seen.face_seen_dev.end(),
+              -1.0f); // the model may change
+    forget_nodes(s);
+    if (view) {
+        s.view = *view;
+        if (options.significance.model == SpModel::paper)
+            s.focal_distance = std::max(focal_point(*s.mesh, *view).distance, 1e-9);
+    }
+    classify_nodes(s);
+}
+
+namespace {
+
+// Back to the per-vertex stamps (and keys, which the erase resets) from the live nodes, where
+// compact() moved them.
+void per_vertex_keys(EraserState &s) {
+    if (!s.node_keys)
+        return;
+    s.stamp.assign(s.nodes, 0);
+    for (const LiveNode &l : s.live_list)
+        s.stamp[l.node] = l.stamp;
+    s.node_keys = false;
+}
+
+// The sweep (sweep.hpp) where the key is the cost (not the paper model) and a bound or a budget
+// stops it, else the queue: rank every node, then pop the least.
+std::int64_t erase_by_model(EraserState &s) {
+    if (s.options.significance.model != SpModel::paper &&
+        (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance)))
+        return sweep_erase(s);
+    rank_nodes(s);
+    return erase_loop(s);
+}
+
+} // namespace
+
+EraseStats NodeEraser::erase() {
+    EraserState &s = *state_;
+    s.fans_stale = true;
+    Stopwatch clock;
+    EraseStats stats;
+    stats.input_nodes = s.live;
+    stats.input_triangles = s.live_faces;
+    const std::int64_t evaluations = s.evaluations;
+    per_vertex_keys(s);
+    stats.erased = erase_by_model(s);
+    if (s.live_list.capacity() > 2 * s.live_list.size())
+        s.live_list.shrink_to_fit(); // an update keeps the live nodes only
+    forget_nodes(s);
+    const EraseStats now = measure();
+    stats.output_nodes = s.live;
+    stats.output_triangles = s.live_faces;
+    stats.evaluations = s.evaluations - evaluations;
+    stats.max_weighted = now.max_weighted;
+    stats.max_screen_px = now.max_screen_px;
+    stats.max_vertical = now.max_vertical;
+    stats.erase_ms = clock.ms();
+    return stats;
+}
+
+const Mesh &NodeEraser::mesh() const { return *state_->mesh; }
+std::int64_t NodeEraser::live_nodes() const { return state_->live; }
+std::int64_t NodeEraser::live_triangles() const { return state_->live_faces; }
+
+NodeEraser::Cost NodeEraser::erase_cost(Mesh::VertexHandle v) {
+    EraserState &s = *state_;
+    const std::uint32_t x = node_of(s, v);
+    if (s.record_of[x] >= 0)
+        throw std::invalid_argument("NodeEraser::erase_cost: the node is erased");
+    Cost out;
+    if (s.xy && s.area_per_node > 0.0)
+        out.covered = covered_estimate(s, x);
+    if (s.flags[x] & k_locked)
+        return out;
+    const std::int64_t evaluations = s.evaluations;
+    if (evaluate(s, v, INFINITY)) {
+        out.cost = s.hole.sp;
+        if (s.grid_w > 0)
+            out.covered = std::max(out.covered, double(lattice_inside(s, s.hole)));
+    }
+    s.evaluations = evaluations;
+    return out;
+}
+
+EraseStats NodeEraser::measure() const {
+    const EraserState &s = *state_;
+    const Mesh &m = *s.mesh;
+    EraseStats stats;
+    stats.output_nodes = s.live;
+    stats.output_triangles = s.live_faces;
+    const double k = s.has_view ? s.view.k() : 0.0;
+    // Each TIN face's bounds on what its swallowed nodes can show: its largest deviation, alone,
+    // times the largest weight in its box and times k over the box's distance (a surface mesh's
+    // faces get no bounds: each is scanned). Faces go from the largest weighted bound down, and a
+    // face whose three bounds cannot raise the maxima found so far is not scanned (the erase
+    // leaves most faces near the bound, so the first few settle the maxima).
+    struct Bounded {
+        double weighted, screen, vertical;
+        FH f;
+    };
+    std::vector<Bounded> faces;
+    faces.reserve(std::size_t(s.live_faces));
+    for (auto f : m.faces()) {
+        if (s.face_head[f.idx()] < 0 || m.status(f).deleted())
+            continue;
+        const HH he = m.halfedge_handle(f);
+        const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he))),
+                         b = to_glm(m.point(m.to_vertex_handle(he))),
+                         c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
+        const double dev = 1.001 * double(s.face_maxdev[f.idx()]);
+        const auto [lo, hi] = swallowed_box(s, f, a, b, c);
+        const double near = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
+        faces.push_back({s.xy ? dev * s.weigher.bound(lo, hi) * k_rounded_weight : INFINITY,
+                         s.xy && s.has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY, f});
+    }
+    std::sort(faces.begin(), faces.end(),
+              [](const Bounded &x, const Bounded &y) { return x.weighted > y.weighted; });
+    for (const Bounded &bounded : faces) {
+        if (!(bounded.weighted > stats.max_weighted) && !(bounded.vertical > stats.max_vertical) &&
+            (!s.has_view || !(bounded.screen > stats.max_screen_px)))
+            continue;
+        const FH f = bounded.f;
+        std::int32_t u = s.face_head[f.idx()];
+        HH he = m.halfedge_handle(f);
+        const VH va = m.from_vertex_handle(he), vb = m.to_vertex_handle(he),
+                 vc = m.to_vertex_handle(m.next_halfedge_handle(he));
+        const glm::dvec3 a = to_glm(m.point(va)), b = to_glm(m.point(vb)), c = to_glm(m.point(vc));
+        const glm::dvec3 normal = glm::cross(b - a, c - a);
+        const double area = normal.z;
+        auto add = [&](std::int32_t node) {
+            const glm::dvec3 p = to_glm(node_point(s, std::uint32_t(node)));
+            double dev;
+            if (s.xy) {
+                const glm::dvec2 x(p.x, p.y);
+                const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / area;
+                const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / area;
+                dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z));
+            } else {
+                dev = triangle_distance(p, a, b, c); // as locate() measures what the erase bounds
+            }
+            stats.max_vertical = std::max(stats.max_vertical, dev);
+            stats.max_weighted =
+                std::max(stats.max_weighted, weighted(s, std::uint32_t(node), dev));
+            if (s.has_view && s.view.in_frustum(p))
+                stats.max_screen_px =
+                    std::max(stats.max_screen_px, dev * k / glm::length(p - s.view.eye));
+        };
+        if (s.grid_w > 0)
+            scan_lattice(
+                s, node_of(s, va), node_of(s, vb), node_of(s, vc),
+                [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
+                [&](std::uint32_t v, const Mesh::Point &, double) {
+                    add(std::int32_t(v));
+                    return true;
+                });
+        else
+            for (; u >= 0; u = s.next_swallowed[u])
+                add(u);
+    }
+    return stats;
+}
+
+EraseStats erase_nodes(Mesh &mesh, const View *view, const EraseOptions &options) {
+    EraseStats stats;
+    {
+        NodeEraser eraser(mesh, view, options);
+        stats = eraser.erase();
+    }
+    Stopwatch clock;
+    mesh.garbage_collection();
+    stats.erase_ms += clock.ms();
+    return stats;
+}
+
+} // namespace tinlod

@@ -1,0 +1,707 @@
+// One quantized-mesh tile from the lattice (tiles.hpp: build_tile): the edges, simplified once from
+// their own samples; the interior, greedy insertion then the node erase on the lattice posts at
+// least one u/v unit inside the tile; the strip that joins them; quantization; the measure at every
+// covered post inside the tile as a decoder reads it.
+//
+// Heights are quantized on a grid every tile of a level shares: a step of 2^j times the level's
+// base step (a power of two near 1/512 of its error), j chosen from the tile's heights, and a
+// header range of D steps with D a divisor of 32767, so a height on the step is an exact code. An
+// edge vertex takes the coarser step of the tiles that share it (two, four at a corner), so both
+// decode it to the same height.
+#include "geodesy.hpp"
+
+#include "tinlod/decimate.hpp"
+#include "tinlod/error.hpp"
+#include "tinlod/greedy.hpp"
+#include "tinlod/quadtree.hpp"
+#include "tinlod/tiles.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace tinlod {
+
+using tiles::k_quantized_max;
+
+namespace {
+
+// Share of the level's error the edges and the interior are built to: the rest is headroom for
+// the u/v rounding of the vertices, which the measure after quantization checks.
+constexpr double k_build_share = 15.0 / 16.0;
+// A post within this many u/v units of an edge counts as on it (so no vertex rounds onto the edge
+// from inside it); the interior starts past it.
+constexpr double k_snap_units = 1.0;
+// The interior lattice holds at most this many posts across a tile: coarser levels take every
+// 2^k-th post (the measure covers the posts left out).
+constexpr double k_max_posts_across = 1024.0;
+
+double tile_size(int z) { return 180.0 / std::ldexp(1.0, z); }
+
+// The height step of level z: a power of two at most error / 512 (exact in float, as the
+// header's heights must be).
+double level_step(int z) { return std::exp2(std::floor(std::log2(level_error(z) / 512.0))); }
+
+// A header's range is a divisor of 32767 of steps, so that every whole step is an exact code.
+constexpr std::array<int, 8> k_divisors{1, 7, 31, 151, 217, 1057, 4681, 32767};
+
+// The smallest divisor of 32767 at least n, or 0.
+int divisor_at_least(double n) {
+    for (const int d : k_divisors)
+        if (d >= n)
+            return d;
+    return 0;
+}
+
+// The tile's step exponent j (step 2^j * level_step): among those whose step spans its heights
+// in half the codes (room for the edges' coarser rounding) and is at most error / 64 (unless the
+// first that spans them is coarser), the one whose header range is the tightest (the divisors of
+// 32767 are sparse: a finer step can need a far wider range). A function of the range alone: the
+// neighbours compute it too.
+int range_exponent(const HeightRange &r, int z) {
+    const auto steps = [&](int j) {
+        const double s = std::ldexp(level_step(z), j);
+        return std::ceil(r.hi / s) - std::floor(r.lo / s);
+    };
+    int first = 0;
+    while (steps(first) > 16383.0 && first < 60)
+        ++first;
+    int best = first;
+    double tightest = INFINITY;
+    for (int j = first; j <= std::max(first, 3); ++j) {
+        // Two steps of room for the edges' rounding.
+        const int d = divisor_at_least(steps(j) + 2.0);
+        const double span = std::ldexp(double(d), j);
+        if (d > 0 && span < tightest)
+            tightest = span, best = j;
+    }
+    return best;
+}
+
+// A height of the lattice's surface: the post's, or the fill height outside the coverage.
+struct Surface {
+    const GeoLattice &g;
+    double fill;
+    double at(std::int64_t i, std::int64_t j) const {
+        const float h = g.at(i, j);
+        return std::isnan(h) ? fill : double(h);
+    }
+};
+
+// Where an edge line stands among the lattice's columns (or rows): on post line `i` (within
+// k_snap_units of it), or between `i` and `i + 1` at `t`.
+struct LineSpec {
+    std::int64_t i = 0;
+    double t = 0.0;
+    bool snapped = false;
+};
+
+// The offset of lattice line `i` from an edge line at `edge` degrees, in u/v units of level z.
+// Both tiles that share the edge call it with the same doubles.
+double offset_units(double origin, double step, std::int64_t i, double edge, int z) {
+    return (origin + double(i) * step - edge) / tile_size(z) * double(k_quantized_max);
+}
+
+LineSpec line_spec(double origin, double step, double edge, int z) {
+    const double f = (edge - origin) / step;
+    LineSpec s;
+    s.i = std::int64_t(std::llround(f));
+    if (std::abs(offset_units(origin, step, s.i, edge, z)) < k_snap_units) {
+        s.snapped = true;
+        return s;
+    }
+    s.i = std::int64_t(std::floor(f));
+    s.t = f - double(s.i);
+    return s;
+}
+
+// The surface along a vertical line (column spec) at row j, or along a horizontal one at column i.
+double along_column(const Surface &s, const LineSpec &c, std::int64_t j) {
+    return c.snapped ? s.at(c.i, j) : (1.0 - c.t) * s.at(c.i, j) + c.t * s.at(c.i + 1, j);
+}
+double along_row(const Surface &s, const LineSpec &r, std::int64_t i) {
+    return r.snapped ? s.at(i, r.i) : (1.0 - r.t) * s.at(i, r.i) + r.t * s.at(i, r.i + 1);
+}
+
+// The surface at a tile corner: one function for the four tiles that share it.
+double corner_height(const Surface &s, double lon, double lat, int z) {
+    const LineSpec c = line_spec(s.g.lon0, s.g.dlon, lon, z);
+    const LineSpec r = line_spec(s.g.lat0, s.g.dlat, lat, z);
+    if (r.snapped)
+        return along_column(s, c, r.i);
+    return (1.0 - r.t) * along_column(s, c, r.i) + r.t * along_column(s, c, r.i + 1);
+}
+
+// A point of an edge's profile: its place along the edge in u/v units (0 .. 32767) and height.
+struct EdgePoint {
+    double t = 0.0;
+    double h = 0.0;
+};
+
+// An edge's own samples, from its start corner to its end corner: the lattice interpolated along
+// the edge line at every post line that crosses it, not snapped onto either corner. Past the
+// lattice (and one line beyond it) the profile is the fill height: those lines are left out.
+std::vector<EdgePoint> edge_profile(const Surface &s, bool vertical, double at, double from,
+                                    double to, int z) {
+    const GeoLattice &g = s.g;
+    const double origin = vertical ? g.lat0 : g.lon0, step = vertical ? g.dlat : g.dlon;
+    const std::int64_t count = vertical ? g.height : g.width;
+    const LineSpec across =
+        vertical ? line_spec(g.lon0, g.dlon, at, z) : line_spec(g.lat0, g.dlat, at, z);
+    const double start = vertical ? corner_height(s, at, from, z) : corner_height(s, from, at, z);
+    const double end = vertical ? corner_height(s, at, to, z) : corner_height(s, to, at, z);
+    std::vector<EdgePoint> out{{0.0, start}};
+    const std::int64_t lo =
+        std::max<std::int64_t>(-1, std::int64_t(std::floor((from - origin) / step)));
+    const std::int64_t hi =
+        std::min<std::int64_t>(count, std::int64_t(std::ceil((to - origin) / step)));
+    for (std::int64_t k = lo; k <= hi; ++k) {
+        const double a = offset_units(origin, step, k, from, z);
+        const double b = offset_units(origin, step, k, to, z);
+        if (!(a >= k_snap_units) || !(b <= -k_snap_units))
+            continue;
+        out.push_back({a, vertical ? along_column(s, across, k) : along_row(s, across, k)});
+    }
+    out.push_back({double(k_quantized_max), end});
+    return out;
+}
+
+// The edge's vertices: the profile simplified by splitting at the farthest sample (Douglas and
+// Peucker) until every sample is within `bound` of the polyline through the kept points as a
+// decoder reads them (places rounded to the u/v grid, heights to `step`, the corners' to theirs).
+// A sample that rounds to the place of an end of its span is never kept (two vertices at one
+// place).
+struct EdgeVertex {
+    int t = 0;      // place along the edge, u/v units
+    double h = 0.0; // height, a multiple of the edge's step
+};
+std::vector<EdgeVertex> simplify_edge(const std::vector<EdgePoint> &p, double bound, double step,
+                                      double start_step, double end_step) {
+    const auto place = [&](std::size_t k) { return int(std::llround(p[k].t)); };
+    const auto height = [&](std::size_t k) {
+        const double s = k == 0 ? start_step : k + 1 == p.size() ? end_step : step;
+        return std::floor(p[k].h / s + 0.5) * s;
+    };
+    std::vector<std::uint8_t> keep(p.size(), 0);
+    keep.front() = keep.back() = 1;
+    std::vector<std::pair<std::size_t, std::size_t>> spans{{0, p.size() - 1}};
+    while (!spans.empty()) {
+        const auto [a, b] = spans.back();
+        spans.pop_back();
+        const double ta = place(a), tb = place(b), ha = height(a), hb = height(b);
+        double worst = bound;
+        std::size_t at = 0;
+        for (std::size_t k = a + 1; k < b; ++k) {
+            const int t = place(k);
+            if (t == int(ta) || t == int(tb))
+                continue;
+            const double d = std::abs(ha + (p[k].t - ta) / (tb - ta) * (hb - ha) - p[k].h);
+            if (d > worst)
+                worst = d, at = k;
+        }
+        if (at == 0)
+            continue;
+        keep[at] = 1;
+        spans.push_back({a, at});
+        spans.push_back({at, b});
+    }
+    std::vector<EdgeVertex> out;
+    for (std::size_t k = 0; k < p.size(); ++k)
+        if (keep[k])
+            out.push_back({place(k), height(k)});
+    return out;
+}
+
+// The posts of one axis that lie inside the tile at least k_snap_units from both edges, on
+// multiples of `stride`: the interior lattice's lines, clipped to the lattice and one line of fill
+// beyond it (the rest of the tile there is flat fill), and at least 2.
+struct AxisLines {
+    std::int64_t first = 0, count = 0, stride = 1;
+    std::int64_t at(std::int64_t k) const { return first + k * stride; }
+};
+AxisLines interior_lines(double origin, double step, std::int64_t posts, double lo, double hi,
+                         int z, std::int64_t stride) {
+    std::int64_t a = std::int64_t(std::floor((lo - origin) / step)) - 1;
+    while (!(offset_units(origin, step, a, lo, z) >= k_snap_units))
+        ++a;
+    std::int64_t b = std::int64_t(std::ceil((hi - origin) / step)) + 1;
+    while (!(offset_units(origin, step, b, hi, z) <= -k_snap_units))
+        --b;
+    const auto up = [&](std::int64_t x) {
+        return x >= 0 ? (x + stride - 1) / stride * stride : -((-x) / stride * stride);
+    };
+    const auto down = [&](std::int64_t x) {
+        return x >= 0 ? x / stride * stride : -((-x + stride - 1) / stride * stride);
+    };
+    const std::int64_t in_lo = up(a), in_hi = down(b);
+    AxisLines l;
+    l.stride = stride;
+    if (in_hi - in_lo < stride)
+        return l; // fewer than 2 lines: the caller takes a finer stride
+    std::int64_t lo_line = std::max(in_lo, down(-1)), hi_line = std::min(in_hi, up(posts));
+    if (hi_line - lo_line < stride) {
+        // The coverage meets the tile only at one side (or just beyond it): two lines there.
+        if (up(posts) <= in_lo + stride)
+            lo_line = in_lo, hi_line = in_lo + stride;
+        else
+            lo_line = in_hi - stride, hi_line = in_hi;
+    }
+    l.first = lo_line;
+    l.count = (hi_line - lo_line) / stride + 1;
+    return l;
+}
+
+// A vertex of the tile as it is assembled: its u/v place and its height, a whole multiple of the
+// tile's step (an edge's, of a coarser one).
+struct Vertex {
+    int u = 0, v = 0;
+    double h = 0.0;
+};
+
+struct Assembly {
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> triangles;
+};
+
+// The interior TIN over the window: greedy insertion to the bound, then the node erase (vertical
+// model) of its nodes over every post of the window. Returns the window's (c, r) per vertex and
+// the triangles, counter-clockwise.
+struct InteriorTin {
+    std::vector<std::pair<int, int>> nodes;
+    std::vector<std::uint32_t> triangles;
+};
+InteriorTin interior_tin(const Heightfield &win, double bound) {
+    GreedyOptions go;
+    go.max_error = bound;
+    go.seed_step = 16;                // the erase drops the seed's nodes the insertion did not need
+    go.slope_margin = std::sqrt(0.5); // a vertex moves by up to half a unit in u and v
+    const GreedyTin greedy = greedy_tin(win, go);
+    Mesh mesh = to_sparse_lattice_mesh(greedy.tin, win);
+    EraseOptions eo;
+    eo.significance.model = SpModel::vertical;
+    eo.tolerance = bound;
+    eo.lattice = &win;
+    {
+        NodeEraser eraser(mesh, nullptr, eo);
+        eraser.erase();
+    }
+    const Mesh tin = live_copy(mesh);
+    const auto origin = find_origin_property(tin);
+    InteriorTin out;
+    for (const auto v : tin.vertices()) {
+        const std::int64_t id = tin.property(origin, v);
+        out.nodes.emplace_back(int(id % win.width), int(id / win.width));
+    }
+    for (const auto f : tin.faces())
+        for (const auto v : tin.fv_range(f))
+            out.triangles.push_back(std::uint32_t(v.idx()));
+    return out;
+}
+
+// Joins two chains of vertices on parallel lines (the tile edge's and the interior outline's, each
+// ordered along `key`) with triangles, advancing the chain whose next vertex comes first.
+void zip(const std::vector<std::uint32_t> &outer, const std::vector<std::uint32_t> &inner,
+         bool by_v, Assembly &a) {
+    const auto key = [&](std::uint32_t k) { return by_v ? a.vertices[k].v : a.vertices[k].u; };
+    std::size_t i = 0, j = 0;
+    while (i + 1 < outer.size() || j + 1 < inner.size()) {
+        std::array<std::uint32_t, 3> t{};
+        if (j + 1 == inner.size() ||
+            (i + 1 < outer.size() && key(outer[i + 1]) <= key(inner[j + 1]))) {
+            t = {outer[i], outer[i + 1], inner[j]};
+            ++i;
+        } else {
+            t = {outer[i], inner[j + 1], inner[j]};
+            ++j;
+        }
+        const Vertex &p = a.vertices[t[0]], &q = a.vertices[t[1]], &r = a.vertices[t[2]];
+        const std::int64_t area2 =
+            std::int64_t(q.u - p.u) * (r.v - p.v) - std::int64_t(q.v - p.v) * (r.u - p.u);
+        if (area2 < 0)
+            std::swap(t[1], t[2]);
+        a.triangles.insert(a.triangles.end(), t.begin(), t.end());
+    }
+}
+
+// The tile's heights: the header range and each vertex's code.
+struct Quantized {
+    double min_h = 0, max_h = 0;
+    std::vector<std::uint16_t> codes;
+};
+Quantized quantize(const std::vector<Vertex> &vs, const HeightRange &range, double step) {
+    double lo = range.lo, hi = range.hi;
+    for (const Vertex &v : vs)
+        lo = std::min(lo, v.h), hi = std::max(hi, v.h);
+    Quantized q;
+    q.min_h = std::floor(lo / step) * step;
+    // Past 32767 steps (an edge rounded to a far coarser neighbour's step) the codes clamp, and
+    // the measure sees it.
+    const int needed = divisor_at_least(std::ceil((hi - q.min_h) / step));
+    const int d = needed > 0 ? needed : k_quantized_max;
+    q.max_h = q.min_h + double(d) * step;
+    for (const Vertex &v : vs) {
+        const double code = std::round((v.h - q.min_h) / step) * double(k_quantized_max / d);
+        q.codes.push_back(std::uint16_t(std::clamp(code, 0.0, double(k_quantized_max))));
+    }
+    return q;
+}
+
+double decoded_height(const Quantized &q, std::uint16_t code) {
+    return q.min_h + double(code) / double(k_quantized_max) * (q.max_h - q.min_h);
+}
+
+// The measure: every covered post inside the tile against the quantized TIN, by rows of posts
+// under each triangle. Counts the triangles that rounding turned over (not counter-clockwise).
+struct Measure {
+    double max_error = 0.0;
+    std::int64_t samples = 0;
+    std::int64_t flipped = 0;
+    std::int64_t missed = 0; // covered posts inside the tile under no triangle
+};
+Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex> &vs,
+                const Quantized &q, const std::vector<std::uint32_t> &triangles) {
+    const GeoRect rect = tile_rect(id);
+    const int z = id.z;
+    // Posts inside the tile, clipped to the lattice; their u/v places, exactly as the edges see
+    // them.
+    std::int64_t i0 =
+        std::max<std::int64_t>(0, std::int64_t(std::floor((rect.west - g.lon0) / g.dlon)));
+    std::int64_t i1 =
+        std::min<std::int64_t>(g.width - 1, std::int64_t(std::ceil((rect.east - g.lon0) / g.dlon)));
+    std::int64_t j0 =
+        std::max<std::int64_t>(0, std::int64_t(std::floor((rect.south - g.lat0) / g.dlat)));
+    std::int64_t j1 = std::min<std::int64_t>(
+        g.height - 1, std::int64_t(std::ceil((rect.north - g.lat0) / g.dlat)));
+    Measure m;
+    if (i1 < i0 || j1 < j0)
+        return m;
+    std::vector<double> pu(std::size_t(i1 - i0 + 1)), pv(std::size_t(j1 - j0 + 1));
+    for (std::int64_t i = i0; i <= i1; ++i)
+        pu[std::size_t(i - i0)] = offset_units(g.lon0, g.dlon, i, rect.west, z);
+    for (std::int64_t j = j0; j <= j1; ++j)
+        pv[std::size_t(j - j0)] = offset_units(g.lat0, g.dlat, j, rect.south, z);
+    const auto inside = [](double x) { return x >= 0.0 && x <= double(k_quantized_max); };
+    std::vector<std::uint8_t> seen((i1 - i0 + 1) * (j1 - j0 + 1), 0);
+    constexpr double k_eps = 1e-9;
+    for (std::size_t t = 0; t < triangles.size(); t += 3) {
+        std::array<glm::dvec3, 3> c;
+        for (int k = 0; k < 3; ++k) {
+            const Vertex &v = vs[triangles[t + std::size_t(k)]];
+            c[std::size_t(k)] = {double(v.u), double(v.v),
+                                 decoded_height(q, q.codes[triangles[t + std::size_t(k)]])};
+        }
+        const double area2 =
+            (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
+        if (area2 < 0.0)
+            ++m.flipped;
+        if (area2 <= 0.0)
+            continue;
+        // The plane z = a u + b v + d through the three corners.
+        const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+        const double a = -n.x / n.z, b = -n.y / n.z, d = c[0].z - a * c[0].x - b * c[0].y;
+        const double vlo = std::min({c[0].y, c[1].y, c[2].y}),
+                     vhi = std::max({c[0].y, c[1].y, c[2].y});
+        const auto jl = std::lower_bound(pv.begin(), pv.end(), vlo - k_eps) - pv.begin();
+        const auto jh = std::upper_bound(pv.begin(), pv.end(), vhi + k_eps) - pv.begin();
+        for (auto jr = jl; jr < jh; ++jr) {
+            const double y = pv[std::size_t(jr)];
+            if (!inside(y))
+                continue;
+            // The triangle's span on this row: the intersections of its edges with the line.
+            double ulo = INFINITY, uhi = -INFINITY;
+            for (int k = 0; k < 3; ++k) {
+                const glm::dvec3 &p = c[std::size_t(k)], &r = c[std::size_t((k + 1) % 3)];
+                if ((y < std::min(p.y, r.y) - k_eps) || (y > std::max(p.y, r.y) + k_eps))
+                    continue;
+                if (p.y == r.y) {
+                    ulo = std::min({ulo, p.x, r.x}), uhi = std::max({uhi, p.x, r.x});
+                    continue;
+                }
+                const double x =
+                    p.x + (std::clamp(y, std::min(p.y, r.y), std::max(p.y, r.y)) - p.y) /
+                              (r.y - p.y) * (r.x - p.x);
+                ulo = std::min(ulo, x), uhi = std::max(uhi, x);
+            }
+            const auto il = std::lower_bound(pu.begin(), pu.end(), ulo - k_eps) - pu.begin();
+            const auto ih = std::upper_bound(pu.begin(), pu.end(), uhi + k_eps) - pu.begin();
+            for (auto ir = il; ir < ih; ++ir) {
+                const double x = pu[std::size_t(ir)];
+                const float h = g.at(i0 + ir, j0 + jr);
+                if (!inside(x) || std::isnan(h))
+                    continue;
+                seen[std::size_t(jr) * pu.size() + std::size_t(ir)] = 1;
+                m.max_error = std::max(m.max_error, std::abs(a * x + b * y + d - double(h)));
+            }
+        }
+    }
+    for (std::size_t jr = 0; jr < pv.size(); ++jr)
+        for (std::size_t ir = 0; ir < pu.size(); ++ir)
+            if (inside(pu[ir]) && inside(pv[jr]) &&
+                !std::isnan(g.at(i0 + std::int64_t(ir), j0 + std::int64_t(jr)))) {
+                ++m.samples;
+                m.missed += seen[jr * pu.size() + ir] ? 0 : 1;
+            }
+    return m;
+}
+
+// The unit normal of the DEM at a place, from central differences of the nearest post's
+// neighbours (the fill height outside the coverage), in the Earth-centred frame.
+glm::dvec3 dem_normal(const Surface &s, double lon, double lat) {
+    const GeoLattice &g = s.g;
+    const auto i = std::int64_t(std::llround((lon - g.lon0) / g.dlon));
+    const auto j = std::int64_t(std::llround((lat - g.lat0) / g.dlat));
+    const double p = lat * M_PI / 180.0;
+    const double e2 =
+        1.0 - (tiles::k_wgs84_b * tiles::k_wgs84_b) / (tiles::k_wgs84_a * tiles::k_wgs84_a);
+    const double w = 1.0 - e2 * std::sin(p) * std::sin(p);
+    const double east = g.dlon * M_PI / 180.0 * tiles::k_wgs84_a / std::sqrt(w) * std::cos(p);
+    const double north = g.dlat * M_PI / 180.0 * tiles::k_wgs84_a * (1.0 - e2) / (w * std::sqrt(w));
+    const double gx = (s.at(i + 1, j) - s.at(i - 1, j)) / (2.0 * std::max(east, 1e-3));
+    const double gy = (s.at(i, j + 1) - s.at(i, j - 1)) / (2.0 * north);
+    const auto frame = tiles::enu_frame(lon, lat);
+    return glm::normalize(-gx * frame[0] - gy * frame[1] + frame[2]);
+}
+
+} // namespace
+
+HeightRange tile_height_range(const GeoLattice &g, const TileId &tile, const TileOptions &options) {
+    const GeoRect rect = tile_rect(tile);
+    const std::int64_t i0 = std::int64_t(std::ceil((rect.west - g.lon0) / g.dlon)) - 1;
+    const std::int64_t i1 = std::int64_t(std::floor((rect.east - g.lon0) / g.dlon)) + 1;
+    const std::int64_t j0 = std::int64_t(std::ceil((rect.south - g.lat0) / g.dlat)) - 1;
+    const std::int64_t j1 = std::int64_t(std::floor((rect.north - g.lat0) / g.dlat)) + 1;
+    HeightRange r{INFINITY, -INFINITY, false};
+    bool fill = i0 < 0 || j0 < 0 || i1 >= g.width || j1 >= g.height;
+    for (std::int64_t j = std::max<std::int64_t>(j0, 0);
+         j <= std::min<std::int64_t>(j1, g.height - 1); ++j)
+        for (std::int64_t i = std::max<std::int64_t>(i0, 0);
+             i <= std::min<std::int64_t>(i1, g.width - 1); ++i) {
+            const float h = g.z[std::size_t(j) * std::size_t(g.width) + std::size_t(i)];
+            if (std::isnan(h)) {
+                fill = true;
+                continue;
+            }
+            r.covered = true;
+            r.lo = std::min(r.lo, double(h)), r.hi = std::max(r.hi, double(h));
+        }
+    if (fill || !r.covered)
+        r.lo = std::min(r.lo, options.fill_height), r.hi = std::max(r.hi, options.fill_height);
+    return r;
+}
+
+TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &options,
+                    const RangeOf &range_of) {
+    const int z = id.z;
+    const std::int64_t nx = std::int64_t(2) << z, ny = std::int64_t(1) << z;
+    const auto range = [&](std::int64_t dx, std::int64_t dy) -> HeightRange {
+        const TileId n{z, ((id.x + dx) % nx + nx) % nx, id.y + dy};
+        if (n.y < 0 || n.y >= ny)
+            return {0.0, 0.0, false};
+        return range_of ? range_of(n) : tile_height_range(g, n, options);
+    };
+    // The step exponent of this tile and of its eight neighbours ([dy + 1][dx + 1]).
+    std::array<std::array<int, 3>, 3> j{};
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+            j[std::size_t(dy + 1)][std::size_t(dx + 1)] = range_exponent(range(dx, dy), z);
+    const HeightRange own = range(0, 0);
+    const double base = level_step(z), step = std::ldexp(base, j[1][1]);
+    const auto coarsest = [&](std::initializer_list<std::pair<int, int>> tiles) {
+        int e = 0;
+        for (const auto &[dx, dy] : tiles)
+            e = std::max(e, j[std::size_t(dy + 1)][std::size_t(dx + 1)]);
+        return std::ldexp(base, e);
+    };
+    const double bound = level_error(z);
+    const GeoRect rect = tile_rect(id);
+    const Surface surface{g, options.fill_height};
+
+    // The four edges, from their own samples only: west and east run north, south and north east.
+    struct EdgeDef {
+        bool vertical;
+        double at, from, to;
+        std::pair<int, int> across;                   // the neighbour sharing it
+        std::pair<int, int> start_corner, end_corner; // the diagonal neighbours at its ends
+    };
+    const std::array<EdgeDef, 4> defs{
+        {{true, rect.west, rect.south, rect.north, {-1, 0}, {-1, -1}, {-1, 1}},
+         {false, rect.south, rect.west, rect.east, {0, -1}, {-1, -1}, {1, -1}},
+         {true, rect.east, rect.south, rect.north, {1, 0}, {1, -1}, {1, 1}},
+         {false, rect.north, rect.west, rect.east, {0, 1}, {-1, 1}, {1, 1}}}};
+    std::array<std::vector<EdgeVertex>, 4> edge_vertices;
+    for (std::size_t e = 0; e < 4; ++e) {
+        const EdgeDef &d = defs[e];
+        const auto [ax, ay] = d.across;
+        // The edge takes the coarser step of its two tiles, a corner the coarsest of its four.
+        const auto corner_step = [&](std::pair<int, int> diag) {
+            return coarsest({{0, 0}, {ax, ay}, diag, {diag.first - ax, diag.second - ay}});
+        };
+        edge_vertices[e] = simplify_edge(edge_profile(surface, d.vertical, d.at, d.from, d.to, z),
+                                         k_build_share * bound, coarsest({{0, 0}, {ax, ay}}),
+                                         corner_step(d.start_corner), corner_step(d.end_corner));
+    }
+
+    const double u_per_lon = double(k_quantized_max) / tile_size(z);
+    std::int64_t stride = 1;
+    while (tile_size(z) / (double(stride) * std::min(g.dlon, g.dlat)) > k_max_posts_across)
+        stride *= 2;
+    double interior_bound = k_build_share * bound - step / 2.0;
+
+    TileMesh best;
+    best.error_ratio = INFINITY;
+    std::int64_t best_flipped = std::numeric_limits<std::int64_t>::max();
+    for (int attempt = 0; attempt < 8; ++attempt) {
+        AxisLines cols, rows;
+        for (;;) {
+            cols = interior_lines(g.lon0, g.dlon, g.width, rect.west, rect.east, z, stride);
+            rows = interior_lines(g.lat0, g.dlat, g.height, rect.south, rect.north, z, stride);
+            if ((cols.count >= 2 && rows.count >= 2) || stride == 1)
+                break;
+            stride /= 2;
+        }
+        if (cols.count < 2 || rows.count < 2)
+            throw Error(
+                "tile " + std::to_string(z) + "/" + std::to_string(id.x) + "/" +
+                    std::to_string(id.y),
+                "narrower than 2 DEM posts inside: the level is beyond the DEM's resolution");
+        Heightfield win;
+        win.width = int(cols.count), win.height = int(rows.count);
+        win.dx = double(stride) * g.dlon * u_per_lon;
+        win.dy = double(stride) * g.dlat * u_per_lon;
+        win.z.resize(std::size_t(win.width) * std::size_t(win.height));
+        for (int r = 0; r < win.height; ++r)
+            for (int c = 0; c < win.width; ++c)
+                win.at(c, r) = float(surface.at(cols.at(c), rows.at(r)));
+        const InteriorTin inner = interior_tin(win, std::max(interior_bound, 1e-6 * bound));
+
+        Assembly a;
+        // Corners first (SW, SE, NE, NW), then each edge's inner vertices.
+        const std::array<std::array<int, 2>, 4> corner_uv{{{0, 0},
+                                                           {k_quantized_max, 0},
+                                                           {k_quantized_max, k_quantized_max},
+                                                           {0, k_quantized_max}}};
+        const std::array<double, 4> corner_h{edge_vertices[0].front().h, edge_vertices[2].front().h,
+                                             edge_vertices[2].back().h, edge_vertices[0].back().h};
+        for (int k = 0; k < 4; ++k)
+            a.vertices.push_back({corner_uv[std::size_t(k)][0], corner_uv[std::size_t(k)][1],
+                                  corner_h[std::size_t(k)]});
+        // Corner ids at each edge's start and end (west: SW..NW, south: SW..SE, east: SE..NE,
+        // north: NW..NE).
+        const std::array<std::pair<std::uint32_t, std::uint32_t>, 4> ends{
+            {{0, 3}, {0, 1}, {1, 2}, {3, 2}}};
+        std::array<std::vector<std::uint32_t>, 4> outer;
+        for (std::size_t e = 0; e < 4; ++e) {
+            outer[e].push_back(ends[e].first);
+            const auto &ev = edge_vertices[e];
+            for (std::size_t k = 1; k + 1 < ev.size(); ++k) {
+                Vertex v;
+                v.h = ev[k].h;
+                const int fixed = e == 2 || e == 3 ? k_quantized_max : 0;
+                v.u = defs[e].vertical ? fixed : ev[k].t;
+                v.v = defs[e].vertical ? ev[k].t : fixed;
+                outer[e].push_back(std::uint32_t(a.vertices.size()));
+                a.vertices.push_back(v);
+            }
+            outer[e].push_back(ends[e].second);
+        }
+        // The interior's vertices, and its outline as four chains.
+        const std::uint32_t first_inner = std::uint32_t(a.vertices.size());
+        std::array<std::vector<std::pair<int, std::uint32_t>>, 4> sides;
+        for (std::size_t k = 0; k < inner.nodes.size(); ++k) {
+            const auto [c, r] = inner.nodes[k];
+            Vertex v;
+            v.u = int(std::llround(offset_units(g.lon0, g.dlon, cols.at(c), rect.west, z)));
+            v.v = int(std::llround(offset_units(g.lat0, g.dlat, rows.at(r), rect.south, z)));
+            // On the tile's step, within the half step the interior's bound leaves for it.
+            v.h = std::floor(win.at(c, r) / step + 0.5) * step;
+            const std::uint32_t idx = first_inner + std::uint32_t(k);
+            if (c == 0)
+                sides[0].emplace_back(r, idx);
+            if (r == 0)
+                sides[1].emplace_back(c, idx);
+            if (c == win.width - 1)
+                sides[2].emplace_back(r, idx);
+            if (r == win.height - 1)
+                sides[3].emplace_back(c, idx);
+            a.vertices.push_back(v);
+        }
+        for (const std::uint32_t t : inner.triangles)
+            a.triangles.push_back(first_inner + t);
+        for (std::size_t e = 0; e < 4; ++e) {
+            std::sort(sides[e].begin(), sides[e].end());
+            std::vector<std::uint32_t> chain;
+            for (const auto &s : sides[e])
+                chain.push_back(s.second);
+            zip(outer[e], chain, defs[e].vertical, a);
+        }
+
+        const Quantized q = quantize(a.vertices, own, step);
+        const Measure m = measure(g, id, a.vertices, q, a.triangles);
+        const double ratio = m.missed > 0 ? INFINITY : m.max_error / bound;
+        const bool better =
+            m.flipped < best_flipped || (m.flipped == best_flipped && ratio < best.error_ratio);
+        if (better || attempt == 0) {
+            best = TileMesh{};
+            best.id = id;
+            for (std::size_t k = 0; k < a.vertices.size(); ++k) {
+                best.u.push_back(std::uint16_t(a.vertices[k].u));
+                best.v.push_back(std::uint16_t(a.vertices[k].v));
+                best.h.push_back(q.codes[k]);
+            }
+            best.triangles = a.triangles;
+            best.min_height = float(q.min_h);
+            best.max_height = float(q.max_h);
+            best.max_error = m.max_error;
+            best.error_ratio = ratio;
+            best.samples = m.samples;
+            best_flipped = m.flipped;
+        }
+        best.builds = attempt + 1;
+        if (m.flipped == 0 && ratio <= 1.0)
+            break;
+        // Over the bound after rounding: more nodes (a tighter bound), and every other time every
+        // post (a finer stride), which the measure's posts between lattice lines may need.
+        if (attempt % 2 == 1 && stride > 1)
+            stride /= 2;
+        else
+            interior_bound *= 0.7;
+    }
+
+    // Edge lists in CesiumJS's order: west south to north, south east to west, east north to
+    // south, north west to east.
+    for (std::uint32_t k = 0; k < best.u.size(); ++k) {
+        if (best.u[k] == 0)
+            best.west.push_back(k);
+        if (best.v[k] == 0)
+            best.south.push_back(k);
+        if (best.u[k] == k_quantized_max)
+            best.east.push_back(k);
+        if (best.v[k] == k_quantized_max)
+            best.north.push_back(k);
+    }
+    const auto by = [&](const std::vector<std::uint16_t> &key, bool ascending) {
+        return [&key, ascending](std::uint32_t p, std::uint32_t q) {
+            return ascending ? key[p] < key[q] : key[p] > key[q];
+        };
+    };
+    std::sort(best.west.begin(), best.west.end(), by(best.v, true));
+    std::sort(best.south.begin(), best.south.end(), by(best.u, false));
+    std::sort(best.east.begin(), best.east.end(), by(best.v, false));
+    std::sort(best.north.begin(), best.north.end(), by(best.u, true));
+
+    if (options.normals) {
+        for (std::size_t k = 0; k < best.u.size(); ++k) {
+            const double lon =
+                rect.west + double(best.u[k]) / k_quantized_max * (rect.east - rect.west);
+            const double lat =
+                rect.south + double(best.v[k]) / k_quantized_max * (rect.north - rect.south);
+            const auto oct = tiles::oct_encode(dem_normal(surface, lon, lat));
+            best.normals.push_back(oct[0]);
+            best.normals.push_back(oct[1]);
+        }
+    }
+    return best;
+}
+
+} // namespace tinlod

@@ -1,0 +1,254 @@
+// Unit tests of the erase core's internals (lib/src/erase), each against a brute-force computation
+// written here: the lattice scans and tile bounds (lattice_scan.hpp), and the batched raise of a
+// band's pending samples (erase_cost.hpp).
+#include "erase/erase_cost.hpp"
+#include "erase/lattice_scan.hpp"
+#include "erase/state.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <set>
+#include <vector>
+
+using namespace tinlod;
+using namespace tinlod::erase;
+
+namespace {
+
+// A dense grid TIN's lattice as the scans read it: w x h samples, node r * w + c at column c of row
+// r, random heights and spacing (the scans need the points only, not the triangles).
+struct Lattice {
+    Mesh mesh;
+    EraserState s;
+
+    Lattice(std::mt19937 &rng, std::uint32_t w, std::uint32_t h) {
+        std::uniform_real_distribution<double> spacing(0.1, 30.0), height(-50.0, 400.0),
+            origin(-1e4, 1e4);
+        const double dx = spacing(rng), dy = spacing(rng), x0 = origin(rng), y0 = origin(rng);
+        for (std::uint32_t r = 0; r < h; ++r)
+            for (std::uint32_t c = 0; c < w; ++c)
+                mesh.add_vertex(
+                    Mesh::Point(float(x0 + c * dx), float(y0 + r * dy), float(height(rng))));
+        s.mesh = &mesh;
+        s.grid_w = w;
+        s.nodes = w * h;
+        s.face_blocked.assign(1, 0);
+    }
+};
+
+// Whether sample (x, y) lies in the closed triangle (a, b, c) of lattice coordinates, by the signs
+// of its three edge functions (all of one sign, zero allowed); a degenerate triangle holds none.
+bool inside(const std::array<std::int64_t, 6> &t, std::int64_t x, std::int64_t y) {
+    const auto edge = [&](int i, int j) {
+        return (t[2 * j] - t[2 * i]) * (y - t[2 * i + 1]) -
+               (t[2 * j + 1] - t[2 * i + 1]) * (x - t[2 * i]);
+    };
+    const std::int64_t area = (t[2] - t[0]) * (t[5] - t[1]) - (t[3] - t[1]) * (t[4] - t[0]);
+    if (area == 0)
+        return false;
+    const std::int64_t e0 = edge(0, 1), e1 = edge(1, 2), e2 = edge(2, 0);
+    return area > 0 ? e0 >= 0 && e1 >= 0 && e2 >= 0 : e0 <= 0 && e1 <= 0 && e2 <= 0;
+}
+
+// A random triangle of lattice samples, often of the shapes scans get wrong: corners on the
+// lattice's edges, edges along a row or a column, slivers and collinear corners.
+std::array<std::uint32_t, 3> random_corners(std::mt19937 &rng, std::uint32_t w, std::uint32_t h) {
+    std::uniform_int_distribution<std::uint32_t> col(0, w - 1), row(0, h - 1), kind(0, 5);
+    std::array<std::uint32_t, 3> x{}, y{};
+    for (int k = 0; k < 3; ++k) {
+        x[k] = col(rng);
+        y[k] = row(rng);
+    }
+    switch (kind(rng)) {
+    case 0: // on the lattice's edges
+        x[0] = 0;
+        y[1] = h - 1;
+        x[2] = w - 1;
+        break;
+    case 1: // an edge along a row and one along a column
+        y[1] = y[0];
+        x[2] = x[0];
+        break;
+    case 2: { // collinear: a degenerate triangle
+        const std::int64_t dx = std::int64_t(x[1]) - x[0], dy = std::int64_t(y[1]) - y[0];
+        if (x[0] + 2 * dx >= 0 && x[0] + 2 * dx < w && y[0] + 2 * dy >= 0 && y[0] + 2 * dy < h) {
+            x[2] = std::uint32_t(x[0] + 2 * dx);
+            y[2] = std::uint32_t(y[0] + 2 * dy);
+        }
+        break;
+    }
+    case 3: // a sliver: the third corner next to an edge's midpoint
+        x[2] = std::min(w - 1, (x[0] + x[1]) / 2 + 1);
+        y[2] = (y[0] + y[1]) / 2;
+        break;
+    default:
+        break;
+    }
+    return {y[0] * w + x[0], y[1] * w + x[1], y[2] * w + x[2]};
+}
+
+} // namespace
+
+// scan_lattice visits each sample of the closed triangle but its corners exactly once, and each in
+// the xy box its band was given.
+TEST(LatticeScan, VisitsExactlyTheSamplesInsideTheClosedTriangle) {
+    std::mt19937 rng(47);
+    std::uniform_int_distribution<std::uint32_t> side(2, 70);
+    std::int64_t faces = 0, visited = 0;
+    for (int lattice = 0; lattice < 40; ++lattice) {
+        const std::uint32_t w = side(rng), h = side(rng);
+        Lattice g(rng, w, h);
+        for (int face = 0; face < 60; ++face, ++faces) {
+            const auto [a, b, c] = random_corners(rng, w, h);
+            const std::array<std::int64_t, 6> t = {a % w, a / w, b % w, b / w, c % w, c / w};
+            std::multiset<std::uint32_t> seen;
+            glm::dvec2 lo(0.0), hi(0.0);
+            scan_lattice(
+                g.s, a, b, c,
+                [&](const glm::dvec2 &l, const glm::dvec2 &u) {
+                    lo = l;
+                    hi = u;
+                    return 1.0;
+                },
+                [&](std::uint32_t u, const Mesh::Point &p, double) {
+                    seen.insert(u);
+                    EXPECT_EQ(p, g.mesh.point(VH(int(u))));
+                    EXPECT_TRUE(p[0] >= lo.x && p[0] <= hi.x && p[1] >= lo.y && p[1] <= hi.y)
+                        << "sample " << u << " outside its band's box";
+                    return true;
+                });
+            std::multiset<std::uint32_t> expected;
+            for (std::uint32_t u = 0; u < w * h; ++u)
+                if (u != a && u != b && u != c && inside(t, u % w, u / w))
+                    expected.insert(u);
+            ASSERT_EQ(seen, expected)
+                << "lattice " << w << " x " << h << ", corners " << a << ", " << b << ", " << c;
+            visited += std::int64_t(seen.size());
+        }
+    }
+    EXPECT_GT(visited, faces); // the triangles were not all empty
+}
+
+// A scan stops at the first visit that returns false, and says so.
+TEST(LatticeScan, StopsWhenAVisitSaysSo) {
+    std::mt19937 rng(8);
+    Lattice g(rng, 40, 40);
+    const std::uint32_t a = 0, b = 39, c = 39 * 40 + 20;
+    int visits = 0;
+    const bool whole = scan_lattice(
+        g.s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
+        [&](std::uint32_t, const Mesh::Point &, double) { return ++visits < 7; });
+    EXPECT_FALSE(whole);
+    EXPECT_EQ(visits, 7);
+}
+
+// Each tile's bound from lattice_tiles, made from the tiles' height ranges alone, is at least the
+// largest vertical distance of the face's samples in that tile to the face's plane, computed here
+// from the three corners.
+TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
+    std::mt19937 rng(3);
+    std::int64_t tiled = 0;
+    for (int lattice = 0; lattice < 6; ++lattice) {
+        const std::uint32_t w = 300 + 37 * std::uint32_t(lattice), h = 260;
+        Lattice g(rng, w, h);
+        for (int face = 0; face < 12; ++face) {
+            std::array<std::uint32_t, 3> n = random_corners(rng, w, h);
+            const auto point = [&](std::uint32_t u) { return to_glm(g.mesh.point(VH(int(u)))); };
+            const glm::dvec3 pa = point(n[0]), pb = point(n[1]), pc = point(n[2]);
+            const glm::dvec3 normal = glm::cross(pb - pa, pc - pa);
+            if (std::abs(normal.z) < 1e-9 * glm::length(normal) + 1e-300)
+                continue; // degenerate: no plane
+            const auto plane = [&](double x, double y) {
+                return pa.z - (normal.x * (x - pa.x) + normal.y * (y - pa.y)) / normal.z;
+            };
+            const double slope = std::hypot(normal.x, normal.y) / std::abs(normal.z);
+            g.s.face_blocked[0] = 0;
+            g.s.face_tiles.clear();
+            const std::vector<float> *tiles =
+                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], plane, slope);
+            if (!tiles)
+                continue; // too few samples to be tiled
+            ++tiled;
+            const Tiling tl = tiling(g.s, n[0], n[1], n[2]);
+            const std::array<std::int64_t, 6> t = {n[0] % w, n[0] / w, n[1] % w,
+                                                   n[1] / w, n[2] % w, n[2] / w};
+            for (std::uint32_t u = 0; u < w * h; ++u) {
+                const std::int64_t x = u % w, y = u / w;
+                if (!inside(t, x, y))
+                    continue;
+                const std::size_t tile = std::size_t(((y - tl.row0) / k_band_rows) * tl.columns +
+                                                     (x - tl.x0) / k_tile_cols);
+                ASSERT_LT(tile, tiles->size());
+                const glm::dvec3 q = point(u);
+                EXPECT_LE(std::abs(q.z - plane(q.x, q.y)), double((*tiles)[tile]))
+                    << "sample " << u << " of face " << n[0] << ", " << n[1] << ", " << n[2];
+            }
+        }
+    }
+    EXPECT_GT(tiled, 10);
+}
+
+// raise_pending, which weighs the pending samples largest bound first and stops early, leaves the
+// SP, its node and its deviation as raising the SP by each sample in scan order would, and
+// fails exactly when that raise would pass the limit.
+TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> count(0, 12), pick(0, 3);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    EraserState s;
+    s.unit_weights = false;
+    const std::uint32_t nodes = 16;
+    std::int64_t failed = 0, raised = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        // Few distinct weights and deviations, so that ties between samples are common.
+        s.weight.resize(nodes);
+        for (float &x : s.weight)
+            x = float(1 + pick(rng));
+        Hole h;
+        h.sp = pick(rng) * 2.0;
+        h.star = 1000;
+        h.star_dev = 0.5;
+        const int n = count(rng);
+        for (int i = 0; i < n; ++i) {
+            const std::uint32_t u = std::uint32_t(rng() % nodes);
+            const double dev = pick(rng) == 0 ? 0.0 : double(1 + pick(rng));
+            // The band's bound is at least the weight, at times exactly it.
+            const double bound = double(s.weight[u]) * (pick(rng) == 0 ? 1.0 : 1.0 + unit(rng));
+            h.pending.push_back({u, dev, dev * bound, -1.0});
+        }
+        // evaluate raises the cost only while it is within the limit.
+        const double limit = pick(rng) == 0 ? INFINITY : h.sp + 16.0 * unit(rng);
+
+        // One by one, in scan order.
+        double cost = h.sp, star_dev = h.star_dev;
+        std::uint32_t star = h.star;
+        bool within = true;
+        for (const Hole::Pending &q : h.pending) {
+            const double wd = q.dev > 0.0 ? q.dev * double(s.weight[q.node]) : 0.0;
+            if (wd > cost) {
+                cost = wd;
+                star = q.node;
+                star_dev = q.dev;
+            }
+            if (wd > limit) {
+                within = false;
+                break;
+            }
+        }
+
+        const bool ok = raise_pending(s, h, limit);
+        ASSERT_EQ(ok, within) << "trial " << trial;
+        EXPECT_EQ(h.sp, cost) << "trial " << trial;
+        EXPECT_EQ(h.star, star) << "trial " << trial;
+        EXPECT_EQ(h.star_dev, star_dev) << "trial " << trial;
+        EXPECT_TRUE(h.pending.empty());
+        failed += !within;
+        raised += star != 1000;
+    }
+    EXPECT_GT(failed, 1000);
+    EXPECT_GT(raised, 1000);
+}
