@@ -670,10 +670,12 @@ TEST(Erase, DeletedVerticesOutsideAGridAreRefused) {
     Mesh bunny = read_mesh(asset("bun_zipper_res4.ply"));
     const auto isolated = bunny.add_vertex(bunny.point(Mesh::VertexHandle(0)));
     bunny.status(isolated).set_deleted(true);
-    EXPECT_THROW(NodeEraser(bunny, nullptr, EraseOptions{}), std::invalid_argument);
+    EraseOptions vertical; // without a view, so that only the deleted vertices are wrong
+    vertical.significance.model = SpModel::vertical;
+    EXPECT_THROW(NodeEraser(bunny, nullptr, vertical), std::invalid_argument);
     Mesh grid = grid_tin(load_cropped({"dem_squared.tif", false, 0}));
     grid.status(Mesh::VertexHandle(5)).set_deleted(true);
-    EXPECT_THROW(NodeEraser(grid, nullptr, EraseOptions{}), std::invalid_argument);
+    EXPECT_THROW(NodeEraser(grid, nullptr, vertical), std::invalid_argument);
 }
 
 TEST(Erase, SecondEraseWithALooserBoundKeepsTheBound) {
