@@ -59,6 +59,13 @@ struct RandomCost {
         std::sort(s, s + 3);
         return table[std::size_t((s[0] * n + s[1]) * n + s[2])];
     }
+    // The largest cost of `count` triangles.
+    double largest(const RingTriangle *t, int count) const {
+        double most = 0.0;
+        for (int k = 0; k < count; ++k)
+            most = std::max(most, (*this)(t[k].a, t[k].b, t[k].c));
+        return most;
+    }
 };
 
 bool in_closed(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c, const glm::dvec2 &p) {
@@ -160,20 +167,14 @@ TEST(MinMaxTriangulation, IsTheLeastLargestCostOverEveryTriangulation) {
         };
         const int count = min_max_triangulation(q.data(), n, INFINITY, exact, out.data());
         ASSERT_EQ(count, n - 2) << "trial " << trial;
-        const std::vector<RingTriangle> t(out.begin(), out.begin() + count);
-        expect_triangulation(q, t);
-        double largest = 0.0;
-        for (const RingTriangle &x : t)
-            largest = std::max(largest, cost(x.a, x.b, x.c));
+        expect_triangulation(q, {out.begin(), out.begin() + count});
+        const double largest = cost.largest(out.data(), count);
         EXPECT_EQ(largest, least) << "trial " << trial;
         EXPECT_LE(asked, n * (n - 1) * (n - 2) / 6) << "each triangle once at most";
 
         std::array<RingTriangle, k_max_ring> ears;
         ASSERT_EQ(clip_ears(q.data(), n, ears.data()), n - 2);
-        double ears_largest = 0.0;
-        for (int k = 0; k < n - 2; ++k)
-            ears_largest = std::max(ears_largest, cost(ears[k].a, ears[k].b, ears[k].c));
-        EXPECT_LE(largest, ears_largest) << "trial " << trial;
+        EXPECT_LE(largest, cost.largest(ears.data(), n - 2)) << "trial " << trial;
 
         // The limit just under and at the least; a cost that gives up past its stop.
         const auto stopping = [&](int a, int b, int c, double stop) {
@@ -185,10 +186,7 @@ TEST(MinMaxTriangulation, IsTheLeastLargestCostOverEveryTriangulation) {
             -1)
             << "trial " << trial;
         ASSERT_EQ(min_max_triangulation(q.data(), n, least, stopping, out.data()), n - 2);
-        double within = 0.0;
-        for (int k = 0; k < n - 2; ++k)
-            within = std::max(within, cost(out[k].a, out[k].b, out[k].c));
-        EXPECT_EQ(within, least) << "trial " << trial;
+        EXPECT_EQ(cost.largest(out.data(), n - 2), least) << "trial " << trial;
     }
 }
 
@@ -211,12 +209,8 @@ TEST(MinMaxTriangulation, HandlesReflexAndStraightNodes) {
             q.data(), n, INFINITY, [&](int a, int b, int c, double) { return cost(a, b, c); },
             out.data());
         ASSERT_EQ(count, n - 2);
-        const std::vector<RingTriangle> t(out.begin(), out.begin() + count);
-        expect_triangulation(q, t);
-        double largest = 0.0;
-        for (const RingTriangle &x : t)
-            largest = std::max(largest, cost(x.a, x.b, x.c));
-        EXPECT_EQ(largest, least) << "trial " << trial;
+        expect_triangulation(q, {out.begin(), out.begin() + count});
+        EXPECT_EQ(cost.largest(out.data(), count), least) << "trial " << trial;
     }
 }
 
