@@ -140,10 +140,6 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
     }
 }
 
-// The slots of EraserState::triangle_costs: 3 MB, most of a sweep's repeats of a triangle (a
-// node's ring changes by a neighbour at a time).
-constexpr std::size_t k_triangle_costs = std::size_t(1) << 17;
-
 // Whether evaluate tries the hole's min-max triangulation when the ears' exceeds the limit: a
 // vertical bound on a grid TIN without a budget (simplify --max-error), where a node the Delaunay
 // ears keep may still go under triangles that follow the terrain
@@ -157,7 +153,7 @@ static bool data_dependent(const EraserState &s) {
 // triangle's samples scanned from the lattice), into h.tri when it keeps within `limit`; false
 // when none does. The samples that put a triangle over its stop (the ears' worst first) are tried
 // first on the next ones: the triangles overlap, and most fail on the same few samples.
-static bool min_max_hole(EraserState &s, Hole &h, double limit) {
+static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
     std::array<RingTriangle, k_max_ring> tri;
     std::array<glm::dvec3, 8> witness;
     int witnesses = 0, next = 0;
@@ -168,17 +164,7 @@ static bool min_max_hole(EraserState &s, Hole &h, double limit) {
     };
     if (h.star_dev > limit)
         add_witness(h.star);
-    if (s.triangle_costs.empty())
-        s.triangle_costs.resize(k_triangle_costs);
     const auto cost = [&](int a, int b, int c, double stop) {
-        std::uint32_t key[3] = {node_of(s, h.r[a]), node_of(s, h.r[b]), node_of(s, h.r[c])};
-        std::sort(key, key + 3);
-        EraserState::TriangleCost &slot =
-            s.triangle_costs[(key[0] * 0x9E3779B1u ^ key[1] * 0x85EBCA77u ^ key[2] * 0xC2B2AE3Du) &
-                             (k_triangle_costs - 1)];
-        if (slot.a == key[0] && slot.b == key[1] && slot.c == key[2] &&
-            (slot.cost >= 0.0 || -slot.cost > stop))
-            return std::abs(slot.cost);
         const TriangleFrame f =
             triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z);
         const PlaneDev deviation(f, h.p[a], h.p[b], h.p[c]);
@@ -188,10 +174,8 @@ static bool min_max_hole(EraserState &s, Hole &h, double limit) {
             if (orient(h.q[a], h.q[b], x) > 0.0 && orient(h.q[b], h.q[c], x) > 0.0 &&
                 orient(h.q[c], h.q[a], x) > 0.0) {
                 const double d = deviation(Mesh::Point(w.x, w.y, w.z));
-                if (d > stop) {
-                    slot = {key[0], key[1], key[2], -d};
+                if (d > stop)
                     return d; // strictly inside: a sample the scan visits
-                }
             }
         }
         double most = 0.0;
@@ -205,7 +189,6 @@ static bool min_max_hole(EraserState &s, Hole &h, double limit) {
                 add_witness(u);
                 return false;
             });
-        slot = {key[0], key[1], key[2], most > stop ? -most : most};
         return most;
     };
     const int count = min_max_triangulation(h.q.data(), h.n, limit, cost, tri.data());

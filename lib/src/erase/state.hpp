@@ -220,13 +220,6 @@ struct EraserState {
     std::vector<std::int32_t> block_scratch; // build_blocks' scratch
     std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
-    // evaluate's min-max triangulations (erase_cost.cpp): the costs of recent triangles of ring
-    // nodes, a triangle's slot by its corners, made at the first use.
-    struct TriangleCost {
-        std::uint32_t a = 0, b = 0, c = 0; // the corners, ascending (a == b: empty)
-        double cost = 0.0;                 // >= 0: exact; < 0: the cost exceeds -cost
-    };
-    std::vector<TriangleCost> triangle_costs;
 };
 
 // ---- Node ids and vertices (see EraserState::lattice) ----
