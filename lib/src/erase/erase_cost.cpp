@@ -144,6 +144,67 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
     }
 }
 
+// Whether evaluate tries the hole's min-max triangulation when the ears' exceeds the limit: a
+// vertical bound on a grid TIN without a budget (simplify --max-error), where a node the Delaunay
+// ears keep may still go under triangles that follow the terrain
+// (docs/decisions/023-fine-bounds.md). Others keep the ears alone.
+static bool data_dependent(const EraserState &s) {
+    return s.input.xy && s.input.grid_w > 0 && s.weights.unit_weights &&
+           s.input.options.max_nodes <= 0 && !s.input.options.shallow_history;
+}
+
+// The hole's triangulation whose largest sample deviation is least (min_max_triangulation, each
+// triangle's samples scanned from the lattice), into h.tri when it keeps within `limit`; false
+// when none does. The samples that put a triangle over its stop (the ears' worst first) are tried
+// first on the next ones: the triangles overlap, and most fail on the same few samples.
+static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
+    std::array<RingTriangle, k_max_ring> tri;
+    std::array<glm::dvec3, 8> witness;
+    int witnesses = 0, next = 0;
+    const auto add_witness = [&](std::uint32_t u) {
+        witness[std::size_t(next)] = to_glm(node_point(s, u));
+        next = (next + 1) % int(witness.size());
+        witnesses = std::min(witnesses + 1, int(witness.size()));
+    };
+    if (h.star_dev > limit)
+        add_witness(h.star);
+    const auto cost = [&](int a, int b, int c, double stop) {
+        const TriangleFrame f =
+            triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z);
+        const PlaneDev deviation(f, h.p[a], h.p[b], h.p[c]);
+        for (int k = 0; k < witnesses; ++k) {
+            const glm::dvec3 &w = witness[std::size_t(k)];
+            const glm::dvec2 x(w.x, w.y);
+            if (orient(h.q[a], h.q[b], x) > 0.0 && orient(h.q[b], h.q[c], x) > 0.0 &&
+                orient(h.q[c], h.q[a], x) > 0.0) {
+                const double d = deviation(Mesh::Point(w.x, w.y, w.z));
+                if (d > stop)
+                    return d; // strictly inside: a sample the scan visits
+            }
+        }
+        double most = 0.0;
+        scan_lattice(
+            s, node_of(s, h.r[a]), node_of(s, h.r[b]), node_of(s, h.r[c]),
+            [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
+            [&](std::uint32_t u, const Mesh::Point &p, double) {
+                most = std::max(most, deviation(p));
+                if (!(most > stop))
+                    return true;
+                add_witness(u);
+                return false;
+            });
+        return most;
+    };
+    const int count = min_max_triangulation(h.q.data(), h.n, limit, cost, tri.data());
+    if (count != h.n - 2)
+        return false;
+    std::copy_n(tri.begin(), count, h.tri.begin());
+    return true;
+}
+
+static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
+                         std::size_t max_swallowed);
+
 bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     ++s.counters.evaluations;
     Hole &h = s.scratch.hole;
@@ -200,6 +261,22 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
                     return false; // the diagonal exists outside the hole: non-manifold
             }
         }
+    measure_hole(s, v, pv, limit, max_swallowed);
+    if (h.sp > limit && !h.deferred && n > 3 && data_dependent(s) && min_max_hole(s, h, limit)) {
+        frame_triangles(h, s.input.xy);
+        measure_hole(s, v, pv, limit, max_swallowed);
+    }
+    return true;
+}
+
+// evaluate's SP of the hole's triangulation h.tri (framed): every node the new triangles swallow,
+// and on a grid TIN every sample, until the SP exceeds `limit` (see scan_hole).
+static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
+                         std::size_t max_swallowed) {
+    Hole &h = s.scratch.hole;
+    const Mesh &m = *s.input.mesh;
+    const int n = h.n;
+    const int fans = h.boundary ? n - 1 : n;
     s.scratch.assign.clear();
     double dev = 0.0;
     const std::uint8_t own = locate(h, s.input.xy, pv, dev);
@@ -224,7 +301,6 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         l.star_dev = float_down(h.star_dev);
         Cell &cell = s.frame.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
-        return true;
     };
     if (s.input.xy) {
         // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
