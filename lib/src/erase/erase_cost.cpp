@@ -114,14 +114,15 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
                               : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
     };
     for (int t = 0; t < h.ntri; ++t) {
-        const PlaneDev deviation(h.frame[t], h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
+        const TrianglePlane &plane = h.frame[t].plane;
+        const double margin = plane.margin_over(h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
         double maxdev = 0.0;
         std::int32_t worst = -1;
         const bool whole = scan_lattice(
             s, node_of(s, h.r[h.tri[t].a]), node_of(s, h.r[h.tri[t].b]),
             node_of(s, h.r[h.tri[t].c]), band,
             [&](std::uint32_t u, const Mesh::Point &p, double bound) {
-                const double dev = deviation(p);
+                const double dev = plane.deviation(p[0], p[1], p[2], margin);
                 if (dev > maxdev) {
                     maxdev = dev;
                     worst = std::int32_t(u);
@@ -231,7 +232,7 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         std::fill_n(steepest.begin(), n, 0.0);
         for (int t = 0; t < h.ntri; ++t)
             for (const std::uint8_t k : {h.tri[t].a, h.tri[t].b, h.tri[t].c})
-                steepest[k] = std::max(steepest[k], h.frame[t].slope);
+                steepest[k] = std::max(steepest[k], h.frame[t].plane.slope());
         for (int i = 0; i < n; ++i) {
             const double margin =
                 rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);
