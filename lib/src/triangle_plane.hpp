@@ -59,7 +59,7 @@ class TrianglePlane {
     double vertical(double x, double y, double z) const { return std::abs(z - height(x, y)); }
     double vertical(const glm::dvec3 &p) const { return vertical(p.x, p.y, p.z); }
     // That widened by `margin` (at least margin(its largest |x|, |y|)): it never understates the
-    // deviation from the plane through the exact corners.
+    // deviation from the plane through the exact corners, but for this evaluation's own rounding.
     double deviation(double x, double y, double z, double margin) const {
         return vertical(x, y, z) + margin;
     }

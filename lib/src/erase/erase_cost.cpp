@@ -114,7 +114,7 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
                               : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
     };
     for (int t = 0; t < h.ntri; ++t) {
-        const TrianglePlane &plane = h.frame[t].plane;
+        const TrianglePlane plane = h.frame[t].plane; // a copy: the scan's stores cannot move it
         const double margin = plane.margin_over(h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
         double maxdev = 0.0;
         std::int32_t worst = -1;
