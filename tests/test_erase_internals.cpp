@@ -148,7 +148,7 @@ TEST(LatticeScan, StopsWhenAVisitSaysSo) {
 
 // Each tile's bound from lattice_tiles, made from the tiles' height ranges alone, is at least the
 // largest vertical distance of the face's samples in that tile to the face's plane, computed here
-// from the three corners.
+// from the three corners (through its normal, not TrianglePlane).
 TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
     std::mt19937 rng(3);
     std::int64_t tiled = 0;
@@ -165,11 +165,10 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
             const auto plane = [&](double x, double y) {
                 return pa.z - (normal.x * (x - pa.x) + normal.y * (y - pa.y)) / normal.z;
             };
-            const double slope = std::hypot(normal.x, normal.y) / std::abs(normal.z);
             g.s.faces.face_blocked[0] = 0;
             g.s.faces.face_tiles.clear();
             const std::vector<float> *tiles =
-                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], plane, slope);
+                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], TrianglePlane(pa, pb, pc));
             if (!tiles)
                 continue; // too few samples to be tiled
             ++tiled;

@@ -118,14 +118,15 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
                    : s.weights.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
     };
     for (int t = 0; t < h.ntri; ++t) {
-        const PlaneDev deviation(h.frame[t], h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
+        const TrianglePlane plane = h.frame[t].plane; // a copy: the scan's stores cannot move it
+        const double margin = plane.margin_over(h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
         double maxdev = 0.0;
         std::int32_t worst = -1;
         const bool whole = scan_lattice(
             s, node_of(s, h.r[h.tri[t].a]), node_of(s, h.r[h.tri[t].b]),
             node_of(s, h.r[h.tri[t].c]), band,
             [&](std::uint32_t u, const Mesh::Point &p, double bound) {
-                const double dev = deviation(p);
+                const double dev = plane.deviation(p[0], p[1], p[2], margin);
                 if (dev > maxdev) {
                     maxdev = dev;
                     worst = std::int32_t(u);
@@ -169,9 +170,12 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
     if (h.star_dev > limit)
         add_witness(h.star);
     const auto cost = [&](int a, int b, int c, double stop) {
-        const TriangleFrame f =
-            triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z);
-        const PlaneDev deviation(f, h.p[a], h.p[b], h.p[c]);
+        const TrianglePlane plane =
+            triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z).plane;
+        const double margin = plane.margin_over(h.p[a], h.p[b], h.p[c]);
+        const auto deviation = [&](const Mesh::Point &p) {
+            return plane.deviation(double(p[0]), double(p[1]), double(p[2]), margin);
+        };
         for (int k = 0; k < witnesses; ++k) {
             const glm::dvec3 &w = witness[std::size_t(k)];
             const glm::dvec2 x(w.x, w.y);
@@ -311,7 +315,7 @@ static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limi
         std::fill_n(steepest.begin(), n, 0.0);
         for (int t = 0; t < h.ntri; ++t)
             for (const std::uint8_t k : {h.tri[t].a, h.tri[t].b, h.tri[t].c})
-                steepest[k] = std::max(steepest[k], h.frame[t].slope);
+                steepest[k] = std::max(steepest[k], h.frame[t].plane.slope());
         for (int i = 0; i < n; ++i) {
             const double margin =
                 rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);

@@ -58,13 +58,14 @@ std::pair<float, std::int32_t> face_worst(const EraserState &s, std::uint32_t a,
                                           std::uint32_t c, const TriangleFrame &f,
                                           const glm::dvec3 &pa, const glm::dvec3 &pb,
                                           const glm::dvec3 &pc) {
-    const PlaneDev deviation(f, pa, pb, pc);
+    const TrianglePlane plane = f.plane;
+    const double margin = plane.margin_over(pa, pb, pc);
     double maxdev = 0.0;
     std::int32_t worst = -1;
     scan_lattice(
         s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
         [&](std::uint32_t u, const Mesh::Point &p, double) {
-            const double dev = deviation(p);
+            const double dev = plane.deviation(p[0], p[1], p[2], margin);
             if (dev > maxdev) {
                 maxdev = dev;
                 worst = std::int32_t(u);

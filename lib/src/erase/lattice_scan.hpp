@@ -156,12 +156,11 @@ inline void scan_tiles(const EraserState &s, std::uint32_t a, std::uint32_t b, s
 
 // Face f's tiles (corners a, b, c): kept ones, made now when the face holds more than
 // k_tiled_samples samples, else null. A tile's bound is the largest distance from the height
-// range of its lattice tile to `plane(x, y)` (the face's height) over its box, widened like a
-// deviation (rounding_margin at its farthest corner for the face's slope, and a hair for the
-// rounding of these sums); no sample is read.
-template <class Plane>
+// range of its lattice tile to the face's plane over its box, widened like a deviation (the
+// plane's margin at its farthest corner, and a hair for the rounding of these sums); no sample is
+// read.
 inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, std::uint32_t b,
-                                         std::uint32_t c, const Plane &plane, double slope) {
+                                         std::uint32_t c, const TrianglePlane &plane) {
     if (s.faces.face_blocked[f.idx()]) {
         const auto kept = s.faces.face_tiles.find(f.idx());
         return kept == s.faces.face_tiles.end() ? nullptr : &kept->second;
@@ -188,13 +187,14 @@ inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, 
             const double x0 = lattice.x(c0), x1 = lattice.x(c1);
             const float *z = s.faces.tile_z.data() +
                              2 * ((g.row0 / k_band_rows + j) * columns + (g.x0 / k_tile_cols + k));
-            const double p[4] = {plane(x0, y0), plane(x1, y0), plane(x0, y1), plane(x1, y1)};
+            const double p[4] = {plane.height(x0, y0), plane.height(x1, y0), plane.height(x0, y1),
+                                 plane.height(x1, y1)};
             const double pl = std::min({p[0], p[1], p[2], p[3]}),
                          ph = std::max({p[0], p[1], p[2], p[3]});
             const double far = std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
             const double most = std::max({double(z[1]) - pl, ph - double(z[0]), 0.0});
             dev[std::size_t(j * g.columns + k)] =
-                float_up(most + rounding_margin(far, slope) +
+                float_up(most + plane.margin(far) +
                          1e-9 * (std::abs(pl) + std::abs(ph) + std::abs(double(z[0])) +
                                  std::abs(double(z[1])) + 1.0));
         }

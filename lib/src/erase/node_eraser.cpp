@@ -330,19 +330,11 @@ EraseStats NodeEraser::measure() const {
         const VH va = m.from_vertex_handle(he), vb = m.to_vertex_handle(he),
                  vc = m.to_vertex_handle(m.next_halfedge_handle(he));
         const glm::dvec3 a = to_glm(m.point(va)), b = to_glm(m.point(vb)), c = to_glm(m.point(vc));
-        const glm::dvec3 normal = glm::cross(b - a, c - a);
-        const double area = normal.z;
+        const TrianglePlane plane = s.input.xy ? TrianglePlane(a, b, c) : TrianglePlane();
         auto add = [&](std::int32_t node) {
             const glm::dvec3 p = to_glm(node_point(s, std::uint32_t(node)));
-            double dev;
-            if (s.input.xy) {
-                const glm::dvec2 x(p.x, p.y);
-                const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / area;
-                const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / area;
-                dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z));
-            } else {
-                dev = triangle_distance(p, a, b, c); // as locate() measures what the erase bounds
-            }
+            // The output's own error: node_deviation without the widening for float corners.
+            const double dev = s.input.xy ? plane.vertical(p) : triangle_distance(p, a, b, c);
             stats.max_vertical = std::max(stats.max_vertical, dev);
             stats.max_weighted =
                 std::max(stats.max_weighted, weighted(s, std::uint32_t(node), dev));

@@ -94,9 +94,7 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
     const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he)));
     const glm::dvec3 b = to_glm(m.point(m.to_vertex_handle(he)));
     const glm::dvec3 c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
-    const glm::dvec3 normal = glm::cross(b - a, c - a);
-    const double slope =
-        s.input.xy ? glm::length(glm::dvec2(normal.x, normal.y)) / std::abs(normal.z) : 0.0;
+    const TrianglePlane plane = s.input.xy ? TrianglePlane(a, b, c) : TrianglePlane();
     // A node's weight is looked up only when its deviation times a bound of the weights over the
     // face (TINs: over its corners' box in xy, within its largest deviation in z) could beat the
     // worst so far; that bound may clear the whole face at once (with a margin for the float
@@ -112,19 +110,8 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
     const auto [box_lo, box_hi] = swallowed_box(s.faces, s.input.xy, f, a, b, c);
     if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
         return worst;
-    // A TIN face's height at (x, y), and the deviation from f of a swallowed node at p, computed
-    // the same way by every scan.
-    auto plane_at = [&](double x, double y) {
-        const double b0 = orient({b.x, b.y}, {c.x, c.y}, {x, y}) / normal.z;
-        const double b1 = orient({c.x, c.y}, {a.x, a.y}, {x, y}) / normal.z;
-        return b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z;
-    };
     auto deviation_at = [&](const glm::dvec3 &p) {
-        if (!s.input.xy)
-            return triangle_distance(p, a, b, c);
-        // The same float-rounding widening as locate(): the bound is never overstated.
-        return std::abs(p.z - plane_at(p.x, p.y)) +
-               rounding_margin(std::max(std::abs(p.x), std::abs(p.y)), slope);
+        return node_deviation(s.input.xy, plane, p, a, b, c);
     };
     auto deviation = [&](std::int32_t u) {
         return deviation_at(to_glm(node_point(s, std::uint32_t(u))));
@@ -144,7 +131,7 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
         const std::uint32_t ia = node_of(s, m.from_vertex_handle(he)),
                             ib = node_of(s, m.to_vertex_handle(he)),
                             ic = node_of(s, m.to_vertex_handle(m.next_halfedge_handle(he)));
-        std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane_at, slope);
+        std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane);
         // Visits sample(u, q, dev, bound) for each sample (point q, deviation dev) of a tile or
         // band whose largest deviation times its largest weight (`bound`) may exceed `above`.
         const auto scan = [&](const double &above, const auto &sample) {
