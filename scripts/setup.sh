@@ -3,7 +3,7 @@
 # Used by `make demo`, `make test` and `make bench`; run as root on Debian 12.
 set -eu
 PKGS="cmake g++ make pkg-config libopenmesh-dev libglm-dev libopenimageio-dev openimageio-tools
-libgeotiff-dev libtiff-dev libproj-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev
+libtiff-dev libpng-dev libproj-dev libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev
 libbenchmark-dev libmeshoptimizer-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
 libosmesa6-dev libgbm-dev libglfw3-dev libimgui-dev xvfb xauth unzip clang-format dpkg-dev file
 binutils zlib1g-dev $*"

@@ -33,7 +33,7 @@ fi
 # CMake package's find_dependency calls need.
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "package_deb: Depends: $depends"
-for p in libc6 libopenimageio libgeotiff libproj libopenmesh-dev libglm-dev libopenimageio-dev; do
+for p in libc6 libopenimageio libtiff libpng libproj libegl1 libopenmesh-dev libglm-dev libopenimageio-dev; do
     echo "$depends" | grep -q "$p" || fail "Depends lists no $p"
 done
 
@@ -42,6 +42,11 @@ out=$("$tmp/root/usr/bin/tinlod" --version) || fail "the extracted tinlod --vers
 echo "$out" | head -1
 expected=$(sed -n 's/^CMAKE_PROJECT_VERSION:STATIC=//p' "$build/CMakeCache.txt")
 echo "$out" | grep -q "$expected" || fail "tinlod --version does not print $expected"
+# It finds its modules where it was extracted (a PNG needs the PNG module, a NAD83 GeoTIFF PROJ's).
+for f in crater_u16.png dem_squared.tif; do
+    "$tmp/root/usr/bin/tinlod" info "$src/meshes/$f" > /dev/null ||
+        fail "the extracted tinlod cannot read $f"
+done
 # Its CMake package, found where it was extracted, configures the examples.
 cmake -S "$src/examples" -B "$tmp/examples" -DCMAKE_PREFIX_PATH="$tmp/root/usr" > "$tmp/examples.log" 2>&1 ||
     { cat "$tmp/examples.log"; fail "the .deb's CMake package does not configure the examples"; }

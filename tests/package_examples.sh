@@ -16,7 +16,8 @@ for f in bin/tinlod lib/cmake/tinlod/tinlodConfig.cmake lib/cmake/tinlod/tinlodC
          lib/cmake/tinlod/tinlodTargets.cmake lib/libtinlod_core.a lib/libtinlod_io.a \
          lib/libtinlod_render.a include/tinlod/version.hpp include/tinlod/closest_point.hpp \
          include/tinlod/tin.hpp include/tinlod/om/ModDistanceDecayT.hh \
-         include/tinlod/om/NodeEraseDecimaterT.hh; do
+         include/tinlod/om/NodeEraseDecimaterT.hh lib/tinlod/tinlod_oiio.so lib/tinlod/tinlod_tiff.so \
+         lib/tinlod/tinlod_png.so lib/tinlod/tinlod_proj.so; do
     [ -e "$prefix/$f" ] || fail "the install holds no $f"
 done
 if [ -e "$build/bin/tinlod-view" ] && [ ! -x "$prefix/bin/tinlod-view" ]; then

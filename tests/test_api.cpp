@@ -63,8 +63,9 @@ void erase_with(const EraseOptions &options) {
 std::string quoted(const std::string &path) { return "'" + path + "'"; }
 
 // Runs `args` with --stats and checks that its time_ms stages add up to its total, and that the
-// total is the process's wall time as the test sees it (less what the shell and the stats' own
-// writing take, a few ms).
+// total is most of the process's wall time as the test sees it. The rest is the shell and the
+// process's exit, which a loaded machine stretches (750 ms of 12.4 s at load 13): a stage left
+// out of the total (the greedy insertion was 60 % of a run) still fails.
 void expect_honest_times(const std::string &args) {
     const std::string stats = tinlod::test::temp_dir() + "/s.json";
     tinlod::Stopwatch wall;
@@ -80,7 +81,7 @@ void expect_honest_times(const std::string &args) {
             sum += ms.get<double>();
     EXPECT_NEAR(sum, total, 0.05 * total) << times.dump();
     EXPECT_LE(total, wall_ms + 10.0) << times.dump(); // the start is known to a clock tick
-    EXPECT_GE(total, 0.95 * wall_ms - 50.0)
+    EXPECT_GE(total, 0.8 * wall_ms - 100.0)
         << "the test saw " << wall_ms << " ms: " << times.dump();
 }
 

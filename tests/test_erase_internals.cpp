@@ -35,10 +35,10 @@ struct Lattice {
             for (std::uint32_t c = 0; c < w; ++c)
                 mesh.add_vertex(
                     Mesh::Point(float(x0 + c * dx), float(y0 + r * dy), float(height(rng))));
-        s.mesh = &mesh;
-        s.grid_w = w;
-        s.nodes = w * h;
-        s.face_blocked.assign(1, 0);
+        s.input.mesh = &mesh;
+        s.input.grid_w = w;
+        s.input.nodes = w * h;
+        s.faces.face_blocked.assign(1, 0);
     }
 };
 
@@ -150,7 +150,7 @@ TEST(LatticeScan, StopsWhenAVisitSaysSo) {
 
 // Each tile's bound from lattice_tiles, made from the tiles' height ranges alone, is at least the
 // largest vertical distance of the face's samples in that tile to the face's plane, computed here
-// from the three corners.
+// from the three corners (through its normal, not TrianglePlane).
 TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
     std::mt19937 rng(3);
     std::int64_t tiled = 0;
@@ -167,11 +167,10 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
             const auto plane = [&](double x, double y) {
                 return pa.z - (normal.x * (x - pa.x) + normal.y * (y - pa.y)) / normal.z;
             };
-            const double slope = std::hypot(normal.x, normal.y) / std::abs(normal.z);
-            g.s.face_blocked[0] = 0;
-            g.s.face_tiles.clear();
+            g.s.faces.face_blocked[0] = 0;
+            g.s.faces.face_tiles.clear();
             const std::vector<float> *tiles =
-                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], plane, slope);
+                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], TrianglePlane(pa, pb, pc));
             if (!tiles)
                 continue; // too few samples to be tiled
             ++tiled;
@@ -202,13 +201,13 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
     std::uniform_int_distribution<int> count(0, 12), pick(0, 3);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     EraserState s;
-    s.unit_weights = false;
+    s.weights.unit_weights = false;
     const std::uint32_t nodes = 16;
     std::int64_t failed = 0, raised = 0;
     for (int trial = 0; trial < 20000; ++trial) {
         // Few distinct weights and deviations, so that ties between samples are common.
-        s.weight.resize(nodes);
-        for (float &x : s.weight)
+        s.weights.per_vertex.resize(nodes);
+        for (float &x : s.weights.per_vertex)
             x = float(1 + pick(rng));
         Hole h;
         h.sp = pick(rng) * 2.0;
@@ -219,7 +218,8 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
             const std::uint32_t u = std::uint32_t(rng() % nodes);
             const double dev = pick(rng) == 0 ? 0.0 : double(1 + pick(rng));
             // The band's bound is at least the weight, at times exactly it.
-            const double bound = double(s.weight[u]) * (pick(rng) == 0 ? 1.0 : 1.0 + unit(rng));
+            const double bound =
+                double(s.weights.per_vertex[u]) * (pick(rng) == 0 ? 1.0 : 1.0 + unit(rng));
             h.pending.push_back({u, dev, dev * bound, -1.0});
         }
         // evaluate raises the cost only while it is within the limit.
@@ -230,7 +230,7 @@ TEST(RaisePending, MatchesRaisingOneByOneInScanOrder) {
         std::uint32_t star = h.star;
         bool within = true;
         for (const Hole::Pending &q : h.pending) {
-            const double wd = q.dev > 0.0 ? q.dev * double(s.weight[q.node]) : 0.0;
+            const double wd = q.dev > 0.0 ? q.dev * double(s.weights.per_vertex[q.node]) : 0.0;
             if (wd > cost) {
                 cost = wd;
                 star = q.node;

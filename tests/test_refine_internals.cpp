@@ -69,18 +69,19 @@ TEST(MotionBounds, BoundTheExactWeightAtBothViews) {
                      w_now = screen_weight(now, p, options);
         const refine::ViewBounds::Since d = since_views(then, now);
         EraserState s;
-        s.model = SpModel::screen;
-        s.significance = options;
-        s.weigher = Weigher(now, options);
+        s.weights.model = SpModel::screen;
+        s.weights.significance = options;
+        s.weights.weigher = Weigher(now, options);
         const double nearest = glm::length(p - now.eye);
         const bool cone_then = Weigher(then, options).in_cone(p, p),
-                   cone_now = s.weigher.in_cone(p, p);
+                   cone_now = s.weights.weigher.in_cone(p, p);
         for (const bool cone : {false, true}) {
             // The `cone` bounds hold only for nodes in the cone of the view they name.
             if (cone && !cone_then && !cone_now)
                 continue;
-            const double growth = weight_growth(s, d, nearest, cone);
-            const double lg = log_growth(s, d, nearest, cone), ls = log_shrink(s, d, nearest, cone);
+            const double growth = weight_growth(s.weights.weigher, d, nearest, cone);
+            const double lg = log_growth(s.weights.weigher, d, nearest, cone),
+                         ls = log_shrink(s.weights.weigher, d, nearest, cone);
             if (!std::isfinite(growth))
                 continue;
             ++tested;
@@ -147,8 +148,8 @@ Heightfield rough(std::uint32_t side, std::uint32_t seed) {
 // On a TIN erased with a shallow history, with its records copied into an EraserState from
 // ring(): for every erased node v, re-inserting what ready_dependency returns until v is back
 // always re-inserts an erased node whose ring is all live, reached from v along erased ring nodes
-// (a breadth-first walk of the records' graph), and the walk resumed from s.chain returns what a
-// walk from v alone returns.
+// (a breadth-first walk of the records' graph), and the walk resumed from s.frame.chain returns
+// what a walk from v alone returns.
 TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
     const Heightfield hf = rough(33, 3);
     Mesh mesh = grid_tin(hf);
@@ -160,9 +161,9 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
 
     const std::uint32_t nodes = std::uint32_t(mesh.n_vertices());
     EraserState s;
-    s.mesh = &mesh;
-    s.nodes = nodes;
-    s.xy = true;
+    s.input.mesh = &mesh;
+    s.input.nodes = nodes;
+    s.input.xy = true;
     std::vector<std::vector<std::uint32_t>> rings(nodes);
     std::vector<std::int32_t> erased_record(nodes, -2); // the records as erased, kept
     std::vector<std::uint32_t> erased;
@@ -174,18 +175,18 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
         EraseRecord record;
         record.ring_size = std::uint8_t(rings[x].size());
         record.ring_capacity = record.ring_size;
-        record.ring_begin = std::uint32_t(s.ring_pool.append(rings[x].size()));
+        record.ring_begin = std::uint32_t(s.history.ring_pool.append(rings[x].size()));
         for (std::size_t i = 0; i < rings[x].size(); ++i)
-            s.ring_pool[record.ring_begin + i] = rings[x][i];
-        erased_record[x] = std::int32_t(s.records.append(1));
-        s.records[std::size_t(erased_record[x])] = record;
+            s.history.ring_pool[record.ring_begin + i] = rings[x][i];
+        erased_record[x] = std::int32_t(s.history.records.append(1));
+        s.history.records[std::size_t(erased_record[x])] = record;
     }
     ASSERT_GT(erased.size(), nodes / 3);
 
     std::int64_t steps = 0, deep = 0;
     for (const std::uint32_t v : erased) {
-        s.record_of = erased_record;
-        s.chain.clear();
+        s.history.record_of = erased_record;
+        s.frame.chain.clear();
         for (std::int64_t k = 0;; ++k) {
             ASSERT_LT(k, std::int64_t(erased.size()));
             // The nodes reachable from v along erased ring nodes, as they stand.
@@ -195,28 +196,29 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
                 const std::uint32_t at = todo.back();
                 todo.pop_back();
                 for (const std::uint32_t r : rings[at])
-                    if (s.record_of[r] >= 0 && reach.insert(r).second)
+                    if (s.history.record_of[r] >= 0 && reach.insert(r).second)
                         todo.push_back(r);
             }
             EraserState fresh;
-            fresh.mesh = s.mesh;
-            fresh.xy = true;
-            fresh.record_of = s.record_of;
-            fresh.records = s.records;
-            fresh.ring_pool = s.ring_pool;
+            fresh.input.mesh = s.input.mesh;
+            fresh.input.xy = true;
+            fresh.history.record_of = s.history.record_of;
+            fresh.history.records = s.history.records;
+            fresh.history.ring_pool = s.history.ring_pool;
             const std::uint32_t from_scratch = ready_dependency(fresh, v);
 
             const std::uint32_t x = ready_dependency(s, v);
-            ASSERT_GE(s.record_of[x], 0) << "node " << x << " for " << v << " is live";
+            ASSERT_GE(s.history.record_of[x], 0) << "node " << x << " for " << v << " is live";
             EXPECT_TRUE(reach.count(x)) << "node " << x << " is not reached from " << v;
             for (const std::uint32_t r : rings[x])
-                EXPECT_LT(s.record_of[r], 0) << "ring node " << r << " of " << x << " is erased";
+                EXPECT_LT(s.history.record_of[r], 0)
+                    << "ring node " << r << " of " << x << " is erased";
             EXPECT_EQ(x, from_scratch) << "the resumed walk for " << v << " differs";
             ++steps;
             if (x == v)
                 break;
             ++deep;
-            s.record_of[x] = -2; // re-inserted: live
+            s.history.record_of[x] = -2; // re-inserted: live
         }
     }
     EXPECT_GT(deep, 10); // some recoveries waited on others

@@ -9,6 +9,7 @@
 #include "tinlod/greedy.hpp"
 
 #include "lattice_triangle.hpp"
+#include "triangle_plane.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -140,19 +141,16 @@ struct Inserter {
         const std::int32_t na = corner[3 * t], nb = corner[3 * t + 1], nc = corner[3 * t + 2];
         const std::uint32_t sa = points[na], sb = points[nb], sc = points[nc];
         const LatticeTriangle tri(std::uint32_t(w), sa, sb, sc);
-        const double za = hf.z[sa], xa = px[na], ya = py[na];
-        const double dx1 = px[nb] - xa, dy1 = py[nb] - ya, dz1 = hf.z[sb] - za;
-        const double dx2 = px[nc] - xa, dy2 = py[nc] - ya, dz2 = hf.z[sc] - za;
-        const double det = dx1 * dy2 - dy1 * dx2;
-        const double gx = (dz1 * dy2 - dz2 * dy1) / det, gy = (dx1 * dz2 - dx2 * dz1) / det;
+        const TrianglePlane::Rows plane = TrianglePlane::rows(
+            {px[na], py[na], hf.z[sa]}, {px[nb], py[nb], hf.z[sb]}, {px[nc], py[nc], hf.z[sc]});
         double worst = 0.0;
         std::uint32_t at = sa;
         for (std::int64_t r = tri.first_row; r <= tri.last_row; ++r) {
             const auto [lo, hi] = tri.span(r);
             const float *row = hf.z.data() + r * w;
-            const double base = za + gy * (double(r) - ya) - gx * xa;
+            const double base = plane.start(double(r));
             const auto dev = [&](std::int64_t c) {
-                return std::abs(base + gx * double(c) - double(row[c]));
+                return plane.deviation(base, double(c), double(row[c]));
             };
             // The row's largest deviation in four independent chains, then its place only when it
             // beats the triangle's so far.
@@ -177,8 +175,8 @@ struct Inserter {
         candidate[t] = at;
         is_pending[t] = 0;
         if (slope_margin > 0.0)
-            worst +=
-                slope_margin * std::sqrt(gx * gx / (hf.dx * hf.dx) + gy * gy / (hf.dy * hf.dy));
+            worst += slope_margin * std::sqrt(plane.gx * plane.gx / (hf.dx * hf.dx) +
+                                              plane.gy * plane.gy / (hf.dy * hf.dy));
         if (worst > threshold && at != sa && at != sb && at != sc) {
             const int b = int(
                 std::min(double(k_buckets - 1), std::log2(worst / threshold) * buckets_per_octave));

@@ -2,6 +2,8 @@
 // sample grid and the interpolated height compared with every sample it covers.
 #include "tinlod/metrics.hpp"
 
+#include "triangle_plane.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -50,8 +52,8 @@ class ErrorAccumulator {
                 if (covered_[id])
                     continue;
                 covered_[id] = true;
-                const double z = (w0 * t[0].z + w1 * t[1].z + w2 * t[2].z) / area;
-                sample(id, c, r, z);
+                sample(id, c, r,
+                       TrianglePlane::interpolate(w0, w1, w2, t[0].z, t[1].z, t[2].z, area));
             }
     }
 

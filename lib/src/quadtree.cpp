@@ -9,6 +9,7 @@
 #include "tinlod/error.hpp"
 #include "tinlod/screen_weight.hpp"
 #include "tinlod/util.hpp"
+#include "triangle_plane.hpp"
 #include "working_set.hpp"
 
 #include <algorithm>
@@ -84,24 +85,9 @@ QuadLayout::QuadLayout(int w, int h) : width(w), height(h) {
 
 namespace {
 
-struct GridPoint {
-    double c, r, z;
-};
-
-// z of the plane through a triangle, evaluated at grid position (c, r).
-struct Plane {
-    double z0, c0, r0, gc, gr;
-    Plane(const GridPoint &p0, const GridPoint &p1, const GridPoint &p2) {
-        const double e1c = p1.c - p0.c, e1r = p1.r - p0.r, e2c = p2.c - p0.c, e2r = p2.r - p0.r;
-        const double d1 = p1.z - p0.z, d2 = p2.z - p0.z;
-        const double det = e1c * e2r - e1r * e2c;
-        z0 = p0.z;
-        c0 = p0.c;
-        r0 = p0.r;
-        gc = (d1 * e2r - d2 * e1r) / det;
-        gr = (e1c * d2 - e2c * d1) / det;
-    }
-};
+// The gradient form of a fan triangle's plane over grid positions (c, r): a node's bound is the
+// most numerous scan of the build.
+using Plane = TrianglePlane::Rows;
 
 struct OwnBound {
     double error = 0.0;
@@ -121,29 +107,28 @@ struct OwnBound {
 OwnBound fan_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t x1,
                    std::uint32_t y0, std::uint32_t y1, bool box) {
     auto at = [&](std::uint32_t c, std::uint32_t r) {
-        return GridPoint{double(c), double(r), double(z[std::size_t{r} * w + c])};
+        return glm::dvec3(double(c), double(r), double(z[std::size_t{r} * w + c]));
     };
+    const auto plane = TrianglePlane::rows;
     const std::uint32_t mx = (x0 + x1) / 2, my = (y0 + y1) / 2;
-    const GridPoint ctr = at(mx, my);
-    const GridPoint bl = at(x0, y0), br = at(x1, y0), tr = at(x1, y1), tl = at(x0, y1);
-    const GridPoint mb = at(mx, y0), mr = at(x1, my), mt = at(mx, y1), ml = at(x0, my);
+    const glm::dvec3 ctr = at(mx, my);
+    const glm::dvec3 bl = at(x0, y0), br = at(x1, y0), tr = at(x1, y1), tl = at(x0, y1);
+    const glm::dvec3 mb = at(mx, y0), mr = at(x1, my), mt = at(mx, y1), ml = at(x0, my);
     // Wedges bottom, right, top, left: the whole triangle and its two halves.
-    const Plane full[4] = {Plane(ctr, bl, br), Plane(ctr, br, tr), Plane(ctr, tr, tl),
-                           Plane(ctr, tl, bl)};
-    const Plane bottom[2] = {Plane(ctr, bl, mb), Plane(ctr, mb, br)}; // c <= mx, c >= mx
-    const Plane top[2] = {Plane(ctr, mt, tl), Plane(ctr, tr, mt)};    // c <= mx, c >= mx
-    const Plane right[2] = {Plane(ctr, br, mr), Plane(ctr, mr, tr)};  // r <= my, r >= my
-    const Plane left[2] = {Plane(ctr, ml, bl), Plane(ctr, tl, ml)};   // r <= my, r >= my
+    const Plane full[4] = {plane(ctr, bl, br), plane(ctr, br, tr), plane(ctr, tr, tl),
+                           plane(ctr, tl, bl)};
+    const Plane bottom[2] = {plane(ctr, bl, mb), plane(ctr, mb, br)}; // c <= mx, c >= mx
+    const Plane top[2] = {plane(ctr, mt, tl), plane(ctr, tr, mt)};    // c <= mx, c >= mx
+    const Plane right[2] = {plane(ctr, br, mr), plane(ctr, mr, tr)};  // r <= my, r >= my
+    const Plane left[2] = {plane(ctr, ml, bl), plane(ctr, tl, ml)};   // r <= my, r >= my
     OwnBound out;
     double e = 0.0;
     auto span = [&](const float *row, double r, std::uint32_t c0, std::uint32_t c1, const Plane &a,
                     const Plane &b) {
-        const double za = a.z0 + a.gr * (r - a.r0) - a.gc * a.c0;
-        const double zb = b.z0 + b.gr * (r - b.r0) - b.gc * b.c0;
+        const double za = a.start(r), zb = b.start(r);
         for (std::uint32_t c = c0; c <= c1; ++c) {
             const double zs = row[c];
-            e = std::max(e,
-                         std::max(std::abs(zs - (za + a.gc * c)), std::abs(zs - (zb + b.gc * c))));
+            e = std::max(e, std::max(a.deviation(za, c, zs), b.deviation(zb, c, zs)));
         }
     };
     for (std::uint32_t r = y0; r <= y1; ++r) {
@@ -811,10 +796,7 @@ struct WorkingFace {
     std::array<glm::dvec3, 3> p; // corners, world
     glm::dvec2 lo, hi;           // its box, lattice units
     glm::dvec3 normal;           // cross(p1 - p0, p2 - p0): normal.z > 0 for a CCW face
-
-    double plane(double x, double y) const {
-        return p[0].z - (normal.x * (x - p[0].x) + normal.y * (y - p[0].y)) / normal.z;
-    }
+    TrianglePlane plane;         // world frame
     // Whether the closed face meets the closed rectangle [x0, x1] x [y0, y1] (separating axes: the
     // box's, then each edge's normal).
     bool meets(double x0, double y0, double x1, double y1) const {
@@ -879,6 +861,7 @@ WorkingSet height_working_set(const QuadTree &tree, const Mesh &tin, const View 
         face.normal = glm::cross(face.p[1] - face.p[0], face.p[2] - face.p[0]);
         if (!(face.normal.z > 0.0))
             continue; // degenerate in xy: it covers no sample
+        face.plane = TrianglePlane(face.p[0], face.p[1], face.p[2]);
         face.lo = glm::min(face.q[0], glm::min(face.q[1], face.q[2]));
         face.hi = glm::max(face.q[0], glm::max(face.q[1], face.q[2]));
         stack.assign(1, {0, 0, 0});
@@ -896,7 +879,8 @@ WorkingSet height_working_set(const QuadTree &tree, const Mesh &tin, const View 
                 for (const auto &[c, r] : {std::pair{x0, y0}, std::pair{x1, y0}, std::pair{x0, y1},
                                            std::pair{x1, y1}, std::pair{mx, my}}) {
                     const double x = double(float(c * frame.dx)), y = double(float(r * frame.dy));
-                    dev = std::max(dev, std::abs(double(tree.elevation(c, r)) - face.plane(x, y)));
+                    dev = std::max(
+                        dev, std::abs(double(tree.elevation(c, r)) - face.plane.height(x, y)));
                 }
                 const glm::dvec3 lo(std::max(double(x0), face.lo.x) * frame.dx,
                                     std::max(double(y0), face.lo.y) * frame.dy, b.zmin);

@@ -1,22 +1,19 @@
-// Elevation rasters in: SRTM .hgt (our reader), everything else through OpenImageIO, with
-// GeoTIFF georeferencing from libgeotiff and geographic-to-metric conversion with PROJ.
+// Elevation rasters in: SRTM .hgt (our reader); PNG and plain GeoTIFF through libpng and libtiff
+// as OpenImageIO would read them, everything else through OpenImageIO (src/backends/); GeoTIFF
+// georeferencing from its tags, and geographic-to-metric conversion as PROJ computes it (crs.hpp).
 #include "tinlod/raster.hpp"
-#include "oiio_threads.hpp"
+#include "backends/backends.hpp"
+#include "crs.hpp"
 #include "tinlod/error.hpp"
 
-#include <OpenImageIO/imageio.h>
-#include <geotiff/geo_normalize.h>
-#include <geotiff/geotiff.h>
-#include <geotiff/geovalues.h>
-#include <geotiff/xtiffio.h>
 #include <glm/glm.hpp>
-#include <proj.h>
 
-#include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -24,6 +21,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 namespace tinlod {
 
@@ -50,6 +48,22 @@ struct RawGrid {
     std::vector<std::uint8_t> is_void;
 };
 
+// Reserves room for `n` values in `v` and has the kernel map all of it at once, in huge pages
+// where it can. Touched a 4 KiB page at a time, a raster's arrays cost a page fault each, and a
+// fault costs microseconds on a virtual machine: faults were two thirds of `tinlod info` on an SRTM
+// tile (docs/decisions/020-startup.md). Where the kernel offers neither, nothing changes.
+template <typename T> void reserve_mapped(std::vector<T> &v, std::size_t n) {
+    v.reserve(n);
+    const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+    const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(v.data());
+    const std::uintptr_t lo = (begin + page - 1) / page * page;
+    const std::uintptr_t hi = (begin + n * sizeof(T)) / page * page;
+    if (hi <= lo)
+        return;
+    madvise(reinterpret_cast<void *>(lo), hi - lo, MADV_HUGEPAGE);
+    madvise(reinterpret_cast<void *>(lo), hi - lo, MADV_POPULATE_WRITE);
+}
+
 std::string lower_extension(const std::string &path) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -57,9 +71,10 @@ std::string lower_extension(const std::string &path) {
     return ext;
 }
 
-// Bytes the loader holds per sample of a raster of `channels` samples of `sample_bytes` each:
-// the samples as read, the float grid, the void mask, the fill's marks and indices, the
-// heightfield's heights and mask.
+// Bytes the loader holds per sample of a raster of `channels` samples of `sample_bytes` each, at
+// most (docs/decisions/memory-per-sample.md): the samples as read, the float grid, the void mask,
+// the fill's marks and indices, the heightfield's heights and mask. A bound: the fills keep
+// their state per void, and the heightfield takes over the grid's arrays.
 double load_bytes_per_sample(int channels, int sample_bytes) {
     return double(channels) * sample_bytes + 4.0 + 1.0 + 2.0 + 4.0 + 4.0 + 1.0;
 }
@@ -88,27 +103,18 @@ void check_memory(const std::string &path, const LoadOptions &options, std::int6
                           " MiB (--max-memory-mb sets the limit)");
 }
 
-// Checks a TIFF's declared size and tile size before OpenImageIO, which allocates a tile's
-// buffer when it opens the file.
-void check_tiff_memory(const std::string &path, const LoadOptions &options) {
-    TIFFSetWarningHandler(nullptr);
-    TIFFSetErrorHandler(nullptr);
-    const std::unique_ptr<TIFF, void (*)(TIFF *)> tif(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
-    std::uint32_t w = 0, h = 0, tw = 0, th = 0;
-    std::uint16_t spp = 1, bits = 8;
-    if (!tif || !TIFFGetField(tif.get(), TIFFTAG_IMAGEWIDTH, &w) ||
-        !TIFFGetField(tif.get(), TIFFTAG_IMAGELENGTH, &h))
-        return; // OpenImageIO says what is wrong with it
-    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_SAMPLESPERPIXEL, &spp);
-    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_BITSPERSAMPLE, &bits);
-    const int sample_bytes = std::max(1, (bits + 7) / 8);
-    if (TIFFGetField(tif.get(), TIFFTAG_TILEWIDTH, &tw) &&
-        TIFFGetField(tif.get(), TIFFTAG_TILELENGTH, &th))
-        check_memory(path, options, w, h, spp, sample_bytes,
-                     double(tw) * double(th) * spp * sample_bytes,
-                     " in tiles of " + std::to_string(tw) + "x" + std::to_string(th));
+// Checks a TIFF's declared size and tile size before a reader allocates for it (OpenImageIO
+// allocates a tile's buffer when it opens the file).
+void check_tiff_memory(const std::string &path, const LoadOptions &options,
+                       const backends::TiffLayout &l) {
+    const int sample_bytes = std::max(1, (l.bits_per_sample + 7) / 8);
+    if (l.tiled)
+        check_memory(
+            path, options, l.width, l.height, l.samples_per_pixel, sample_bytes,
+            double(l.tile_width) * double(l.tile_height) * l.samples_per_pixel * sample_bytes,
+            " in tiles of " + std::to_string(l.tile_width) + "x" + std::to_string(l.tile_height));
     else
-        check_memory(path, options, w, h, spp, sample_bytes);
+        check_memory(path, options, l.width, l.height, l.samples_per_pixel, sample_bytes);
 }
 
 void check_size(const std::string &path, std::int64_t w, std::int64_t h) {
@@ -159,66 +165,64 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
                           "where it lies and its spacing are unknown: rename it, or give --cell");
     }
     geo.nodata = -32768.0;
+    // Read a block at a time: the file's bytes are never held whole beside the heights.
     std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> buf(bytes);
-    if (!in.read(reinterpret_cast<char *>(buf.data()), std::streamsize(bytes)))
-        throw Error(path, "cannot read file");
+    const std::size_t samples = std::size_t(n) * n;
+    std::vector<unsigned char> block(std::size_t(1) << 16);
     RawGrid g;
     g.width = g.height = n;
-    g.z.resize(std::size_t(n) * n);
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        g.z[i] = static_cast<std::int16_t>((buf[2 * i] << 8) | buf[2 * i + 1]);
+    reserve_mapped(g.z, samples);
+    g.z.resize(samples);
+    for (std::size_t done = 0; done < samples;) {
+        const std::size_t count = std::min(samples - done, block.size() / 2);
+        if (!in.read(reinterpret_cast<char *>(block.data()), std::streamsize(2 * count)))
+            throw Error(path, "cannot read file");
+        float *out = g.z.data() + done;
+        for (std::size_t i = 0; i < count; ++i)
+            out[i] = static_cast<std::int16_t>((block[2 * i] << 8) | block[2 * i + 1]);
+        done += count;
+    }
     return g;
 }
 
-// --- GeoTIFF tags through libgeotiff. ---
+// --- GeoTIFF georeferencing, from the tags as stored. ---
+
+// GeoKey values (GeoTIFF 1.0, §6.3).
+constexpr std::uint16_t k_model_projected = 1, k_model_geographic = 2;
+constexpr std::uint16_t k_raster_pixel_is_area = 1, k_raster_pixel_is_point = 2;
+constexpr std::uint16_t k_user_defined = 32767;
 
 // A width x height GeoTIFF's georeferencing. Grids whose columns run west or rows run north (a
 // negative pixel scale) are marked to be mirrored into the usual order.
-Georef read_geotiff_tags(const std::string &path, int width, int height) {
+Georef read_geotiff_tags(const std::string &path, int width, int height,
+                         const backends::GeoTags &tags) {
     Georef geo;
-    TIFFSetWarningHandler(nullptr);
-    TIFFSetErrorHandler(nullptr);
-    const std::unique_ptr<TIFF, void (*)(TIFF *)> file(XTIFFOpen(path.c_str(), "r"), XTIFFClose);
-    TIFF *tif = file.get();
-    if (!tif)
-        return geo;
-    unsigned short raster = RasterPixelIsArea;
-    if (GTIF *gtif = GTIFNew(tif)) {
-        unsigned short model = 0, code = 0;
-        GTIFKeyGetSHORT(gtif, GTModelTypeGeoKey, &model, 0, 1);
-        GTIFKeyGetSHORT(gtif, GTRasterTypeGeoKey, &raster, 0, 1);
-        if (model == ModelTypeGeographic) {
-            geo.geographic = true;
-            geo.epsg =
-                GTIFKeyGetSHORT(gtif, GeographicTypeGeoKey, &code, 0, 1) && code != KvUserDefined
-                    ? code
-                    : 4326;
-        } else if (model == ModelTypeProjected &&
-                   GTIFKeyGetSHORT(gtif, ProjectedCSTypeGeoKey, &code, 0, 1) &&
-                   code != KvUserDefined) {
-            geo.epsg = code;
-        }
-        GTIFFree(gtif);
+    const std::uint16_t raster = tags.raster.value_or(k_raster_pixel_is_area);
+    const std::uint16_t model = tags.model.value_or(0);
+    if (model == k_model_geographic) {
+        geo.geographic = true;
+        geo.epsg = tags.geographic_type && *tags.geographic_type != k_user_defined
+                       ? *tags.geographic_type
+                       : 4326;
+    } else if (model == k_model_projected && tags.projected_type &&
+               *tags.projected_type != k_user_defined) {
+        geo.epsg = *tags.projected_type;
     }
     // Pixel corner (i, j) (column i, row j down the file) stands at
     // x = x0 + i * sx, y = y0 - j * sy; a tie point of a pixel-is-point raster names a centre.
-    const double centre = raster == RasterPixelIsPoint ? 0.5 : 0.0;
-    std::uint16_t count = 0;
-    double *scale = nullptr;
-    double *ties = nullptr;
-    double *matrix = nullptr;
+    const double centre = raster == k_raster_pixel_is_point ? 0.5 : 0.0;
+    const std::vector<double> &scale = tags.pixel_scale, &ties = tags.tie_points,
+                              &matrix = tags.matrix;
     double sx = 0, sy = 0, x0 = 0, y0 = 0;
-    if (TIFFGetField(tif, TIFFTAG_GEOPIXELSCALE, &count, &scale) && count >= 2) {
-        std::uint16_t tcount = 0;
-        if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &tcount, &ties) && tcount >= 6) {
+    if (scale.size() >= 2) {
+        if (ties.size() >= 6) {
             sx = scale[0];
             sy = scale[1];
             x0 = ties[3] - (ties[0] + centre) * sx;
             y0 = ties[4] + (ties[1] + centre) * sy;
             geo.present = true;
         }
-    } else if (TIFFGetField(tif, TIFFTAG_GEOTRANSMATRIX, &count, &matrix) && count >= 16) {
+    } else if (matrix.size() >= 16) {
         // The model transformation, x = m0 col + m1 row + m3 and y = m4 col + m5 row + m7: without
         // rotation it is what a tie point and a pixel scale say; a rotation needs a resampling.
         if (matrix[1] != 0.0 || matrix[4] != 0.0)
@@ -229,8 +233,8 @@ Georef read_geotiff_tags(const std::string &path, int width, int height) {
         x0 = matrix[3] - centre * sx;
         y0 = matrix[7] + centre * sy;
         geo.present = true;
-    } else if (TIFFGetField(tif, TIFFTAG_GEOTIEPOINTS, &count, &ties) && count > 6) {
-        throw Error(path, "georeferenced by " + std::to_string(count / 6) +
+    } else if (ties.size() > 6) {
+        throw Error(path, "georeferenced by " + std::to_string(ties.size() / 6) +
                               " ground control points without a pixel scale; resample it to a "
                               "grid first (gdalwarp)");
     }
@@ -244,11 +248,8 @@ Georef read_geotiff_tags(const std::string &path, int width, int height) {
         geo.west = sx > 0 ? x0 : x0 + width * sx;
         geo.north = sy > 0 ? y0 : y0 - height * sy;
     }
-    // libtiff registers GDAL_NODATA as an ASCII tag passed with a 16-bit count.
-    std::uint16_t ncount = 0;
-    char *nodata = nullptr;
-    if (TIFFGetField(tif, TIFFTAG_GDAL_NODATA, &ncount, &nodata) && nodata && ncount > 0) {
-        std::string text(nodata, strnlen(nodata, ncount));
+    if (tags.nodata) {
+        std::string text = *tags.nodata;
         const auto first = text.find_first_not_of(" \t\r\n");
         text = first == std::string::npos
                    ? ""
@@ -282,7 +283,7 @@ void orient(RawGrid &g, const Georef &geo) {
         mirror(g.is_void, g.width, g.height, geo.flip_columns, geo.flip_rows);
 }
 
-// --- Everything else through OpenImageIO, samples in their native type. ---
+// --- Every other raster: samples in their native type. ---
 
 // Channel `height` of each pixel is its height; where the alpha channel (if any) is 0 the pixel
 // is a void. Alpha is read unassociated: a partly transparent pixel keeps its height.
@@ -297,103 +298,80 @@ void copy_heights(const std::vector<T> &src, int channels, int height, int alpha
 
 // Why an image with `colours` channels besides alpha is no DEM: a palette or colour image, and
 // an 8-bit RGB one most likely Terrain-RGB.
-std::string not_a_dem(const std::string &path, const OIIO::ImageSpec &spec, int colours) {
+std::string not_a_dem(const std::string &path, const backends::RasterSpec &spec, int colours) {
     char header[26] = {};
     std::ifstream(path, std::ios::binary).read(header, sizeof header);
     // OpenImageIO expands a palette to RGB: the PNG header (colour type, byte 25) tells.
     if (std::memcmp(header, "\x89PNG\r\n\x1a\n", 8) == 0 && header[25] == 3)
         return "a palette image is not a DEM (one channel of heights, and optionally alpha)";
     std::string why = "a colour image (" + std::to_string(colours) + " colour channels of " +
-                      spec.format.c_str() + ") is not a DEM (one channel of heights, and " +
+                      spec.type_name + ") is not a DEM (one channel of heights, and " +
                       "optionally alpha)";
-    if (colours == 3 && spec.format == OIIO::TypeDesc::UINT8)
+    if (colours == 3 && spec.type == backends::SampleType::uint8)
         why += "; it looks like Mapbox Terrain-RGB: use --terrain-rgb";
     return why;
 }
 
-// Sends the process's stderr to /dev/null while it lives: libpng prints its errors there itself
-// ("libpng error: IDAT: Read error: hit end of file"), beside the one line tinlod prints for the
-// same error from what OpenImageIO reports.
-class QuietStderr {
-  public:
-    QuietStderr() : saved_(::dup(STDERR_FILENO)) {
-        const int null = ::open("/dev/null", O_WRONLY);
-        if (saved_ >= 0 && null >= 0)
-            ::dup2(null, STDERR_FILENO);
-        if (null >= 0)
-            ::close(null);
-    }
-    ~QuietStderr() {
-        if (saved_ < 0)
-            return;
-        ::dup2(saved_, STDERR_FILENO);
-        ::close(saved_);
-    }
-    QuietStderr(const QuietStderr &) = delete;
-    QuietStderr &operator=(const QuietStderr &) = delete;
+template <typename T> constexpr backends::SampleType sample_type_of() {
+    using backends::SampleType;
+    if constexpr (std::is_same_v<T, std::uint8_t>)
+        return SampleType::uint8;
+    else if constexpr (std::is_same_v<T, std::int8_t>)
+        return SampleType::int8;
+    else if constexpr (std::is_same_v<T, std::uint16_t>)
+        return SampleType::uint16;
+    else if constexpr (std::is_same_v<T, std::int16_t>)
+        return SampleType::int16;
+    else if constexpr (std::is_same_v<T, std::uint32_t>)
+        return SampleType::uint32;
+    else if constexpr (std::is_same_v<T, std::int32_t>)
+        return SampleType::int32;
+    else if constexpr (std::is_same_v<T, double>)
+        return SampleType::float64;
+    else
+        return SampleType::float32;
+}
 
-  private:
-    int saved_;
-};
-
-RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
-    limit_oiio_threads();
-    const QuietStderr quiet;
-    const std::string ext = lower_extension(path);
-    if (ext == ".tif" || ext == ".tiff")
-        check_tiff_memory(path, options);
-    // Alpha as stored: by default OpenImageIO multiplies the other channels by it, and reads a
-    // PNG's tRNS key as alpha 0 (so the key's heights came out as 0 m).
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        std::string why = OIIO::geterror();
-        if (why.empty())
-            why = "not a readable raster";
-        const auto nl = why.find('\n');
-        throw Error(path, "cannot read raster: " + why.substr(0, nl));
-    }
-    const OIIO::ImageSpec &spec = in->spec();
+// The heights (and voids, where alpha is 0) of `file`; nullopt when its reader declines it after
+// all.
+std::optional<RawGrid> read_samples(const std::string &path, const LoadOptions &options,
+                                    backends::RasterFile &file) {
+    using backends::SampleType;
+    const backends::RasterSpec &spec = file.spec();
     check_size(path, spec.width, spec.height);
-    check_memory(path, options, spec.width, spec.height, spec.nchannels, int(spec.format.size()));
+    check_memory(path, options, spec.width, spec.height, spec.channels, spec.type_bytes);
     if (spec.depth > 1)
         throw Error(path, "volume images are not elevation rasters");
-    const int nc = spec.nchannels;
-    const int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < nc ? spec.alpha_channel : -1;
+    const int nc = spec.channels;
+    const int alpha = spec.alpha >= 0 && spec.alpha < nc ? spec.alpha : -1;
     const int colours = nc - (alpha >= 0);
-    if (options.terrain_rgb && (colours != 3 || spec.format != OIIO::TypeDesc::UINT8))
+    if (options.terrain_rgb && (colours != 3 || spec.type != SampleType::uint8))
         throw Error(path, "--terrain-rgb needs an 8-bit RGB image, this one has " +
-                              std::to_string(nc) + " channel(s) of " + spec.format.c_str());
+                              std::to_string(nc) + " channel(s) of " + spec.type_name);
     if (!options.terrain_rgb && colours != 1)
         throw Error(path, not_a_dem(path, spec, colours));
     RawGrid g;
     g.width = spec.width;
     g.height = spec.height;
     const std::size_t n = std::size_t(g.width) * g.height;
+    reserve_mapped(g.z, n);
     g.z.resize(n);
+    reserve_mapped(g.is_void, n);
     g.is_void.assign(n, 0);
+    bool declined = false;
     auto read = [&](auto tag) {
         using T = decltype(tag);
-        std::vector<T> buf(n * nc);
-        // Samples already of type T are asked for as they are (UNKNOWN): naming the type sends
-        // OpenImageIO 2.4 through its conversion path, with a 64 MiB scratch buffer per read
-        // whatever the size of the image.
-        const OIIO::TypeDesc want = OIIO::TypeDescFromC<T>::value();
-        const bool native = want == spec.format && spec.channelformats.empty();
-        // OpenImageIO 2.4 reports a TIFF strip it could not read (a truncated file) as an error
-        // pending on the reader, yet returns success with zeros in its place.
-        if (!in->read_image(0, 0, 0, nc, native ? OIIO::TypeDesc::UNKNOWN : want, buf.data()) ||
-            in->has_error()) {
-            std::string why = in->geterror();
-            const auto nl = why.find('\n');
-            throw Error(path, "cannot read samples (truncated or corrupt): " + why.substr(0, nl));
-        }
+        std::vector<T> buf;
+        reserve_mapped(buf, n * nc);
+        buf.resize(n * nc);
+        declined = !file.read(sample_type_of<T>(), buf.data());
         return buf;
     };
     const int height = alpha == 0 ? 1 : 0;
     if (options.terrain_rgb) {
         const auto buf = read(std::uint8_t{});
+        if (declined)
+            return std::nullopt;
         int rgb[3], k = 0;
         for (int c = 0; c < nc; ++c)
             if (c != alpha)
@@ -407,53 +385,113 @@ RawGrid read_oiio(const std::string &path, const LoadOptions &options) {
         }
         return g;
     }
-    switch (spec.format.basetype) {
-    case OIIO::TypeDesc::INT16:
-        copy_heights(read(std::int16_t{}), nc, height, alpha, g);
+    const auto heights = [&](auto tag) {
+        const auto buf = read(tag);
+        if (!declined)
+            copy_heights(buf, nc, height, alpha, g);
+    };
+    switch (spec.type) {
+    case SampleType::int16:
+        heights(std::int16_t{});
         break;
-    case OIIO::TypeDesc::UINT16:
-        copy_heights(read(std::uint16_t{}), nc, height, alpha, g);
+    case SampleType::uint16:
+        heights(std::uint16_t{});
         break;
-    case OIIO::TypeDesc::INT32:
-        copy_heights(read(std::int32_t{}), nc, height, alpha, g);
+    case SampleType::int32:
+        heights(std::int32_t{});
         break;
-    case OIIO::TypeDesc::UINT32:
-        copy_heights(read(std::uint32_t{}), nc, height, alpha, g);
+    case SampleType::uint32:
+        heights(std::uint32_t{});
         break;
-    case OIIO::TypeDesc::UINT8:
-        copy_heights(read(std::uint8_t{}), nc, height, alpha, g);
+    case SampleType::uint8:
+        heights(std::uint8_t{});
         break;
-    case OIIO::TypeDesc::INT8:
-        copy_heights(read(char{}), nc, height, alpha, g);
+    case SampleType::int8:
+        heights(std::int8_t{});
         break;
-    case OIIO::TypeDesc::DOUBLE:
-        copy_heights(read(double{}), nc, height, alpha, g);
+    case SampleType::float64:
+        heights(double{});
         break;
     default:
-        copy_heights(read(float{}), nc, height, alpha, g);
+        heights(float{});
         break; // half and float
     }
+    if (declined)
+        return std::nullopt;
     return g;
+}
+
+// A raster of any format but .hgt, with its GeoTIFF georeferencing (if a TIFF): PNG and plain
+// TIFF through the faster readers, everything else, and what they decline, through OpenImageIO.
+RawGrid read_raster(const std::string &path, const std::string &ext, const LoadOptions &options,
+                    Georef &geo) {
+    std::unique_ptr<backends::TiffFile> tiff;
+    std::unique_ptr<backends::RasterFile> fast;
+    if (ext == ".tif" || ext == ".tiff") {
+        tiff = backends::tiff_files().open(path);
+        if (tiff) {
+            if (const auto layout = tiff->layout())
+                check_tiff_memory(path, options, *layout);
+            fast = tiff->raster();
+        }
+    } else if (ext == ".png") {
+        fast = backends::png_files().open_raster(path);
+    }
+    std::optional<RawGrid> g;
+    if (fast)
+        g = read_samples(path, options, *fast);
+    if (!g) {
+        const auto file = backends::image_files().open_raster(path);
+        g = read_samples(path, options, *file);
+    }
+    if (tiff)
+        geo = read_geotiff_tags(path, g->width, g->height, tiff->geo_tags());
+    return std::move(*g);
 }
 
 // Marks voids (the nodata value; NaN only when NaN is the declared nodata) beside those the
 // reader marked (alpha 0), and rejects non-finite heights elsewhere.
 void mark_voids(const std::string &path, RawGrid &g, const Georef &geo) {
+    reserve_mapped(g.is_void, g.z.size());
     g.is_void.resize(g.z.size(), 0);
+    const std::size_t n = g.z.size();
+    const float *z = g.z.data();
+    std::uint8_t *is_void = g.is_void.data();
+    // The common case, in one pass without branches: finite heights, the nodata value marked. A
+    // nodata value below -1e30 also marks every height below -1e30 (as a double): those at or
+    // below the float `low`. NaN for either matches nothing.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const bool has_nodata = geo.nodata && !std::isnan(*geo.nodata);
+    const float nodata = has_nodata ? static_cast<float>(*geo.nodata) : nan;
+    float low = nan;
+    if (has_nodata && *geo.nodata < -1e30) {
+        low = static_cast<float>(-1e30);
+        if (!(double(low) < -1e30))
+            low = std::nextafter(low, -HUGE_VALF);
+    }
+    std::uint8_t unusual = 0; // a non-finite height that is no void
+    for (std::size_t i = 0; i < n; ++i) {
+        const float v = z[i];
+        const std::uint8_t match = (v == nodata) | (v <= low);
+        const std::uint8_t finite = std::fabs(v) <= std::numeric_limits<float>::max();
+        unusual |=
+            std::uint8_t(is_void[i] == 0) & std::uint8_t(match == 0) & std::uint8_t(finite == 0);
+        is_void[i] |= match;
+    }
+    if (!unusual)
+        return;
+    // NaN and infinities, one at a time, in order: the first names its place.
     const bool nan_is_nodata = geo.nodata && std::isnan(*geo.nodata);
-    for (std::size_t i = 0; i < g.z.size(); ++i) {
-        const float v = g.z[i];
-        if (g.is_void[i]) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const float v = z[i];
+        if (is_void[i]) {
             continue;
         } else if (std::isnan(v)) {
             if (!nan_is_nodata)
                 throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
                                       std::to_string(i % g.width) +
                                       " is NaN (no nodata value declared)");
-            g.is_void[i] = 1;
-        } else if (geo.nodata &&
-                   (v == static_cast<float>(*geo.nodata) || (*geo.nodata < -1e30 && v < -1e30))) {
-            g.is_void[i] = 1;
+            is_void[i] = 1;
         } else if (!std::isfinite(v)) {
             throw Error(path, "sample at row " + std::to_string(i / g.width) + ", column " +
                                   std::to_string(i % g.width) + " is infinite");
@@ -461,15 +499,55 @@ void mark_voids(const std::string &path, RawGrid &g, const Georef &geo) {
     }
 }
 
+// Numbers the voids of a grid in sample order, so that the fills keep their state per void, not
+// per sample: a bit per sample and a count per 64 find a void's number.
+class VoidNumbers {
+  public:
+    explicit VoidNumbers(const std::vector<std::uint8_t> &is_void)
+        : bits_((is_void.size() + 63) / 64), before_(bits_.size() + 1, 0) {
+        for (std::size_t i = 0; i < is_void.size(); ++i)
+            if (is_void[i])
+                bits_[i >> 6] |= std::uint64_t{1} << (i & 63);
+        for (std::size_t k = 0; k < bits_.size(); ++k)
+            before_[k + 1] = before_[k] + std::uint32_t(std::popcount(bits_[k]));
+    }
+    std::size_t count() const { return before_.back(); }
+    // The number of sample i, a void: how many voids come before it.
+    std::size_t operator()(std::size_t i) const {
+        const std::uint64_t below = bits_[i >> 6] & ((std::uint64_t{1} << (i & 63)) - 1);
+        return before_[i >> 6] + std::size_t(std::popcount(below));
+    }
+    // visit(i) for each void sample i, in order.
+    template <typename Visit> void each(Visit &&visit) const {
+        for (std::size_t k = 0; k < bits_.size(); ++k)
+            for (std::uint64_t b = bits_[k]; b != 0; b &= b - 1)
+                visit(k * 64 + std::size_t(std::countr_zero(b)));
+    }
+
+  private:
+    std::vector<std::uint64_t> bits_;
+    std::vector<std::uint32_t> before_; // voids before each block of 64 samples
+};
+
 // First guess of the voids: ring by ring inward, each the average of its known 8 neighbours.
-void ring_fill(RawGrid &g) {
-    // known: 0 void, 1 valid or filled in an earlier ring. Ring k holds the voids k steps (8-way)
-    // from the valid samples; each ring is found from the last, so the fill is linear in the
-    // samples (rescanning every void each ring took minutes for a half-void SRTM1 tile).
+void ring_fill(RawGrid &g, const VoidNumbers &voids) {
+    // Ring k holds the voids k steps (8-way) from the valid samples; each ring is found from the
+    // last, so the fill is linear in the voids (rescanning every void each ring took minutes for a
+    // half-void SRTM1 tile). A void is known once filled in an earlier ring.
     const int w = g.width, h = g.height;
-    std::vector<std::uint8_t> known(g.z.size()), queued(g.z.size());
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        known[i] = !g.is_void[i];
+    constexpr std::uint8_t k_known = 1, k_queued = 2;
+    std::vector<std::uint8_t> state(voids.count(), 0);
+    const auto known = [&](std::size_t i) {
+        return !g.is_void[i] || (state[voids(i)] & k_known) != 0;
+    };
+    // Queues void i unless it is known or queued already.
+    const auto queue = [&](std::size_t i, std::vector<std::size_t> &to) {
+        std::uint8_t &s = state[voids(i)];
+        if (s == 0) {
+            s = k_queued;
+            to.push_back(i);
+        }
+    };
     auto neighbours = [&](std::size_t i, auto &&visit) {
         const int r = int(i / w), c = int(i % w);
         for (int dr = -1; dr <= 1; ++dr)
@@ -480,14 +558,12 @@ void ring_fill(RawGrid &g) {
             }
     };
     std::vector<std::size_t> ring, next;
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        if (!known[i])
-            neighbours(i, [&](std::size_t n) {
-                if (known[n] && !queued[i]) {
-                    queued[i] = 1;
-                    ring.push_back(i);
-                }
-            });
+    voids.each([&](std::size_t i) {
+        neighbours(i, [&](std::size_t n) {
+            if (known(n))
+                queue(i, ring);
+        });
+    });
     std::vector<float> value;
     while (!ring.empty()) {
         value.assign(ring.size(), 0.0f);
@@ -495,7 +571,7 @@ void ring_fill(RawGrid &g) {
             double sum = 0;
             int count = 0;
             neighbours(ring[k], [&](std::size_t n) {
-                if (known[n]) {
+                if (known(n)) {
                     sum += g.z[n];
                     ++count;
                 }
@@ -505,20 +581,18 @@ void ring_fill(RawGrid &g) {
         next.clear();
         for (std::size_t k = 0; k < ring.size(); ++k) {
             g.z[ring[k]] = value[k];
-            known[ring[k]] = 1;
+            state[voids(ring[k])] = k_known;
         }
         for (std::size_t i : ring)
             neighbours(i, [&](std::size_t n) {
-                if (!known[n] && !queued[n]) {
-                    queued[n] = 1;
-                    next.push_back(n);
-                }
+                if (!known(n))
+                    queue(n, next);
             });
         ring.swap(next);
     }
 }
 
-void harmonic_fill(RawGrid &g);
+void harmonic_fill(RawGrid &g, const VoidNumbers &voids);
 
 // Regions of fewer voids are solved directly at their own resolution.
 constexpr std::size_t k_coarse_min_voids = 4096;
@@ -566,8 +640,9 @@ void coarse_guess(RawGrid &g, const std::vector<std::size_t> &cells) {
     for (std::size_t k = 0; k < n; ++k)
         if (count[k])
             coarse.z[k] /= float(count[k]), coarse.is_void[k] = 0;
-    ring_fill(coarse);
-    harmonic_fill(coarse);
+    const VoidNumbers coarse_voids(coarse.is_void);
+    ring_fill(coarse, coarse_voids);
+    harmonic_fill(coarse, coarse_voids);
     // Bilinear interpolation: block k's centre is at fine column c0 + 2k + 0.5.
     const auto at = [&](int x, int y) { return coarse.z[std::size_t(y) * coarse.width + x]; };
     for (const std::size_t i : cells) {
@@ -587,9 +662,10 @@ void coarse_guess(RawGrid &g, const std::vector<std::size_t> &cells) {
 // the smoothest surface through the region's boundary, with no terraces. Solved by conjugate
 // gradients (Jacobi-preconditioned) from the ring fill, one region at a time, so the work follows
 // the voids and a small hole is not iterated as long as a large one.
-void harmonic_fill(RawGrid &g) {
+void harmonic_fill(RawGrid &g, const VoidNumbers &voids) {
     const int w = g.width, h = g.height;
-    std::vector<std::int32_t> index(g.z.size(), -1);
+    std::vector<std::int32_t> index(voids.count(), -1); // of each void in its region
+    const auto index_of = [&](std::size_t i) -> std::int32_t & { return index[voids(i)]; };
     std::vector<std::size_t> cells;
     std::vector<std::array<std::int32_t, 4>> links;
     std::vector<double> u, b, diag, r, zr, p, q;
@@ -605,16 +681,16 @@ void harmonic_fill(RawGrid &g) {
         if (col + 1 < w)
             visit(3, i + 1);
     };
-    for (std::size_t seed = 0; seed < g.z.size(); ++seed) {
-        if (!g.is_void[seed] || index[seed] >= 0)
-            continue;
+    voids.each([&](std::size_t seed) {
+        if (index_of(seed) >= 0)
+            return;
         // The region: breadth first from the seed over void 4-neighbours.
         cells.assign(1, seed);
-        index[seed] = 0;
+        index_of(seed) = 0;
         for (std::size_t k = 0; k < cells.size(); ++k)
             neighbours(cells[k], [&](int, std::size_t n) {
-                if (g.is_void[n] && index[n] < 0) {
-                    index[n] = std::int32_t(cells.size());
+                if (g.is_void[n] && index_of(n) < 0) {
+                    index_of(n) = std::int32_t(cells.size());
                     cells.push_back(n);
                 }
             });
@@ -632,7 +708,7 @@ void harmonic_fill(RawGrid &g) {
             neighbours(cells[k], [&](int d, std::size_t n) {
                 diag[k] += 1;
                 if (g.is_void[n]) {
-                    links[k][std::size_t(d)] = index[n];
+                    links[k][std::size_t(d)] = index_of(n);
                 } else {
                     b[k] += g.z[n];
                     scale = std::max(scale, double(std::abs(g.z[n])));
@@ -691,23 +767,29 @@ void harmonic_fill(RawGrid &g) {
         }
         for (std::size_t k = 0; k < m; ++k)
             g.z[cells[k]] = float(u[k]);
-    }
+    });
 }
 
 // Voids are missing data, never heights. Whole rows/columns of voids at the edges are cropped
 // away (too large to invent); the rest are filled smoothly from the valid samples around them.
 void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield &hf, bool fill) {
+    // The box of the valid samples, a row at a time (most rows start and end valid).
     int top = g.height, bottom = -1, left = g.width, right = -1;
     std::int64_t voids = 0;
-    for (int r = 0; r < g.height; ++r)
-        for (int c = 0; c < g.width; ++c) {
-            if (g.is_void[std::size_t(r) * g.width + c]) {
-                ++voids;
-                continue;
-            }
-            top = std::min(top, r), bottom = std::max(bottom, r);
-            left = std::min(left, c), right = std::max(right, c);
+    for (int r = 0; r < g.height; ++r) {
+        const std::uint8_t *row = g.is_void.data() + std::size_t(r) * g.width;
+        const std::uint8_t *first = std::find(row, row + g.width, 0);
+        if (first == row + g.width) {
+            voids += g.width;
+            continue;
         }
+        int last = g.width - 1;
+        while (row[last])
+            --last;
+        voids += std::count(row, row + g.width, 1);
+        top = std::min(top, r), bottom = r;
+        left = std::min(left, int(first - row)), right = std::max(right, last);
+    }
     if (bottom < 0)
         throw Error(path, "every sample is a void (nodata); there is no terrain to use");
     hf.voids = voids;
@@ -730,51 +812,18 @@ void crop_and_fill(const std::string &path, RawGrid &g, Georef &geo, Heightfield
         geo.north -= top * geo.sy;
         g = std::move(cropped);
     }
-    std::int64_t remaining = 0;
-    for (std::size_t i = 0; i < g.z.size(); ++i)
-        remaining += g.is_void[i];
-    if (remaining == 0)
+    const VoidNumbers remaining(g.is_void);
+    if (remaining.count() == 0)
         return;
     if (!fill)
-        throw Error(path, std::to_string(remaining) + " void samples inside the terrain");
-    ring_fill(g);
-    harmonic_fill(g);
-    hf.filled = remaining;
-}
-
-// Refuses a CRS PROJ does not know, of another kind than the GeoKeys say, or projected in other
-// units than metres: its place or units would be guesses.
-void check_crs(const std::string &path, int epsg, bool geographic) {
-    const std::unique_ptr<PJ_CONTEXT, void (*)(PJ_CONTEXT *)> ctx(
-        proj_context_create(), [](PJ_CONTEXT *c) { proj_context_destroy(c); });
-    proj_log_level(ctx.get(), PJ_LOG_NONE);
-    const std::string code = "EPSG:" + std::to_string(epsg);
-    const std::unique_ptr<PJ, void (*)(PJ *)> crs(proj_create(ctx.get(), code.c_str()),
-                                                  [](PJ *p) { proj_destroy(p); });
-    if (!crs)
-        throw Error(path, code + " is not a coordinate reference system PROJ knows (or PROJ's "
-                                 "database is missing): the raster's units and place are unknown");
-    const PJ_TYPE type = proj_get_type(crs.get());
-    if (geographic ? type != PJ_TYPE_GEOGRAPHIC_2D_CRS && type != PJ_TYPE_GEOGRAPHIC_3D_CRS
-                   : type != PJ_TYPE_PROJECTED_CRS)
-        throw Error(path, code + " is not a " + (geographic ? "geographic" : "projected") +
-                              " CRS, yet the file's GeoKeys say it is one");
-    if (geographic)
-        return;
-    const std::unique_ptr<PJ, void (*)(PJ *)> cs(
-        proj_crs_get_coordinate_system(ctx.get(), crs.get()), [](PJ *p) { proj_destroy(p); });
-    double to_metres = 0;
-    const char *unit = nullptr;
-    if (!cs ||
-        !proj_cs_get_axis_info(ctx.get(), cs.get(), 0, nullptr, nullptr, nullptr, &to_metres, &unit,
-                               nullptr, nullptr) ||
-        to_metres != 1.0)
-        throw Error(path, code + " measures in " + (unit ? unit : "unknown units") +
-                              ", not metres: reproject the raster to a metric CRS (gdalwarp)");
+        throw Error(path, std::to_string(remaining.count()) + " void samples inside the terrain");
+    ring_fill(g, remaining);
+    harmonic_fill(g, remaining);
+    hf.filled = std::int64_t(remaining.count());
 }
 
 // Local metric frame: projected CRSs keep their units; geographic ones go to the UTM zone of
-// the centre with PROJ; ground spacing is measured there at the centre of the raster.
+// the centre (crs.hpp); ground spacing is measured there at the centre of the raster.
 void apply_georef(const std::string &path, const Georef &geo, const LoadOptions &options,
                   const RawGrid &g, Heightfield &hf) {
     if (!geo.present) {
@@ -803,11 +852,12 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
         hf.origin_x = sw_x;
         hf.origin_y = sw_y;
         if (geo.epsg)
-            check_crs(path, geo.epsg, false);
+            crs::check(path, geo.epsg, false);
         hf.crs = geo.epsg ? "EPSG:" + std::to_string(geo.epsg) : "projected (unknown EPSG)";
         return;
     }
-    check_crs(path, geo.epsg ? geo.epsg : 4326, true);
+    const int epsg = geo.epsg ? geo.epsg : 4326;
+    crs::check(path, epsg, true);
     const double lon_c = sw_x + (g.width - 1) * geo.sx / 2;
     const double lat_c = sw_y + (g.height - 1) * geo.sy / 2;
     if (!(std::abs(lat_c) <= 84))
@@ -818,33 +868,19 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
                               ", not on Earth");
     const int zone = std::clamp(int(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int utm = (lat_c >= 0 ? 32600 : 32700) + zone;
-    PJ_CONTEXT *ctx = proj_context_create();
-    const std::string src = "EPSG:" + std::to_string(geo.epsg ? geo.epsg : 4326);
-    const std::string dst = "EPSG:" + std::to_string(utm);
-    PJ *raw = proj_create_crs_to_crs(ctx, src.c_str(), dst.c_str(), nullptr);
-    PJ *pj = raw ? proj_normalize_for_visualization(ctx, raw) : nullptr;
-    if (raw)
-        proj_destroy(raw);
-    if (!pj) {
-        proj_context_destroy(ctx);
-        throw Error(path, "cannot convert " + src + " to " + dst + " (PROJ database missing?)");
-    }
-    auto project = [&](double lon, double lat) {
-        PJ_COORD out = proj_trans(pj, PJ_FWD, proj_coord(lon, lat, 0, 0));
-        return glm::dvec2(out.xy.x, out.xy.y);
-    };
-    const glm::dvec2 c = project(lon_c, lat_c);
-    hf.dx = glm::length(project(lon_c + geo.sx, lat_c) - c);
-    hf.dy = glm::length(project(lon_c, lat_c + geo.sy) - c);
-    const glm::dvec2 sw = project(sw_x, sw_y);
-    proj_destroy(pj);
-    proj_context_destroy(ctx);
+    const auto p =
+        crs::Transformation(path, epsg, utm)
+            .apply(std::vector<glm::dvec2>{
+                {lon_c, lat_c}, {lon_c + geo.sx, lat_c}, {lon_c, lat_c + geo.sy}, {sw_x, sw_y}});
+    hf.dx = glm::length(p[1] - p[0]);
+    hf.dy = glm::length(p[2] - p[0]);
+    const glm::dvec2 sw = p[3];
     if (!std::isfinite(hf.dx) || !std::isfinite(hf.dy) || hf.dx <= 0 || hf.dy <= 0)
         throw Error(path, "georeferencing gives no usable ground spacing");
     hf.origin_x = sw.x;
     hf.origin_y = sw.y;
-    hf.crs = dst + " (UTM zone " + std::to_string(zone) + (lat_c >= 0 ? "N" : "S") + ", from " +
-             src + " degrees)";
+    hf.crs = "EPSG:" + std::to_string(utm) + " (UTM zone " + std::to_string(zone) +
+             (lat_c >= 0 ? "N" : "S") + ", from EPSG:" + std::to_string(epsg) + " degrees)";
 }
 
 } // namespace
@@ -874,9 +910,7 @@ Heightfield load(const std::string &path, const LoadOptions &options) {
     if (ext == ".hgt") {
         g = read_hgt(path, options, geo);
     } else {
-        g = read_oiio(path, options);
-        if (ext == ".tif" || ext == ".tiff")
-            geo = read_geotiff_tags(path, g.width, g.height);
+        g = read_raster(path, ext, options, geo);
     }
     orient(g, geo);
     mark_voids(path, g, geo);
@@ -885,19 +919,16 @@ Heightfield load(const std::string &path, const LoadOptions &options) {
     apply_georef(path, geo, options, g, hf);
     hf.width = g.width;
     hf.height = g.height;
-    hf.z.resize(g.z.size());
-    hf.void_mask.assign(g.z.size(), 0);
     // Files run north to south; the Heightfield runs south to north.
-    for (int r = 0; r < g.height; ++r) {
-        const std::size_t src = std::size_t(g.height - 1 - r) * g.width;
-        const std::size_t dst = std::size_t(r) * g.width;
-        for (int c = 0; c < g.width; ++c) {
-            hf.z[dst + c] = static_cast<float>(g.z[src + c] * options.zscale);
-            hf.void_mask[dst + c] = g.is_void[src + c];
-        }
+    mirror(g.z, g.width, g.height, false, true);
+    hf.z = std::move(g.z);
+    if (options.zscale != 1.0)
+        for (float &z : hf.z)
+            z = static_cast<float>(z * options.zscale);
+    if (hf.voids > 0) {
+        mirror(g.is_void, g.width, g.height, false, true);
+        hf.void_mask = std::move(g.is_void);
     }
-    if (hf.voids == 0)
-        hf.void_mask.clear();
     return hf;
 }
 

@@ -1,23 +1,23 @@
 // OpenGL 3.3 core rendering of TINs (render.hpp): the shaders and MeshPainter that draw into the
 // current context, and the headless EGL context + framebuffer of Renderer. GL entry points come
 // from GLVND's libOpenGL, which exports the whole core API and dispatches to the current context
-// (EGL here, GLX in the viewer), so no loader is needed.
+// (EGL here, GLX in the viewer); it and libEGL are opened the first time something draws, so that
+// a program linking this library loads neither until then.
 //
 // The wireframe overlay is the single-pass technique of Bærentzen et al., "Single-pass Wireframe
 // Rendering" (SIGGRAPH 2006 sketch): a geometry shader gives each fragment its distance in pixels
 // to the three edges of its triangle.
 #include "tinlod/render.hpp"
-#include "oiio_threads.hpp"
+#include "backends/backends.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
 
+#define EGL_EGL_PROTOTYPES 0
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -34,6 +34,126 @@
 namespace tinlod {
 
 namespace {
+
+// The entry points this file calls, as pointers of the names the GL and EGL headers would declare.
+#define TINLOD_GL_FUNCTIONS(X)                                                                     \
+    X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                                                     \
+    X(PFNGLATTACHSHADERPROC, glAttachShader)                                                       \
+    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                           \
+    X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                                                 \
+    X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                                               \
+    X(PFNGLBINDTEXTUREPROC, glBindTexture)                                                         \
+    X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                                                 \
+    X(PFNGLBUFFERDATAPROC, glBufferData)                                                           \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)                                   \
+    X(PFNGLCLEARPROC, glClear)                                                                     \
+    X(PFNGLCLEARCOLORPROC, glClearColor)                                                           \
+    X(PFNGLCLEARDEPTHPROC, glClearDepth)                                                           \
+    X(PFNGLCOMPILESHADERPROC, glCompileShader)                                                     \
+    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                                                     \
+    X(PFNGLCREATESHADERPROC, glCreateShader)                                                       \
+    X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                     \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)                                           \
+    X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                                                     \
+    X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)                                         \
+    X(PFNGLDELETESHADERPROC, glDeleteShader)                                                       \
+    X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                                                   \
+    X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)                                           \
+    X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                                             \
+    X(PFNGLDISABLEPROC, glDisable)                                                                 \
+    X(PFNGLDRAWELEMENTSPROC, glDrawElements)                                                       \
+    X(PFNGLENABLEPROC, glEnable)                                                                   \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)                                 \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer)                                 \
+    X(PFNGLGENBUFFERSPROC, glGenBuffers)                                                           \
+    X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                                                 \
+    X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)                                               \
+    X(PFNGLGENTEXTURESPROC, glGenTextures)                                                         \
+    X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                                                 \
+    X(PFNGLGETERRORPROC, glGetError)                                                               \
+    X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                                         \
+    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                                             \
+    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                                                       \
+    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                                               \
+    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                                                         \
+    X(PFNGLGETSTRINGPROC, glGetString)                                                             \
+    X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)                                           \
+    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                                         \
+    X(PFNGLPIXELSTOREIPROC, glPixelStorei)                                                         \
+    X(PFNGLREADPIXELSPROC, glReadPixels)                                                           \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)                                         \
+    X(PFNGLSHADERSOURCEPROC, glShaderSource)                                                       \
+    X(PFNGLTEXBUFFERPROC, glTexBuffer)                                                             \
+    X(PFNGLTEXIMAGE2DPROC, glTexImage2D)                                                           \
+    X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                                                     \
+    X(PFNGLUNIFORM1FPROC, glUniform1f)                                                             \
+    X(PFNGLUNIFORM1IPROC, glUniform1i)                                                             \
+    X(PFNGLUNIFORM2FPROC, glUniform2f)                                                             \
+    X(PFNGLUNIFORM2FVPROC, glUniform2fv)                                                           \
+    X(PFNGLUNIFORM3FPROC, glUniform3f)                                                             \
+    X(PFNGLUNIFORM4FPROC, glUniform4f)                                                             \
+    X(PFNGLUNIFORM4FVPROC, glUniform4fv)                                                           \
+    X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                                               \
+    X(PFNGLUSEPROGRAMPROC, glUseProgram)                                                           \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)                                         \
+    X(PFNGLVIEWPORTPROC, glViewport)
+
+#define TINLOD_EGL_FUNCTIONS(X)                                                                    \
+    X(PFNEGLBINDAPIPROC, eglBindAPI)                                                               \
+    X(PFNEGLCREATECONTEXTPROC, eglCreateContext)                                                   \
+    X(PFNEGLDESTROYCONTEXTPROC, eglDestroyContext)                                                 \
+    X(PFNEGLGETERRORPROC, eglGetError)                                                             \
+    X(PFNEGLGETPROCADDRESSPROC, eglGetProcAddress)                                                 \
+    X(PFNEGLINITIALIZEPROC, eglInitialize)                                                         \
+    X(PFNEGLMAKECURRENTPROC, eglMakeCurrent)                                                       \
+    X(PFNEGLQUERYSTRINGPROC, eglQueryString)
+
+#define TINLOD_DEFINE_POINTER(type, name) type name = nullptr;
+TINLOD_GL_FUNCTIONS(TINLOD_DEFINE_POINTER)
+TINLOD_EGL_FUNCTIONS(TINLOD_DEFINE_POINTER)
+#undef TINLOD_DEFINE_POINTER
+
+// Opens `library` and sets its entry points (`bind` returns the name of one it lacks) once per
+// process; throws Error("render", ...) when the library or an entry point is missing.
+template <typename Bind>
+void load_library(std::once_flag &once, std::string &failure, const char *library, Bind bind) {
+    std::call_once(once, [&] {
+        void *handle = dlopen(library, RTLD_NOW | RTLD_LOCAL);
+        if (handle == nullptr) {
+            const char *why = dlerror();
+            failure = std::string("no OpenGL: cannot load ") + library + " (" +
+                      (why ? why : "not found") + ")";
+            return;
+        }
+        const char *missing = bind(handle);
+        if (missing != nullptr)
+            failure = std::string("no OpenGL: ") + library + " has no " + missing;
+    });
+    if (!failure.empty())
+        throw Error("render", failure);
+}
+
+void load_gl() {
+    static std::once_flag once;
+    static std::string failure;
+    load_library(once, failure, "libOpenGL.so.0", [](void *handle) -> const char * {
+#define TINLOD_BIND(type, name)                                                                    \
+    if ((name = reinterpret_cast<type>(dlsym(handle, #name))) == nullptr)                          \
+        return #name;
+        TINLOD_GL_FUNCTIONS(TINLOD_BIND)
+        return nullptr;
+    });
+}
+
+void load_egl() {
+    static std::once_flag once;
+    static std::string failure;
+    load_library(once, failure, "libEGL.so.1", [](void *handle) -> const char * {
+        TINLOD_EGL_FUNCTIONS(TINLOD_BIND)
+#undef TINLOD_BIND
+        return nullptr;
+    });
+}
 
 const char *k_vertex_shader = R"(#version 330 core
 layout(location = 0) in vec3 position;
@@ -256,6 +376,7 @@ glm::dvec2 clip_range(const glm::dvec3 &lo, const glm::dvec3 &hi, const View &vi
 }
 
 MeshPainter::MeshPainter() {
+    load_gl();
     program_ = link_program();
     glGenVertexArrays(1, &vao_);
     glGenBuffers(1, &vertex_buffer_);
@@ -513,6 +634,8 @@ static bool has_extension(const char *list, const char *name) {
 }
 
 Renderer::Renderer() : context_(std::make_unique<Context>()) {
+    load_egl();
+    load_gl();
     Context &c = *context_;
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!has_extension(client, "EGL_MESA_platform_surfaceless"))
@@ -649,58 +772,31 @@ bool render_available(std::string *why) {
     return reason.empty();
 }
 
-static void write_pixels(const std::string &path, int width, int height, int channels,
-                         OIIO::TypeDesc type, const void *pixels) {
-    limit_oiio_threads();
-    write_atomically(path, [&](const std::string &tmp) {
-        auto out = OIIO::ImageOutput::create(tmp);
-        if (!out)
-            throw Error(path, "cannot write this image format (" + OIIO::geterror() + ")");
-        // Encoded in memory, then written through a stream whose state is checked: OpenImageIO's
-        // file writers report success on a full disk, with a short file.
-        std::vector<unsigned char> bytes;
-        OIIO::Filesystem::IOVecOutput memory(bytes);
-        const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
-        const OIIO::ImageSpec spec(width, height, channels, type);
-        if (!out->open(tmp, spec) || !out->write_image(type, pixels) || !out->close())
-            throw Error(path, "cannot write the image: " + out->geterror());
-        if (in_memory) {
-            std::ofstream file(tmp, std::ios::binary);
-            file.write(reinterpret_cast<const char *>(bytes.data()), std::streamsize(bytes.size()));
-            if (!file.flush())
-                throw Error(path, "cannot write the image: " + std::string(std::strerror(errno)));
-        }
-    });
+static void write_pixels(const std::string &path, const backends::PixelView &pixels) {
+    backends::ImageFiles &images = backends::image_files();
+    write_atomically(path, [&](const std::string &tmp) { images.write_image(path, tmp, pixels); });
 }
 
 void write_image(const std::string &path, const Image &image) {
     assert(image.rgba.size() == std::size_t(image.width) * image.height * 4);
-    write_pixels(path, image.width, image.height, 4, OIIO::TypeDesc::UINT8, image.rgba.data());
+    write_pixels(path, {image.width, image.height, 4, false, image.rgba.data()});
 }
 
 void write_depth(const std::string &path, const Image &image) {
     if (image.depth.size() != std::size_t(image.width) * image.height)
         throw Error(path, "the image has no depth (render with depth = true)");
-    write_pixels(path, image.width, image.height, 1, OIIO::TypeDesc::FLOAT, image.depth.data());
+    write_pixels(path, {image.width, image.height, 1, true, image.depth.data()});
 }
 
 Image read_image(const std::string &path) {
-    limit_oiio_threads();
-    auto in = OIIO::ImageInput::open(path);
-    if (!in)
-        throw Error(path, "cannot read the image: " + OIIO::geterror());
-    const OIIO::ImageSpec &spec = in->spec();
-    const int channels = spec.nchannels;
-    if (spec.width <= 0 || spec.height <= 0 || channels <= 0)
-        throw Error(path, "empty image");
-    std::vector<std::uint8_t> pixels(std::size_t(spec.width) * spec.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()) || in->has_error())
-        throw Error(path, "cannot read the image: " + in->geterror());
+    int width = 0, height = 0, channels = 0;
+    const std::vector<std::uint8_t> pixels =
+        backends::image_files().read_image(path, width, height, channels);
     Image image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.rgba.resize(std::size_t(spec.width) * spec.height * 4);
-    for (std::size_t i = 0, n = std::size_t(spec.width) * spec.height; i < n; ++i) {
+    image.width = width;
+    image.height = height;
+    image.rgba.resize(std::size_t(width) * height * 4);
+    for (std::size_t i = 0, n = std::size_t(width) * height; i < n; ++i) {
         const std::uint8_t *p = &pixels[i * channels];
         std::uint8_t *q = &image.rgba[i * 4];
         q[0] = p[0];

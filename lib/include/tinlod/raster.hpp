@@ -1,5 +1,6 @@
-// Elevation rasters: the Heightfield and its loaders (GeoTIFF/PNG/TIFF/EXR via OpenImageIO, with
-// georeferencing from libgeotiff and PROJ; SRTM .hgt; Mapbox Terrain-RGB).
+// Elevation rasters: the Heightfield and its loaders (SRTM .hgt; PNG and plain GeoTIFF through
+// libpng and libtiff, everything else through OpenImageIO; georeferencing from the GeoTIFF tags,
+// WGS 84 and its UTM zones as PROJ computes them, other CRSs through PROJ; Mapbox Terrain-RGB).
 #pragma once
 
 #include <cstdint>

@@ -9,8 +9,8 @@
 namespace tinlod::erase {
 
 void retriangulate(EraserState &s) {
-    Hole &h = s.hole;
-    Mesh &m = *s.mesh;
+    Hole &h = s.scratch.hole;
+    Mesh &m = *s.input.mesh;
     const int n = h.n;
     const int fans = h.boundary ? n - 1 : n;
     std::array<FH, k_max_ring> face;
@@ -81,125 +81,126 @@ void retriangulate(EraserState &s) {
     }
 
     m.status(h.v).set_deleted(true);
-    if (s.lattice)
-        s.free_vertices.push_back(h.v);
+    if (s.input.lattice)
+        s.history.free_vertices.push_back(h.v);
     for (int i = next_spoke; i < n; ++i) {
         const EH e = m.edge_handle(h.h[i]);
         m.status(e).set_deleted(true);
-        s.free_edges.push_back(e);
+        s.history.free_edges.push_back(e);
     }
     const std::uint32_t x = node_of(s, h.v);
-    if (s.grid_w > 0 && s.options.shallow_history && lattice_inside(s, h) > k_kept_fan_samples) {
-        KeptFan &kept = s.kept_fans[x];
+    if (s.input.grid_w > 0 && s.input.options.shallow_history &&
+        lattice_inside(s, h) > k_kept_fan_samples) {
+        KeptFan &kept = s.history.kept_fans[x];
         kept.head.resize(std::size_t(fans));
         kept.maxdev.resize(std::size_t(fans));
         kept.tiles.resize(std::size_t(fans));
         for (int t = 0; t < fans; ++t) {
             const std::int32_t f = face[t].idx();
-            kept.head[std::size_t(t)] = s.face_head[f];
-            kept.maxdev[std::size_t(t)] = s.face_maxdev[f];
-            const auto tiles = s.face_tiles.find(f);
-            if (tiles != s.face_tiles.end())
+            kept.head[std::size_t(t)] = s.faces.face_head[f];
+            kept.maxdev[std::size_t(t)] = s.faces.face_maxdev[f];
+            const auto tiles = s.faces.face_tiles.find(f);
+            if (tiles != s.faces.face_tiles.end())
                 kept.tiles[std::size_t(t)] = std::move(tiles->second);
             else
                 kept.tiles[std::size_t(t)].clear();
         }
     }
     for (int t = 0; t < fans; ++t) {
-        s.face_head[face[t].idx()] = -1;
-        face_changed(s, face[t]);
-        s.face_maxdev[face[t].idx()] = 0.0f;
+        s.faces.face_head[face[t].idx()] = -1;
+        face_changed(s.faces, s.frame.seen, face[t]);
+        s.faces.face_maxdev[face[t].idx()] = 0.0f;
     }
     for (int t = h.ntri; t < fans; ++t) {
         m.status(face[t]).set_deleted(true);
-        s.free_faces.push_back(face[t]);
+        s.history.free_faces.push_back(face[t]);
     }
-    if (s.grid_w > 0) {
+    if (s.input.grid_w > 0) {
         for (int t = 0; t < h.ntri; ++t) {
-            s.face_head[face[t].idx()] = h.tri_worst[t];
-            s.face_maxdev[face[t].idx()] = h.tri_maxdev[t];
+            s.faces.face_head[face[t].idx()] = h.tri_worst[t];
+            s.faces.face_maxdev[face[t].idx()] = h.tri_maxdev[t];
         }
     } else {
-        for (const Assignment &a : s.assign)
-            push_swallowed(s, face[a.triangle].idx(), a.node, a.dev);
+        for (const Assignment &a : s.scratch.assign)
+            push_swallowed(s.faces, face[a.triangle].idx(), a.node, a.dev);
     }
     std::array<float, k_max_ring> tri_dev;
     for (int t = 0; t < h.ntri; ++t)
-        tri_dev[t] = s.face_maxdev[face[t].idx()];
+        tri_dev[t] = s.faces.face_maxdev[face[t].idx()];
 
     // A node erased before re-uses its record, and its ring's room in the pool when the ring
     // fits: the history stays within one record per node however long the flight.
     std::int32_t k = live_node(s, x).last_record;
     if (k < 0)
-        k = std::int32_t(s.records.append(1));
-    EraseRecord &record = s.records[std::size_t(k)];
+        k = std::int32_t(s.history.records.append(1));
+    EraseRecord &record = s.history.records[std::size_t(k)];
     if (record.ring_capacity < n) {
-        record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
+        record.ring_begin = std::uint32_t(s.history.ring_pool.append(std::size_t(n)));
         record.ring_capacity = std::uint8_t(n);
     }
     record.ring_size = std::uint8_t(n);
     record.boundary = h.boundary;
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
-        ids[i] = s.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
-    remove_live(s, x, k);
+        ids[i] = s.history.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
+    remove_live(s.live, s.history, x, k);
     widen_fans(s, h.p.data(), ids.data(), n, h.tri.data(), tri_dev.data(), h.ntri);
-    --s.live;
-    s.live_faces -= fans - h.ntri;
+    --s.live.count;
+    s.live.faces -= fans - h.ntri;
 }
 
 namespace {
 
 // A free edge for a re-insert: one an erase freed, or a new one once compact() dropped them.
 static EH take_edge(EraserState &s) {
-    if (s.free_edges.empty())
-        return s.mesh->edge_handle(s.mesh->new_edge(VH(), VH()));
-    const EH e = s.free_edges.back();
-    s.free_edges.pop_back();
+    if (s.history.free_edges.empty())
+        return s.input.mesh->edge_handle(s.input.mesh->new_edge(VH(), VH()));
+    const EH e = s.history.free_edges.back();
+    s.history.free_edges.pop_back();
     return e;
 }
 
 static FH take_face(EraserState &s) {
-    if (s.free_faces.empty()) {
-        s.face_head.push_back(-1);
-        s.face_blocked.push_back(0);
-        s.face_maxdev.push_back(0.0f);
-        s.seen.face_seen_dev.push_back(-1.0f);
-        s.seen.face_seen.push_back(0);
-        return s.mesh->new_face();
+    if (s.history.free_faces.empty()) {
+        s.faces.face_head.push_back(-1);
+        s.faces.face_blocked.push_back(0);
+        s.faces.face_maxdev.push_back(0.0f);
+        s.frame.seen.face_seen_dev.push_back(-1.0f);
+        s.frame.seen.face_seen.push_back(0);
+        return s.input.mesh->new_face();
     }
-    const FH f = s.free_faces.back();
-    s.free_faces.pop_back();
+    const FH f = s.history.free_faces.back();
+    s.history.free_faces.pop_back();
     return f;
 }
 
 // The vertex of erased node x: its own without a lattice, else one an erase freed or a new one,
 // given x's point and sample (marked deleted, without edges, as erased nodes are).
 static VH vertex_for(EraserState &s, std::uint32_t x) {
-    if (!s.lattice)
+    if (!s.input.lattice)
         return VH(int(x));
-    Mesh &m = *s.mesh;
+    Mesh &m = *s.input.mesh;
     VH v;
-    if (s.free_vertices.empty()) {
+    if (s.history.free_vertices.empty()) {
         v = m.add_vertex(node_point(s, x));
         m.status(v).set_deleted(true);
-        s.sample_of.push_back(x);
+        s.input.sample_of.push_back(x);
     } else {
-        v = s.free_vertices.back();
-        s.free_vertices.pop_back();
+        v = s.history.free_vertices.back();
+        s.history.free_vertices.pop_back();
         m.point(v) = node_point(s, x);
-        s.sample_of[std::size_t(v.idx())] = x;
+        s.input.sample_of[std::size_t(v.idx())] = x;
     }
-    m.property(s.origin, v) = std::int64_t(x);
+    m.property(s.input.origin, v) = std::int64_t(x);
     return v;
 }
 
 } // namespace
 
 void reinsert(EraserState &s, std::uint32_t x) {
-    Mesh &m = *s.mesh;
+    Mesh &m = *s.input.mesh;
     std::array<std::uint32_t, 4> scratch;
-    const ErasedRing erased = erased_ring(s, x, scratch);
+    const ErasedRing erased = erased_ring(s.history, x, scratch);
     const int n = erased.size;
     const bool boundary = erased.boundary;
     const std::uint32_t *ring = erased.nodes;
@@ -243,24 +244,25 @@ void reinsert(EraserState &s, std::uint32_t x) {
     }
     assert(n_faces == n - 2);
     // x is under a face outside its ring when a recovery filed it there (see
-    // EraserState::swallowed_by): left in that list, the live node would be taken for an erased one
+    // FaceIndex::swallowed_by): left in that list, the live node would be taken for an erased one
     // (its recovery, its next erase's list).
-    if (s.grid_w == 0) {
-        const std::int32_t by = s.swallowed_by[x];
+    if (s.input.grid_w == 0) {
+        const std::int32_t by = s.faces.swallowed_by[x];
         if (std::none_of(face.begin(), face.begin() + n_faces, [&](FH f) { return f.idx() == by; }))
-            unlink_swallowed(s, by, x);
+            unlink_swallowed(s.faces, s.frame.seen, by, x);
     }
 
-    std::vector<std::uint32_t> &swallowed = s.swallowed_scratch;
+    std::vector<std::uint32_t> &swallowed = s.scratch.swallowed_scratch;
     const std::size_t swallowed_begin = swallowed.size();
     for (int k = 0; k < n_faces; ++k) {
-        if (s.grid_w == 0)
-            for (std::int32_t u = s.face_head[face[k].idx()]; u >= 0; u = s.next_swallowed[u])
+        if (s.input.grid_w == 0)
+            for (std::int32_t u = s.faces.face_head[face[k].idx()]; u >= 0;
+                 u = s.faces.next_swallowed[u])
                 if (std::uint32_t(u) != x)
                     swallowed.push_back(std::uint32_t(u));
-        s.face_head[face[k].idx()] = -1;
-        face_changed(s, face[k]);
-        s.face_maxdev[face[k].idx()] = 0.0f;
+        s.faces.face_head[face[k].idx()] = -1;
+        face_changed(s.faces, s.frame.seen, face[k]);
+        s.faces.face_maxdev[face[k].idx()] = 0.0f;
     }
 
     HH boundary_prev, boundary_next, old_boundary;
@@ -322,13 +324,13 @@ void reinsert(EraserState &s, std::uint32_t x) {
             m.set_halfedge_handle(vh(s, ring[i]), ring_he[i]);
     }
     m.status(v).set_deleted(false);
-    if (s.flags[x] & k_unread) {
-        s.flags[x] &= std::uint8_t(~k_unread);
-        ++s.entered;
+    if (s.live.flags[x] & k_unread) {
+        s.live.flags[x] &= std::uint8_t(~k_unread);
+        ++s.counters.entered;
     }
 
     // Swallowed nodes go back to the fan face that covers them.
-    Hole &h = s.hole;
+    Hole &h = s.scratch.hole;
     h.v = v;
     h.n = n + 1;
     h.boundary = boundary;
@@ -336,7 +338,7 @@ void reinsert(EraserState &s, std::uint32_t x) {
     for (int i = 0; i < n; ++i)
         h.p[i] = to_glm(m.point(vh(s, ring[i])));
     h.p[n] = pv;
-    if (s.xy) {
+    if (s.input.xy) {
         h.origin = glm::dvec3(0.0);
         h.ex = {1, 0, 0};
         h.ey = {0, 1, 0};
@@ -355,50 +357,50 @@ void reinsert(EraserState &s, std::uint32_t x) {
     h.ntri = fans;
     for (int i = 0; i < fans; ++i)
         h.tri[i] = {std::uint8_t(n), std::uint8_t(i), std::uint8_t((i + 1) % n)};
-    frame_triangles(h, s.xy);
-    if (const auto kept = s.kept_fans.find(x); kept != s.kept_fans.end()) {
+    frame_triangles(h, s.input.xy);
+    if (const auto kept = s.history.kept_fans.find(x); kept != s.history.kept_fans.end()) {
         // The fan's faces are the triangles they were at the erase, holding the same samples.
         for (int i = 0; i < fans; ++i) {
             const std::int32_t f = face[i].idx();
-            s.face_head[f] = kept->second.head[std::size_t(i)];
-            s.face_maxdev[f] = kept->second.maxdev[std::size_t(i)];
+            s.faces.face_head[f] = kept->second.head[std::size_t(i)];
+            s.faces.face_maxdev[f] = kept->second.maxdev[std::size_t(i)];
             if (!kept->second.tiles[std::size_t(i)].empty()) {
-                s.face_tiles[f] = std::move(kept->second.tiles[std::size_t(i)]);
-                s.face_blocked[f] = 1;
+                s.faces.face_tiles[f] = std::move(kept->second.tiles[std::size_t(i)]);
+                s.faces.face_blocked[f] = 1;
             }
         }
-        s.kept_fans.erase(kept);
-        ++s.fans_kept;
-    } else if (s.grid_w > 0) {
+        s.history.kept_fans.erase(kept);
+        ++s.counters.fans_kept;
+    } else if (s.input.grid_w > 0) {
         for (int i = 0; i < fans; ++i) {
             const std::uint32_t a = ring[i], b = ring[(i + 1) % n];
             const auto [maxdev, worst] =
                 face_worst(s, x, a, b, h.frame[i], pv, h.p[i], h.p[(i + 1) % n]);
-            s.face_head[face[i].idx()] = worst;
-            s.face_maxdev[face[i].idx()] = maxdev;
+            s.faces.face_head[face[i].idx()] = worst;
+            s.faces.face_maxdev[face[i].idx()] = maxdev;
         }
     }
     for (std::size_t k = swallowed_begin; k < swallowed.size(); ++k) {
         const std::uint32_t u = swallowed[k];
         double dev = 0.0;
-        const FH f = face[locate(h, s.xy, to_glm(node_point(s, u)), dev)];
-        push_swallowed(s, f.idx(), u, float(dev));
+        const FH f = face[locate(h, s.input.xy, to_glm(node_point(s, u)), dev)];
+        push_swallowed(s.faces, f.idx(), u, float(dev));
     }
     swallowed.resize(swallowed_begin);
-    add_live(s, x, s.record_of[x] == k_regular_ring ? -1 : s.record_of[x], v);
+    add_live(s, x, s.history.record_of[x] == k_regular_ring ? -1 : s.history.record_of[x], v);
     // Its key from before its erase says nothing of the fan it has now (an infinite one kept the
     // update's pick from ever re-evaluating it).
-    if (s.node_keys || s.heap.has_key(x))
+    if (s.live.node_keys || s.live.heap.has_key(x))
         store_node_key(s, x, 0.0f);
     std::array<float, k_max_ring> tri_dev;
     for (int i = 0; i < fans; ++i)
-        tri_dev[i] = s.face_maxdev[face[i].idx()];
+        tri_dev[i] = s.faces.face_maxdev[face[i].idx()];
     std::array<std::uint32_t, k_max_ring + 1> ids;
     std::copy(ring, ring + n, ids.begin());
     ids[n] = x;
     widen_fans(s, h.p.data(), ids.data(), n + 1, h.tri.data(), tri_dev.data(), fans);
-    ++s.live;
-    s.live_faces += fans - (n - 2);
+    ++s.live.count;
+    s.live.faces += fans - (n - 2);
 }
 
 } // namespace tinlod::erase

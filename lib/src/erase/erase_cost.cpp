@@ -9,36 +9,38 @@
 namespace tinlod::erase {
 
 void new_weights(EraserState &s, bool keep) {
-    s.unit_weights = s.model == SpModel::vertical;
-    if (s.unit_weights || !keep) {
-        std::vector<float>().swap(s.weight);
+    s.weights.unit_weights = s.weights.model == SpModel::vertical;
+    if (s.weights.unit_weights || !keep) {
+        std::vector<float>().swap(s.weights.per_vertex);
         return;
     }
-    s.weight.resize(s.nodes);
-    for (std::uint32_t x = 0; x < s.nodes; ++x)
-        s.weight[x] = float_up(s.weigher(to_glm(node_point(s, x))));
+    s.weights.per_vertex.resize(s.input.nodes);
+    for (std::uint32_t x = 0; x < s.input.nodes; ++x)
+        s.weights.per_vertex[x] = float_up(s.weights.weigher(to_glm(node_point(s, x))));
 }
 
 void classify_nodes(EraserState &s) {
-    const Mesh &m = *s.mesh;
-    s.flags.resize(s.nodes);
-    for (std::uint8_t &f : s.flags)
+    const Mesh &m = *s.input.mesh;
+    s.live.flags.resize(s.input.nodes);
+    for (std::uint8_t &f : s.live.flags)
         f &= k_unread;
-    if (s.node_keys)
-        for (LiveNode &l : s.live_list)
+    if (s.live.node_keys)
+        for (LiveNode &l : s.live.list)
             l.stamp = 0;
     else
-        s.stamp.assign(s.nodes, 0);
-    s.pass = 0;
+        s.live.stamp.assign(s.input.nodes, 0);
+    s.live.pass = 0;
     for (auto v : m.vertices()) {
         const HH he = m.halfedge_handle(v);
-        if (!he.is_valid() || (m.is_boundary(he) && (!s.xy || !s.options.erase_boundary)))
-            s.flags[node_of(s, v)] |= k_locked;
+        if (!he.is_valid() ||
+            (m.is_boundary(he) && (!s.input.xy || !s.input.options.erase_boundary)))
+            s.live.flags[node_of(s, v)] |= k_locked;
     }
-    for (std::size_t x = 0; x < s.record_of.size(); ++x)
-        if (s.record_of[x] == k_absent)
-            s.flags[x] |= k_locked;
-    s.weigher = Weigher(Significance::of(s.model, s.view, s.significance));
+    for (std::size_t x = 0; x < s.history.record_of.size(); ++x)
+        if (s.history.record_of[x] == k_absent)
+            s.live.flags[x] |= k_locked;
+    s.weights.weigher =
+        Weigher(Significance::of(s.weights.model, s.weights.view, s.weights.significance));
     new_weights(s, true);
 }
 
@@ -98,7 +100,7 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
         h.deferred = true;
         return;
     }
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     float fan_dev = 0.0f;
     double zlo = pv.z, zhi = pv.z;
     for (int i = 0; i < h.n; ++i) {
@@ -106,22 +108,24 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
         zhi = std::max(zhi, h.p[i].z);
         const FH f = m.face_handle(h.h[i]);
         if (f.is_valid())
-            fan_dev = std::max(fan_dev, s.face_maxdev[f.idx()]);
+            fan_dev = std::max(fan_dev, s.faces.face_maxdev[f.idx()]);
     }
     const double dz = 1.001 * double(fan_dev);
     const auto band = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-        return s.unit_weights ? 1.0
-                              : s.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
+        return s.weights.unit_weights
+                   ? 1.0
+                   : s.weights.weigher.bound({lo, zlo - dz}, {hi, zhi + dz}) * k_rounded_weight;
     };
     for (int t = 0; t < h.ntri; ++t) {
-        const PlaneDev deviation(h.frame[t], h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
+        const TrianglePlane plane = h.frame[t].plane; // a copy: the scan's stores cannot move it
+        const double margin = plane.margin_over(h.p[h.tri[t].a], h.p[h.tri[t].b], h.p[h.tri[t].c]);
         double maxdev = 0.0;
         std::int32_t worst = -1;
         const bool whole = scan_lattice(
             s, node_of(s, h.r[h.tri[t].a]), node_of(s, h.r[h.tri[t].b]),
             node_of(s, h.r[h.tri[t].c]), band,
             [&](std::uint32_t u, const Mesh::Point &p, double bound) {
-                const double dev = deviation(p);
+                const double dev = plane.deviation(p[0], p[1], p[2], margin);
                 if (dev > maxdev) {
                     maxdev = dev;
                     worst = std::int32_t(u);
@@ -140,19 +144,83 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
     }
 }
 
+// Whether evaluate tries the hole's min-max triangulation when the ears' exceeds the limit: a
+// vertical bound on a grid TIN without a budget (simplify --max-error), where a node the Delaunay
+// ears keep may still go under triangles that follow the terrain
+// (docs/decisions/023-fine-bounds.md). Others keep the ears alone.
+static bool data_dependent(const EraserState &s) {
+    return s.input.xy && s.input.grid_w > 0 && s.weights.unit_weights &&
+           s.input.options.max_nodes <= 0 && !s.input.options.shallow_history;
+}
+
+// The hole's triangulation whose largest sample deviation is least (min_max_triangulation, each
+// triangle's samples scanned from the lattice), into h.tri when it keeps within `limit`; false
+// when none does. The samples that put a triangle over its stop (the ears' worst first) are tried
+// first on the next ones: the triangles overlap, and most fail on the same few samples.
+static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
+    std::array<RingTriangle, k_max_ring> tri;
+    std::array<glm::dvec3, 8> witness;
+    int witnesses = 0, next = 0;
+    const auto add_witness = [&](std::uint32_t u) {
+        witness[std::size_t(next)] = to_glm(node_point(s, u));
+        next = (next + 1) % int(witness.size());
+        witnesses = std::min(witnesses + 1, int(witness.size()));
+    };
+    if (h.star_dev > limit)
+        add_witness(h.star);
+    const auto cost = [&](int a, int b, int c, double stop) {
+        const TrianglePlane plane =
+            triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z).plane;
+        const double margin = plane.margin_over(h.p[a], h.p[b], h.p[c]);
+        const auto deviation = [&](const Mesh::Point &p) {
+            return plane.deviation(double(p[0]), double(p[1]), double(p[2]), margin);
+        };
+        for (int k = 0; k < witnesses; ++k) {
+            const glm::dvec3 &w = witness[std::size_t(k)];
+            const glm::dvec2 x(w.x, w.y);
+            if (orient(h.q[a], h.q[b], x) > 0.0 && orient(h.q[b], h.q[c], x) > 0.0 &&
+                orient(h.q[c], h.q[a], x) > 0.0) {
+                const double d = deviation(Mesh::Point(w.x, w.y, w.z));
+                if (d > stop)
+                    return d; // strictly inside: a sample the scan visits
+            }
+        }
+        double most = 0.0;
+        scan_lattice(
+            s, node_of(s, h.r[a]), node_of(s, h.r[b]), node_of(s, h.r[c]),
+            [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
+            [&](std::uint32_t u, const Mesh::Point &p, double) {
+                most = std::max(most, deviation(p));
+                if (!(most > stop))
+                    return true;
+                add_witness(u);
+                return false;
+            });
+        return most;
+    };
+    const int count = min_max_triangulation(h.q.data(), h.n, limit, cost, tri.data());
+    if (count != h.n - 2)
+        return false;
+    std::copy_n(tri.begin(), count, h.tri.begin());
+    return true;
+}
+
+static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
+                         std::size_t max_swallowed);
+
 bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
-    ++s.evaluations;
-    Hole &h = s.hole;
+    ++s.counters.evaluations;
+    Hole &h = s.scratch.hole;
     h.deferred = false;
-    const Mesh &m = *s.mesh;
-    if (!gather_ring(m, v, h, s.options.max_valence))
+    const Mesh &m = *s.input.mesh;
+    if (!gather_ring(m, v, h, s.input.options.max_valence))
         return false;
     const int n = h.n;
     const glm::dvec3 pv = to_glm(m.point(v));
     for (int i = 0; i < n; ++i)
         h.p[i] = to_glm(m.point(h.r[i]));
     const int fans = h.boundary ? n - 1 : n;
-    if (s.xy) {
+    if (s.input.xy) {
         h.origin = glm::dvec3(0.0);
         h.ex = {1, 0, 0};
         h.ey = {0, 1, 0};
@@ -184,8 +252,8 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     h.ntri = clip_ears(h.q.data(), n, h.tri.data());
     if (h.ntri != n - 2)
         return false;
-    frame_triangles(h, s.xy);
-    if (!s.xy)
+    frame_triangles(h, s.input.xy);
+    if (!s.input.xy)
         for (int t = 0; t < h.ntri; ++t) {
             const std::uint8_t c[3] = {h.tri[t].a, h.tri[t].b, h.tri[t].c};
             for (int k = 0; k < 3; ++k) {
@@ -196,11 +264,27 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
                     return false; // the diagonal exists outside the hole: non-manifold
             }
         }
-    s.assign.clear();
+    measure_hole(s, v, pv, limit, max_swallowed);
+    if (h.sp > limit && !h.deferred && n > 3 && data_dependent(s) && min_max_hole(s, h, limit)) {
+        frame_triangles(h, s.input.xy);
+        measure_hole(s, v, pv, limit, max_swallowed);
+    }
+    return true;
+}
+
+// evaluate's SP of the hole's triangulation h.tri (framed): every node the new triangles swallow,
+// and on a grid TIN every sample, until the SP exceeds `limit` (see scan_hole).
+static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
+                         std::size_t max_swallowed) {
+    Hole &h = s.scratch.hole;
+    const Mesh &m = *s.input.mesh;
+    const int n = h.n;
+    const int fans = h.boundary ? n - 1 : n;
+    s.scratch.assign.clear();
     double dev = 0.0;
-    const std::uint8_t own = locate(h, s.xy, pv, dev);
+    const std::uint8_t own = locate(h, s.input.xy, pv, dev);
     const std::uint32_t x = node_of(s, v);
-    s.assign.push_back({x, own, float(dev)});
+    s.scratch.assign.push_back({x, own, float(dev)});
     h.delta = dev;
     h.sp = weighted(s, x, dev);
     h.star = x;
@@ -218,11 +302,10 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         LiveNode &l = live_node(s, x);
         l.star = h.star;
         l.star_dev = float_down(h.star_dev);
-        Cell &cell = s.grid.cells[l.cell];
+        Cell &cell = s.frame.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
-        return true;
     };
-    if (s.xy) {
+    if (s.input.xy) {
         // A live corner's sample sits within a rounding of the float corner: a steep (sliver)
         // triangle next to it must not read more than the bound there either. Each ring node is
         // weighed once, for its steepest triangle, and only when k / OD says that could matter (the
@@ -231,11 +314,11 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         std::fill_n(steepest.begin(), n, 0.0);
         for (int t = 0; t < h.ntri; ++t)
             for (const std::uint8_t k : {h.tri[t].a, h.tri[t].b, h.tri[t].c})
-                steepest[k] = std::max(steepest[k], h.frame[t].slope);
+                steepest[k] = std::max(steepest[k], h.frame[t].plane.slope());
         for (int i = 0; i < n; ++i) {
             const double margin =
                 rounding_margin(std::max(std::abs(h.p[i].x), std::abs(h.p[i].y)), steepest[i]);
-            if (margin * s.weigher.upper(h.p[i]) * k_rounded_weight > h.sp)
+            if (margin * s.weights.weigher.upper(h.p[i]) * k_rounded_weight > h.sp)
                 raise(node_of(s, h.r[i]), margin);
         }
     }
@@ -243,9 +326,10 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     // the hole (then it is one of the fan's swallowed nodes: the fan tiles the hole in xy) its
     // deviation settles most evaluations that fail without walking the fan.
     const std::uint32_t last_star = live_node(s, x).star;
-    if (s.xy && h.sp <= limit && last_star != x && s.record_of[last_star] >= k_absent) {
+    if (s.input.xy && h.sp <= limit && last_star != x &&
+        s.history.record_of[last_star] >= k_absent) {
         bool inside = false;
-        locate(h, s.xy, to_glm(node_point(s, last_star)), dev, &inside);
+        locate(h, s.input.xy, to_glm(node_point(s, last_star)), dev, &inside);
         if (inside) {
             raise(last_star, dev);
             if (h.sp > limit)
@@ -255,9 +339,9 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     // Then each fan face's worst node (its list's head, see push_swallowed): one of them is most
     // often what breaks the limit, found before any list is walked.
     for (int i = 0; i < fans && h.sp <= limit; ++i) {
-        const std::int32_t u = s.face_head[m.face_handle(h.h[i]).idx()];
+        const std::int32_t u = s.faces.face_head[m.face_handle(h.h[i]).idx()];
         if (u >= 0 && std::uint32_t(u) != last_star) {
-            locate(h, s.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
+            locate(h, s.input.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
             raise(std::uint32_t(u), dev);
         }
     }
@@ -267,7 +351,7 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     // at the first sample over it, the scan left an SP (the node's key and lower bound) barely
     // over the limit, which the next frame's motion took back below it: the node turned candidate
     // frame after frame as the eye drew away, each time scanning its hole again.
-    if (s.grid_w > 0) {
+    if (s.input.grid_w > 0) {
         scan_hole(s, h, pv, k_scan_reach * limit, max_swallowed);
         return remember();
     }
@@ -277,16 +361,18 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
         // face's swallowed nodes lie (its corners' box, within their largest deviation in z) could
         // raise the SP: each update asks for fresh weights.
         const double weight_bound =
-            s.xy && !s.unit_weights && s.face_head[f.idx()] >= 0
-                ? swallowed_weight_bound(s, pv, h.p[i], h.p[(i + 1) % n], s.face_maxdev[f.idx()])
+            s.input.xy && !s.weights.unit_weights && s.faces.face_head[f.idx()] >= 0
+                ? swallowed_weight_bound(s, pv, h.p[i], h.p[(i + 1) % n],
+                                         s.faces.face_maxdev[f.idx()])
                 : INFINITY;
-        for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u]) {
-            if (s.assign.size() > max_swallowed) {
+        for (std::int32_t u = s.faces.face_head[f.idx()]; u >= 0; u = s.faces.next_swallowed[u]) {
+            if (s.scratch.assign.size() > max_swallowed) {
                 h.deferred = true;
                 return remember();
             }
-            const std::uint8_t t = locate(h, s.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
-            s.assign.push_back({std::uint32_t(u), t, float(dev)});
+            const std::uint8_t t =
+                locate(h, s.input.xy, to_glm(node_point(s, std::uint32_t(u))), dev);
+            s.scratch.assign.push_back({std::uint32_t(u), t, float(dev)});
             if (!(dev * weight_bound > h.sp))
                 continue;
             raise(std::uint32_t(u), dev);
@@ -298,19 +384,19 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
 }
 
 float key_of(const EraserState &s, const Hole &h) {
-    if (s.model != SpModel::paper)
+    if (s.weights.model != SpModel::paper)
         return float(h.sp);
-    const glm::dvec3 p = to_glm(s.mesh->point(h.v));
+    const glm::dvec3 p = to_glm(s.input.mesh->point(h.v));
     NodeTerms terms;
-    terms.od = glm::length(p - s.view.eye);
-    terms.oa = observation_angle(s.view, p);
+    terms.od = glm::length(p - s.weights.view.eye);
+    terms.oa = observation_angle(s.weights.view, p);
     terms.delta = h.delta;
     double ring_length = 0.0;
     for (int i = 0; i < h.n; ++i)
         ring_length += glm::length(h.p[i] - p);
     terms.ration = ring_length > 0.0 ? h.delta * h.n / ring_length : 0.0;
-    return float(
-        significance(terms, Significance::paper(s.view, s.significance), s.focal_distance));
+    return float(significance(terms, Significance::paper(s.weights.view, s.weights.significance),
+                              s.weights.focal_distance));
 }
 
 } // namespace tinlod::erase

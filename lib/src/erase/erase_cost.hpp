@@ -18,13 +18,13 @@ namespace tinlod::erase {
 constexpr double k_rounded_weight = 1.0 + 1e-6;
 
 // Node `node`'s weight under the current view: the weigher at the node rounded up to a float,
-// from EraserState::weight when it is kept.
+// from ViewWeights::per_vertex when it is kept.
 inline double weight_of(const EraserState &s, std::uint32_t node) {
-    if (s.unit_weights)
+    if (s.weights.unit_weights)
         return 1.0;
-    if (!s.weight.empty())
-        return double(s.weight[node]);
-    return double(float_up(s.weigher(to_glm(node_point(s, node)))));
+    if (!s.weights.per_vertex.empty())
+        return double(s.weights.per_vertex[node]);
+    return double(float_up(s.weights.weigher(to_glm(node_point(s, node)))));
 }
 
 // A swallowed node's term of the SP: its deviation times its weight.
@@ -32,8 +32,8 @@ inline double weighted(const EraserState &s, std::uint32_t node, double dev) {
     return dev > 0.0 ? dev * weight_of(s, node) : 0.0;
 }
 
-// The weights for a new view (s.weigher): `keep` computes them for every vertex (erase), else
-// they go (each is computed where it is needed).
+// The weights for a new view (s.weights.weigher): `keep` computes them for every vertex (erase),
+// else they go (each is computed where it is needed).
 void new_weights(EraserState &s, bool keep);
 
 // classify: which nodes may ever be erased, and each node's weight.
@@ -45,7 +45,8 @@ void classify_nodes(EraserState &s);
 inline double swallowed_weight_bound(const EraserState &s, const glm::dvec3 &a, const glm::dvec3 &b,
                                      const glm::dvec3 &c, float maxdev) {
     const glm::dvec3 dz(0.0, 0.0, 1.001 * double(maxdev));
-    return s.weigher.bound(glm::min(glm::min(a, b), c) - dz, glm::max(glm::max(a, b), c) + dz) *
+    return s.weights.weigher.bound(glm::min(glm::min(a, b), c) - dz,
+                                   glm::max(glm::max(a, b), c) + dz) *
            k_rounded_weight;
 }
 
@@ -55,10 +56,10 @@ inline double swallowed_weight_bound(const EraserState &s, const glm::dvec3 &a, 
 // one exceeding the limit is ruled out. False when the SP exceeds `limit`. Empties h.pending.
 bool raise_pending(const EraserState &s, Hole &h, double limit);
 
-// Re-triangulates v's hole into s.hole and computes the erase's SP into s.hole.sp (exactly up to
-// `limit`, beyond it only as some value > limit); false when v cannot be erased without a
-// fold-over, a non-manifold edge or a moved outline. With more than `max_swallowed` nodes under the
-// fan it stops and sets hole.deferred.
+// Re-triangulates v's hole into s.scratch.hole and computes the erase's SP into s.scratch.hole.sp
+// (exactly up to `limit`, beyond it only as some value > limit); false when v cannot be erased
+// without a fold-over, a non-manifold edge or a moved outline. With more than `max_swallowed` nodes
+// under the fan it stops and sets hole.deferred.
 bool evaluate(EraserState &s, VH v, double limit,
               std::size_t max_swallowed = std::numeric_limits<std::size_t>::max());
 

@@ -10,40 +10,42 @@
 
 namespace tinlod::erase {
 
-void record_absent_samples(EraserState &s, bool retrieval_tin) {
-    s.flags.assign(s.nodes, 0);
-    const auto height = s.nodes / s.grid_w;
-    s.regular = std::make_unique<RegularRings>(s.grid_w, height);
-    if (retrieval_tin && RegularRings::regular_for_retrievals(s.grid_w, height)) {
-        for (std::size_t x = 0; x < s.record_of.size(); ++x)
-            if (s.record_of[x] == k_absent) {
-                s.flags[x] = k_unread;
-                s.record_of[x] = k_regular_ring;
+void record_absent_samples(const Input &input, LiveSet &live, History &history,
+                           bool retrieval_tin) {
+    live.flags.assign(input.nodes, 0);
+    const auto height = input.nodes / input.grid_w;
+    history.regular = std::make_unique<RegularRings>(input.grid_w, height);
+    if (retrieval_tin && RegularRings::regular_for_retrievals(input.grid_w, height)) {
+        for (std::size_t x = 0; x < history.record_of.size(); ++x)
+            if (history.record_of[x] == k_absent) {
+                live.flags[x] = k_unread;
+                history.record_of[x] = k_regular_ring;
             }
         return;
     }
-    absent_sample_rings(*s.mesh, s.grid_w, height, s.sample_of,
+    absent_sample_rings(*input.mesh, input.grid_w, height, input.sample_of,
                         [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
-                            s.flags[x] = k_unread;
+                            live.flags[x] = k_unread;
                             std::array<std::uint32_t, 4> regular;
                             bool chain = false;
-                            if (s.regular->ring(x, regular.data(), chain) == n &&
+                            if (history.regular->ring(x, regular.data(), chain) == n &&
                                 chain == boundary && std::equal(ring, ring + n, regular.data())) {
-                                s.record_of[x] = k_regular_ring;
+                                history.record_of[x] = k_regular_ring;
                                 return;
                             }
-                            const std::size_t k = s.records.append(1);
-                            EraseRecord &record = s.records[k];
-                            record.ring_begin = std::uint32_t(s.ring_pool.append(std::size_t(n)));
+                            const std::size_t k = history.records.append(1);
+                            EraseRecord &record = history.records[k];
+                            record.ring_begin =
+                                std::uint32_t(history.ring_pool.append(std::size_t(n)));
                             record.ring_size = record.ring_capacity = std::uint8_t(n);
                             record.boundary = boundary;
-                            std::copy(ring, ring + n, &s.ring_pool[record.ring_begin]);
-                            s.record_of[x] = std::int32_t(k);
+                            std::copy(ring, ring + n, &history.ring_pool[record.ring_begin]);
+                            history.record_of[x] = std::int32_t(k);
                         });
 }
 
 void swallow_absent(EraserState &s) {
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     for (auto f : m.faces()) {
         const HH he = m.halfedge_handle(f);
         const std::array<std::uint32_t, 3> ids = {
@@ -55,16 +57,16 @@ void swallow_absent(EraserState &s) {
         const TriangleFrame frame = triangle_frame(glm::dvec2(p[0]), glm::dvec2(p[1]),
                                                    glm::dvec2(p[2]), true, p[0].z, p[1].z, p[2].z);
         const auto [maxdev, worst] = face_worst(s, ids[0], ids[1], ids[2], frame, p[0], p[1], p[2]);
-        s.face_head[f.idx()] = worst;
-        s.face_maxdev[f.idx()] = maxdev;
+        s.faces.face_head[f.idx()] = worst;
+        s.faces.face_maxdev[f.idx()] = maxdev;
         constexpr RingTriangle corners{0, 1, 2};
         if (worst >= 0)
             widen_fans(s, p.data(), ids.data(), 3, &corners, &maxdev, 1);
     }
 }
 
-void forget_nodes(EraserState &s) {
-    for (LiveNode &l : s.live_list) {
+void forget_nodes(LiveSet &live) {
+    for (LiveNode &l : live.list) {
         l.seen_log = INFINITY;
         l.low_log = -INFINITY;
     }
@@ -79,16 +81,16 @@ static std::int64_t recover_closure(EraserState &s, std::uint32_t v,
     std::vector<std::uint32_t> stack{v};
     while (!stack.empty()) {
         const std::uint32_t x = stack.back();
-        if (s.record_of[x] < 0) {
+        if (s.history.record_of[x] < 0) {
             stack.pop_back();
             continue;
         }
         std::array<std::uint32_t, 4> scratch;
-        const ErasedRing ring = erased_ring(s, x, scratch);
+        const ErasedRing ring = erased_ring(s.history, x, scratch);
         bool ready = true;
         for (int i = 0; i < ring.size; ++i) {
             const std::uint32_t u = ring.nodes[i];
-            if (s.record_of[u] >= 0) {
+            if (s.history.record_of[u] >= 0) {
                 stack.push_back(u); // erased after x and over x's triangles: undo it first
                 ready = false;
             }
@@ -102,22 +104,6 @@ static std::int64_t recover_closure(EraserState &s, std::uint32_t v,
         ++recovered;
     }
     return recovered;
-}
-
-static std::size_t block_bytes(const EraserState &s) {
-    std::size_t bytes = s.block_cell_scratch.capacity() + s.block_order_scratch.capacity() * 4 +
-                        s.tile_z.capacity() * sizeof(float);
-    for (const auto &[face, tiles] : s.face_tiles)
-        bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
-    for (const auto &[face, blocks] : s.face_blocks)
-        bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
-    for (const auto &[node, kept] : s.kept_fans) {
-        bytes += sizeof(node) + sizeof(kept) + 16 + kept.head.capacity() * 4 +
-                 kept.maxdev.capacity() * 4 + kept.tiles.capacity() * sizeof(kept.tiles[0]);
-        for (const std::vector<float> &tiles : kept.tiles)
-            bytes += tiles.capacity() * sizeof(float);
-    }
-    return bytes;
 }
 
 } // namespace
@@ -137,9 +123,9 @@ std::int64_t NodeEraser::recover_all() {
     // The records from the last made to the first (a one-off erase undone in reverse: no closure
     // to walk).
     std::vector<std::pair<std::int32_t, std::uint32_t>> erased;
-    for (std::uint32_t x = 0; x < std::uint32_t(s.record_of.size()); ++x)
-        if (s.record_of[x] >= 0)
-            erased.emplace_back(s.record_of[x], x);
+    for (std::uint32_t x = 0; x < std::uint32_t(s.history.record_of.size()); ++x)
+        if (s.history.record_of[x] >= 0)
+            erased.emplace_back(s.history.record_of[x], x);
     std::sort(erased.begin(), erased.end(), std::greater<>());
     std::int64_t recovered = 0;
     for (const auto &[record, x] : erased)
@@ -148,84 +134,72 @@ std::int64_t NodeEraser::recover_all() {
 }
 
 bool NodeEraser::is_erased(Mesh::VertexHandle v) const {
-    return state_->record_of[node_of(*state_, v)] >= 0;
+    return state_->history.record_of[node_of(*state_, v)] >= 0;
 }
 
 ErasedNodeRing NodeEraser::ring(Mesh::VertexHandle v) const {
     assert(is_erased(v));
     std::array<std::uint32_t, 4> scratch;
-    const ErasedRing ring = erased_ring(*state_, node_of(*state_, v), scratch);
+    const ErasedRing ring = erased_ring(state_->history, node_of(*state_, v), scratch);
     return {{ring.nodes, ring.nodes + ring.size}, ring.boundary};
 }
 
 void NodeEraser::compact() {
     EraserState &s = *state_;
-    Mesh &m = *s.mesh;
+    Mesh &m = *s.input.mesh;
     // The per-face state rides along as face properties while the collection moves the faces.
     OpenMesh::FPropHandleT<float> maxdev;
     OpenMesh::FPropHandleT<std::int32_t> head;
     m.add_property(maxdev);
     m.add_property(head);
-    m.property(maxdev).data_vector() = std::move(s.face_maxdev);
-    m.property(head).data_vector() = std::move(s.face_head);
+    m.property(maxdev).data_vector() = std::move(s.faces.face_maxdev);
+    m.property(head).data_vector() = std::move(s.faces.face_head);
     // A sparse lattice's erased vertices go too (its erased nodes have none): each live node's
     // vertex is found again from the origin property, which the collection moves with it.
-    m.garbage_collection(s.lattice != nullptr, true, true);
-    if (s.lattice) {
-        std::vector<VH>().swap(s.free_vertices);
-        s.sample_of.resize(m.n_vertices());
-        s.sample_of.shrink_to_fit();
+    m.garbage_collection(s.input.lattice != nullptr, true, true);
+    if (s.input.lattice) {
+        std::vector<VH>().swap(s.history.free_vertices);
+        s.input.sample_of.resize(m.n_vertices());
+        s.input.sample_of.shrink_to_fit();
         for (auto v : m.vertices()) {
-            const std::uint32_t x = std::uint32_t(m.property(s.origin, v));
-            s.sample_of[std::size_t(v.idx())] = x;
+            const std::uint32_t x = std::uint32_t(m.property(s.input.origin, v));
+            s.input.sample_of[std::size_t(v.idx())] = x;
             live_node(s, x).vertex = v.idx();
         }
     }
-    s.face_maxdev = std::move(m.property(maxdev).data_vector());
-    s.face_head = std::move(m.property(head).data_vector());
-    for (std::size_t f = 0; f < s.face_head.size() && s.grid_w == 0; ++f)
-        for (std::int32_t u = s.face_head[f]; u >= 0; u = s.next_swallowed[std::size_t(u)])
-            s.swallowed_by[std::size_t(u)] = std::int32_t(f); // the faces moved
+    s.faces.face_maxdev = std::move(m.property(maxdev).data_vector());
+    s.faces.face_head = std::move(m.property(head).data_vector());
+    for (std::size_t f = 0; f < s.faces.face_head.size() && s.input.grid_w == 0; ++f)
+        for (std::int32_t u = s.faces.face_head[f]; u >= 0;
+             u = s.faces.next_swallowed[std::size_t(u)])
+            s.faces.swallowed_by[std::size_t(u)] = std::int32_t(f); // the faces moved
     m.remove_property(maxdev);
     m.remove_property(head);
-    s.face_maxdev.shrink_to_fit();
-    s.face_head.shrink_to_fit();
+    s.faces.face_maxdev.shrink_to_fit();
+    s.faces.face_head.shrink_to_fit();
     // The blocks name faces by index: they go (the next scans build them again).
-    s.face_blocked.assign(s.face_head.size(), 0);
-    s.face_blocked.shrink_to_fit();
-    s.seen.face_seen_dev.assign(s.face_head.size(), -1.0f);
-    s.seen.face_seen_dev.shrink_to_fit();
-    s.seen.face_seen.assign(s.face_head.size(), 0);
-    s.seen.face_seen.shrink_to_fit();
-    s.face_blocks.clear();
-    s.face_tiles.clear();
-    for (LiveNode &l : s.live_list) {
-        l.key = s.heap.key(l.node);
-        l.stamp = s.stamp[l.node];
+    s.faces.face_blocked.assign(s.faces.face_head.size(), 0);
+    s.faces.face_blocked.shrink_to_fit();
+    s.frame.seen.face_seen_dev.assign(s.faces.face_head.size(), -1.0f);
+    s.frame.seen.face_seen_dev.shrink_to_fit();
+    s.frame.seen.face_seen.assign(s.faces.face_head.size(), 0);
+    s.frame.seen.face_seen.shrink_to_fit();
+    s.faces.face_blocks.clear();
+    s.faces.face_tiles.clear();
+    for (LiveNode &l : s.live.list) {
+        l.key = s.live.heap.key(l.node);
+        l.stamp = s.live.stamp[l.node];
     }
-    s.heap.release();
-    std::vector<std::uint8_t>().swap(s.stamp);
-    s.node_keys = true;
-    std::vector<float>().swap(s.weight); // and compute weights where they need them
-    std::vector<EH>().swap(s.free_edges);
-    std::vector<FH>().swap(s.free_faces);
-    s.records.shrink_to_fit();
-    s.ring_pool.shrink_to_fit();
+    s.live.heap.release();
+    std::vector<std::uint8_t>().swap(s.live.stamp);
+    s.live.node_keys = true;
+    std::vector<float>().swap(s.weights.per_vertex); // and compute weights where they need them
+    std::vector<EH>().swap(s.history.free_edges);
+    std::vector<FH>().swap(s.history.free_faces);
+    s.history.records.shrink_to_fit();
+    s.history.ring_pool.shrink_to_fit();
 }
 
-std::size_t NodeEraser::history_bytes() const {
-    const EraserState &s = *state_;
-    return s.face_maxdev.capacity() * 4 + s.next_swallowed.capacity() * 4 +
-           s.face_head.capacity() * 4 + s.face_blocked.capacity() + s.block_scratch.capacity() * 4 +
-           block_bytes(s) + s.record_of.capacity() * 4 + s.flags.capacity() + s.stamp.capacity() +
-           s.heap.bytes() + s.weight.capacity() * sizeof(float) +
-           s.live_list.capacity() * sizeof(LiveNode) + s.grid.bytes() + s.records.bytes() +
-           s.ring_pool.bytes() + (s.regular ? s.regular->bytes() : 0) +
-           s.free_edges.capacity() * sizeof(EH) + s.free_faces.capacity() * sizeof(FH) +
-           s.free_vertices.capacity() * sizeof(VH) + s.seen.bytes() +
-           s.sample_of.capacity() * sizeof(std::uint32_t) +
-           (s.lattice_x.capacity() + s.lattice_y.capacity()) * sizeof(float) +
-           s.swallowed_by.capacity() * 4;
-}
+std::size_t NodeEraser::history_bytes() const { return state_->bytes(); }
 
 } // namespace tinlod

@@ -12,7 +12,7 @@ namespace tinlod::erase {
 // (EraseOptions::absent_history): each gets its ring, the lattice's regular one (RegularRings) or
 // a record. `retrieval_tin`: the TIN is a quad-tree retrieval's, whose rings are all regular on a
 // 2^k + 1 grid.
-void record_absent_samples(EraserState &s, bool retrieval_tin);
+void record_absent_samples(const Input &input, LiveSet &live, History &history, bool retrieval_tin);
 
 // A grid TIN that holds only some of its lattice's samples (a retrieval's): the faces swallowed the
 // others from the start, so each face gets its worst sample and deviation, and its corners' fan
@@ -20,6 +20,6 @@ void record_absent_samples(EraserState &s, bool retrieval_tin);
 void swallow_absent(EraserState &s);
 
 // Drops every live node's seen and low bounds (their keys may have changed without them).
-void forget_nodes(EraserState &s);
+void forget_nodes(LiveSet &live);
 
 } // namespace tinlod::erase

@@ -1,13 +1,13 @@
 // The geometry of the hole a node leaves: its ring, the projection plane, the new triangles' affine
-// frames, and a node's deviation from them (vertical on a TIN, the distance to the triangle on a
-// surface mesh, widened for float rounding).
+// frames (their planes: triangle_plane.hpp), and a node's deviation from them (node_deviation:
+// vertical on a TIN, the distance to the triangle on a surface mesh).
 #pragma once
 
 #include "erase/ring_triangulation.hpp"
 #include "float_rounding.hpp"
-#include "tinlod/closest_point.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/tin.hpp"
+#include "triangle_plane.hpp"
 
 #include <glm/glm.hpp>
 
@@ -30,11 +30,11 @@ using tinlod::float_down; // float_rounding.hpp, named here for the erase and th
 using tinlod::float_up;
 using tinlod::rounding_margin;
 
-// A new triangle's barycentric weights and height as affine functions of the projected point.
+// A new triangle's barycentric weights as affine functions of the projected point, and its plane
+// (xy only).
 struct TriangleFrame {
-    glm::dvec3 w0, w1;  // weight of corners a and b: dot(w, (x, y, 1)); c gets the rest
-    glm::dvec3 height;  // xy: z = dot(height, (x, y, 1))
-    double slope = 0.0; // xy: |grad z|
+    PlaneWeights w;
+    TrianglePlane plane;
 };
 
 // The hole a node leaves, projected and re-triangulated (scratch of one evaluation).
@@ -80,53 +80,19 @@ inline glm::dvec2 project(const Hole &h, const glm::dvec3 &p) {
 inline TriangleFrame triangle_frame(const glm::dvec2 &qa, const glm::dvec2 &qb,
                                     const glm::dvec2 &qc, bool xy, double za = 0.0, double zb = 0.0,
                                     double zc = 0.0) {
-    const double inv = 1.0 / orient(qa, qb, qc);
     TriangleFrame f;
-    // w0 = orient(qb, qc, x) / area, w1 = orient(qc, qa, x) / area
-    f.w0 = glm::dvec3(qb.y - qc.y, qc.x - qb.x, qb.x * qc.y - qc.x * qb.y) * inv;
-    f.w1 = glm::dvec3(qc.y - qa.y, qa.x - qc.x, qc.x * qa.y - qa.x * qc.y) * inv;
-    if (xy) {
-        const glm::dvec3 w2 = glm::dvec3(0.0, 0.0, 1.0) - f.w0 - f.w1;
-        f.height = f.w0 * za + f.w1 * zb + w2 * zc;
-        f.slope = std::sqrt(f.height.x * f.height.x + f.height.y * f.height.y);
-    }
+    f.w = plane_weights(qa, qb, qc);
+    if (xy)
+        f.plane = TrianglePlane(f.w, za, zb, zc);
     return f;
 }
 
 // Fills the affine frames of the hole's new triangles.
 void frame_triangles(Hole &h, bool xy);
 
-// A TIN point's vertical deviation from the triangle of frame f, widened by the rounding margin.
-inline double vertical_dev(const TriangleFrame &f, double x, double y, double z) {
-    return std::abs(z - (f.height.x * x + f.height.y * y + f.height.z)) +
-           rounding_margin(std::max(std::abs(x), std::abs(y)), f.slope);
-}
-
-// vertical_dev over one triangle of a grid TIN with corners a, b, c, its rounding margin taken
-// where it is largest in the triangle (at the corner farthest from the axes).
-class PlaneDev {
-  public:
-    PlaneDev(const TriangleFrame &f, const glm::dvec3 &a, const glm::dvec3 &b, const glm::dvec3 &c)
-        : h_(f.height) {
-        const double far = std::max({std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y),
-                                     std::abs(c.x), std::abs(c.y)});
-        margin_ = rounding_margin(far, f.slope);
-    }
-    double operator()(const Mesh::Point &p) const {
-        const double z = h_.x * double(p[0]) + h_.y * double(p[1]) + h_.z;
-        return std::abs(double(p[2]) - z) + margin_;
-    }
-
-  private:
-    glm::dvec3 h_;
-    double margin_;
-};
-
 // The new triangle covering p (the one where p's smallest weight is largest), and p's deviation
-// from it: vertical for a TIN, its distance to the triangle otherwise (a bound of its distance to
-// the surface; the distance to the triangle's plane is not, where the triangle is steep in the
-// projection plane). `inside`, if given, tells whether that triangle covers p (projected, edges
-// included) or is only the nearest.
+// from it (node_deviation). `inside`, if given, tells whether that triangle covers p (projected,
+// edges included) or is only the nearest.
 inline std::uint8_t locate(const Hole &h, bool xy, const glm::dvec3 &p, double &dev,
                            bool *inside = nullptr) {
     const glm::dvec2 x2 = project(h, p);
@@ -134,7 +100,7 @@ inline std::uint8_t locate(const Hole &h, bool xy, const glm::dvec3 &p, double &
     int best = 0;
     double best_min = -INFINITY;
     for (int t = 0; t < h.ntri; ++t) {
-        const double b0 = glm::dot(h.frame[t].w0, x), b1 = glm::dot(h.frame[t].w1, x);
+        const double b0 = glm::dot(h.frame[t].w.a, x), b1 = glm::dot(h.frame[t].w.b, x);
         const double lowest = std::min({b0, b1, 1.0 - b0 - b1});
         if (lowest > best_min) {
             best_min = lowest;
@@ -146,8 +112,7 @@ inline std::uint8_t locate(const Hole &h, bool xy, const glm::dvec3 &p, double &
     if (inside)
         *inside = best_min >= 0.0;
     const RingTriangle &t = h.tri[best];
-    dev = xy ? vertical_dev(h.frame[best], p.x, p.y, p.z)
-             : triangle_distance(p, h.p[t.a], h.p[t.b], h.p[t.c]);
+    dev = node_deviation(xy, h.frame[best].plane, p, h.p[t.a], h.p[t.b], h.p[t.c]);
     return std::uint8_t(best);
 }
 

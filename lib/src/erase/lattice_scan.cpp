@@ -29,13 +29,13 @@ std::uint32_t grid_width(const Mesh &m) {
     return std::uint32_t(w);
 }
 
-void build_tile_z(EraserState &s) {
-    const std::int64_t w = s.grid_w, rows = std::int64_t(s.nodes) / w;
-    const std::int64_t columns = tile_columns(s);
-    s.tile_z.assign(std::size_t(2 * columns * ((rows - 1) / k_band_rows + 1)), 0.0f);
-    const Samples g = samples(s);
+void build_tile_z(FaceIndex &faces, const Input &input) {
+    const std::int64_t w = input.grid_w, rows = std::int64_t(input.nodes) / w;
+    const std::int64_t columns = tile_columns(input);
+    faces.tile_z.assign(std::size_t(2 * columns * ((rows - 1) / k_band_rows + 1)), 0.0f);
+    const Samples g = samples(input);
     for (std::int64_t r = 0; r < rows; ++r) {
-        float *band = s.tile_z.data() + 2 * (r / k_band_rows) * columns;
+        float *band = faces.tile_z.data() + 2 * (r / k_band_rows) * columns;
         for (std::int64_t c0 = 0; c0 < w; c0 += k_tile_cols) {
             float lo = INFINITY, hi = -INFINITY;
             for (std::int64_t c = c0; c < std::min(w, c0 + k_tile_cols); ++c) {
@@ -58,13 +58,14 @@ std::pair<float, std::int32_t> face_worst(const EraserState &s, std::uint32_t a,
                                           std::uint32_t c, const TriangleFrame &f,
                                           const glm::dvec3 &pa, const glm::dvec3 &pb,
                                           const glm::dvec3 &pc) {
-    const PlaneDev deviation(f, pa, pb, pc);
+    const TrianglePlane plane = f.plane;
+    const double margin = plane.margin_over(pa, pb, pc);
     double maxdev = 0.0;
     std::int32_t worst = -1;
     scan_lattice(
         s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
         [&](std::uint32_t u, const Mesh::Point &p, double) {
-            const double dev = deviation(p);
+            const double dev = plane.deviation(p[0], p[1], p[2], margin);
             if (dev > maxdev) {
                 maxdev = dev;
                 worst = std::int32_t(u);

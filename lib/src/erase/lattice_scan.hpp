@@ -31,9 +31,9 @@ template <class Band, class Visit, class BandEnd = bool (*)()>
 inline bool scan_lattice(
     const EraserState &s, std::uint32_t a, std::uint32_t b, std::uint32_t c, const Band &band,
     const Visit &visit, const BandEnd &band_end = [] { return true; }) {
-    const std::int64_t w = s.grid_w;
-    const LatticeTriangle t(s.grid_w, a, b, c);
-    const Samples g = samples(s);
+    const std::int64_t w = s.input.grid_w;
+    const LatticeTriangle t(s.input.grid_w, a, b, c);
+    const Samples g = samples(s.input);
     // Left uninitialised, as a std::pair would be zeroed on every call
     // (docs/decisions/009-prefetching.md): each band writes the spans of its rows before it reads
     // them.
@@ -77,12 +77,12 @@ inline bool scan_lattice(
 }
 
 // The lattice's tiles: tile (r / k_band_rows, c / k_tile_cols) holds sample (c, r).
-inline std::int64_t tile_columns(const EraserState &s) {
-    return (std::int64_t(s.grid_w) - 1) / k_tile_cols + 1;
+inline std::int64_t tile_columns(const Input &input) {
+    return (std::int64_t(input.grid_w) - 1) / k_tile_cols + 1;
 }
 
 // The least and largest height of each tile of a grid TIN's lattice (one pass over the samples).
-void build_tile_z(EraserState &s);
+void build_tile_z(FaceIndex &faces, const Input &input);
 
 // The tiling of face (a, b, c): its rows, and the lattice tiles over its box, bands from row0 and
 // columns from x0 (multiples of the tile's sides).
@@ -92,10 +92,10 @@ struct Tiling {
 };
 
 inline Tiling tiling(const EraserState &s, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const std::int64_t w = s.grid_w;
+    const std::int64_t w = s.input.grid_w;
     const std::int64_t x0 = std::min({a % w, b % w, c % w}) / k_tile_cols * k_tile_cols,
                        x1 = std::max({a % w, b % w, c % w});
-    const LatticeTriangle t(s.grid_w, a, b, c);
+    const LatticeTriangle t(s.input.grid_w, a, b, c);
     return {t, t.first_row / k_band_rows * k_band_rows, x0, (x1 - x0) / k_tile_cols + 1};
 }
 
@@ -107,9 +107,9 @@ template <class Tile, class Deviation, class Visit>
 inline void scan_tiles(const EraserState &s, std::uint32_t a, std::uint32_t b, std::uint32_t c,
                        std::vector<float> &dev, const Tile &tile, const Deviation &deviation,
                        const Visit &visit) {
-    const std::int64_t w = s.grid_w;
+    const std::int64_t w = s.input.grid_w;
     const Tiling g = tiling(s, a, b, c);
-    const Samples lattice = samples(s);
+    const Samples lattice = samples(s.input);
     std::array<std::pair<std::int64_t, std::int64_t>, k_band_rows> spans;
     for (std::int64_t y0 = g.row0; y0 <= g.t.last_row; y0 += k_band_rows) {
         const std::int64_t ya = std::max(y0, g.t.first_row),
@@ -156,26 +156,25 @@ inline void scan_tiles(const EraserState &s, std::uint32_t a, std::uint32_t b, s
 
 // Face f's tiles (corners a, b, c): kept ones, made now when the face holds more than
 // k_tiled_samples samples, else null. A tile's bound is the largest distance from the height
-// range of its lattice tile to `plane(x, y)` (the face's height) over its box, widened like a
-// deviation (rounding_margin at its farthest corner for the face's slope, and a hair for the
-// rounding of these sums); no sample is read.
-template <class Plane>
+// range of its lattice tile to the face's plane over its box, widened like a deviation (the
+// plane's margin at its farthest corner, and a hair for the rounding of these sums); no sample is
+// read.
 inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, std::uint32_t b,
-                                         std::uint32_t c, const Plane &plane, double slope) {
-    if (s.face_blocked[f.idx()]) {
-        const auto kept = s.face_tiles.find(f.idx());
-        return kept == s.face_tiles.end() ? nullptr : &kept->second;
+                                         std::uint32_t c, const TrianglePlane &plane) {
+    if (s.faces.face_blocked[f.idx()]) {
+        const auto kept = s.faces.face_tiles.find(f.idx());
+        return kept == s.faces.face_tiles.end() ? nullptr : &kept->second;
     }
     const Tiling g = tiling(s, a, b, c);
     const std::int64_t rows = g.t.last_row - g.t.first_row + 1;
     if (rows * g.columns * k_tile_cols / 2 <= k_tiled_samples)
         return nullptr; // half its box: at most about k_tiled_samples samples
-    if (s.tile_z.empty())
-        build_tile_z(s);
-    const std::int64_t w = s.grid_w, columns = tile_columns(s);
+    if (s.faces.tile_z.empty())
+        build_tile_z(s.faces, s.input);
+    const std::int64_t w = s.input.grid_w, columns = tile_columns(s.input);
     const std::int64_t x_lo = std::min({a % w, b % w, c % w}),
                        x_hi = std::max({a % w, b % w, c % w});
-    const Samples lattice = samples(s);
+    const Samples lattice = samples(s.input);
     const std::int64_t bands = (g.t.last_row - g.row0) / k_band_rows + 1;
     std::vector<float> dev(std::size_t(bands * g.columns));
     for (std::int64_t j = 0; j < bands; ++j) {
@@ -186,27 +185,28 @@ inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, 
             const std::int64_t c0 = std::max(g.x0 + k * k_tile_cols, x_lo),
                                c1 = std::min(g.x0 + (k + 1) * k_tile_cols - 1, x_hi);
             const double x0 = lattice.x(c0), x1 = lattice.x(c1);
-            const float *z = s.tile_z.data() +
+            const float *z = s.faces.tile_z.data() +
                              2 * ((g.row0 / k_band_rows + j) * columns + (g.x0 / k_tile_cols + k));
-            const double p[4] = {plane(x0, y0), plane(x1, y0), plane(x0, y1), plane(x1, y1)};
+            const double p[4] = {plane.height(x0, y0), plane.height(x1, y0), plane.height(x0, y1),
+                                 plane.height(x1, y1)};
             const double pl = std::min({p[0], p[1], p[2], p[3]}),
                          ph = std::max({p[0], p[1], p[2], p[3]});
             const double far = std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
             const double most = std::max({double(z[1]) - pl, ph - double(z[0]), 0.0});
             dev[std::size_t(j * g.columns + k)] =
-                float_up(most + rounding_margin(far, slope) +
+                float_up(most + plane.margin(far) +
                          1e-9 * (std::abs(pl) + std::abs(ph) + std::abs(double(z[0])) +
                                  std::abs(double(z[1])) + 1.0));
         }
     }
-    s.face_blocked[f.idx()] = 1;
-    return &(s.face_tiles[f.idx()] = std::move(dev));
+    s.faces.face_blocked[f.idx()] = 1;
+    return &(s.faces.face_tiles[f.idx()] = std::move(dev));
 }
 
 // The samples strictly inside a grid TIN's hole (the node itself among them), by Pick's theorem:
 // the ring's area in lattice cells less half the samples on it, plus one.
 inline std::int64_t lattice_inside(const EraserState &s, const Hole &h) {
-    const std::int64_t w = s.grid_w;
+    const std::int64_t w = s.input.grid_w;
     std::int64_t twice = 0, on_ring = 0;
     for (int i = 0; i < h.n; ++i) {
         const std::int64_t a = node_of(s, h.r[i]), b = node_of(s, h.r[(i + 1) % h.n]);

@@ -44,37 +44,37 @@ std::int64_t deleted_vertices(const Mesh &m) {
 // the samples without one.
 std::vector<std::int32_t> bind_nodes(EraserState &s, const Heightfield *lattice,
                                      std::int64_t &absent) {
-    s.nodes = std::uint32_t(s.mesh->n_vertices());
+    s.input.nodes = std::uint32_t(s.input.mesh->n_vertices());
     std::vector<std::int32_t> vertex_of;
     if (!lattice)
         return vertex_of;
     const Heightfield &hf = *lattice;
     if (absent > 0)
         throw std::invalid_argument("NodeEraser: a sparse lattice TIN with deleted vertices");
-    s.origin = find_origin_property(*s.mesh);
-    if (!s.origin.is_valid())
+    s.input.origin = find_origin_property(*s.input.mesh);
+    if (!s.input.origin.is_valid())
         throw std::invalid_argument("NodeEraser: a sparse lattice TIN without its samples");
-    s.lattice = &hf;
-    s.nodes = std::uint32_t(hf.size());
-    s.inverse_width = 1.0 / double(hf.width);
-    s.lattice_x.resize(std::size_t(hf.width));
-    s.lattice_y.resize(std::size_t(hf.height));
+    s.input.lattice = &hf;
+    s.input.nodes = std::uint32_t(hf.size());
+    s.input.inverse_width = 1.0 / double(hf.width);
+    s.input.lattice_x.resize(std::size_t(hf.width));
+    s.input.lattice_y.resize(std::size_t(hf.height));
     for (int c = 0; c < hf.width; ++c)
-        s.lattice_x[std::size_t(c)] = grid_point(hf, c, 0)[0];
+        s.input.lattice_x[std::size_t(c)] = grid_point(hf, c, 0)[0];
     for (int r = 0; r < hf.height; ++r)
-        s.lattice_y[std::size_t(r)] = grid_point(hf, 0, r)[1];
-    vertex_of.assign(s.nodes, -1);
-    s.sample_of.resize(s.mesh->n_vertices());
-    for (auto v : s.mesh->vertices()) {
-        const std::int64_t x = s.mesh->property(s.origin, v);
+        s.input.lattice_y[std::size_t(r)] = grid_point(hf, 0, r)[1];
+    vertex_of.assign(s.input.nodes, -1);
+    s.input.sample_of.resize(s.input.mesh->n_vertices());
+    for (auto v : s.input.mesh->vertices()) {
+        const std::int64_t x = s.input.mesh->property(s.input.origin, v);
         if (x < 0 || x >= hf.size() || vertex_of[std::size_t(x)] >= 0 ||
-            s.mesh->point(v) != node_point(s, std::uint32_t(x)))
+            s.input.mesh->point(v) != node_point(s, std::uint32_t(x)))
             throw std::invalid_argument("NodeEraser: a sparse lattice TIN's vertex is not "
                                         "its sample");
         vertex_of[std::size_t(x)] = v.idx();
-        s.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
+        s.input.sample_of[std::size_t(v.idx())] = std::uint32_t(x);
     }
-    absent = std::int64_t(s.nodes) - std::int64_t(s.mesh->n_vertices());
+    absent = std::int64_t(s.input.nodes) - std::int64_t(s.input.mesh->n_vertices());
     return vertex_of;
 }
 
@@ -83,64 +83,67 @@ std::vector<std::int32_t> bind_nodes(EraserState &s, const Heightfield *lattice,
 // the lattice (grid_width).
 void choose_projection(EraserState &s, Projection projection, std::int64_t absent) {
     bool all_ccw = true;
-    for (auto f : s.mesh->faces()) {
-        auto he = s.mesh->halfedge_handle(f);
-        const auto &a = s.mesh->point(s.mesh->from_vertex_handle(he));
-        const auto &b = s.mesh->point(s.mesh->to_vertex_handle(he));
-        const auto &c = s.mesh->point(s.mesh->to_vertex_handle(s.mesh->next_halfedge_handle(he)));
+    for (auto f : s.input.mesh->faces()) {
+        auto he = s.input.mesh->halfedge_handle(f);
+        const auto &a = s.input.mesh->point(s.input.mesh->from_vertex_handle(he));
+        const auto &b = s.input.mesh->point(s.input.mesh->to_vertex_handle(he));
+        const auto &c = s.input.mesh->point(
+            s.input.mesh->to_vertex_handle(s.input.mesh->next_halfedge_handle(he)));
         if (orient({a[0], a[1]}, {b[0], b[1]}, {c[0], c[1]}) <= 0.0) {
             all_ccw = false;
             break;
         }
     }
-    s.xy = projection == Projection::xy || (projection == Projection::automatic && all_ccw);
-    s.grid_w = !s.xy ? 0 : s.lattice ? std::uint32_t(s.lattice->width) : grid_width(*s.mesh);
-    if (s.lattice && s.grid_w == 0)
+    s.input.xy = projection == Projection::xy || (projection == Projection::automatic && all_ccw);
+    s.input.grid_w = !s.input.xy       ? 0
+                     : s.input.lattice ? std::uint32_t(s.input.lattice->width)
+                                       : grid_width(*s.input.mesh);
+    if (s.input.lattice && s.input.grid_w == 0)
         throw std::invalid_argument("NodeEraser: a sparse lattice TIN is not counter-clockwise");
-    if (absent > 0 && s.grid_w == 0)
+    if (absent > 0 && s.input.grid_w == 0)
         throw std::invalid_argument(
             "NodeEraser: deleted vertices in a mesh that is not a grid TIN");
 }
 
 // The per-face and per-node arrays: the face index (empty lists), the records, the live list.
 void allocate(EraserState &s) {
-    if (s.grid_w == 0) {
-        s.next_swallowed.assign(s.nodes, -1);
-        s.swallowed_by.assign(s.nodes, -1);
+    if (s.input.grid_w == 0) {
+        s.faces.next_swallowed.assign(s.input.nodes, -1);
+        s.faces.swallowed_by.assign(s.input.nodes, -1);
     }
-    s.face_head.assign(s.mesh->n_faces(), -1);
-    s.face_blocked.assign(s.mesh->n_faces(), 0);
-    s.face_maxdev.assign(s.mesh->n_faces(), 0.0f);
-    s.seen.face_seen_dev.assign(s.mesh->n_faces(), -1.0f);
-    s.seen.face_seen.assign(s.mesh->n_faces(), 0);
-    s.record_of.resize(s.nodes);
-    s.live_list.reserve(std::size_t(s.live));
+    s.faces.face_head.assign(s.input.mesh->n_faces(), -1);
+    s.faces.face_blocked.assign(s.input.mesh->n_faces(), 0);
+    s.faces.face_maxdev.assign(s.input.mesh->n_faces(), 0.0f);
+    s.frame.seen.face_seen_dev.assign(s.input.mesh->n_faces(), -1.0f);
+    s.frame.seen.face_seen.assign(s.input.mesh->n_faces(), 0);
+    s.history.record_of.resize(s.input.nodes);
+    s.live.list.reserve(std::size_t(s.live.count));
 }
 
 // The update's grid, over the input's extent, sized for its live nodes.
 void place_grid(EraserState &s) {
     glm::dvec2 lo(INFINITY), hi(-INFINITY);
-    for (auto v : s.mesh->vertices()) {
-        const glm::dvec3 p = to_glm(s.mesh->point(v));
+    for (auto v : s.input.mesh->vertices()) {
+        const glm::dvec3 p = to_glm(s.input.mesh->point(v));
         lo = glm::min(lo, glm::dvec2(p));
         hi = glm::max(hi, glm::dvec2(p));
     }
-    if (s.nodes > 0) {
+    if (s.input.nodes > 0) {
         const glm::dvec2 extent = hi - lo;
-        s.area_per_node = extent.x * extent.y / double(s.nodes);
-        s.grid.grid_lo = lo;
-        s.grid.grid_hi = hi;
+        s.input.area_per_node = extent.x * extent.y / double(s.input.nodes);
+        s.frame.grid.grid_lo = lo;
+        s.frame.grid.grid_hi = hi;
     }
-    regrid(s);
+    regrid(s.frame.grid, s.live);
 }
 
 // Every node with a live vertex enters the live set; the others are absent (k_absent). Takes
 // bind_nodes' vertex_of, freed on return (before the absent samples' rings are made).
 void build_live_set(EraserState &s, std::vector<std::int32_t> vertex_of) {
-    for (std::uint32_t x = 0; x < s.nodes; ++x) {
-        const VH v = s.lattice ? VH(vertex_of[x]) : VH(int(x));
-        if (!v.is_valid() || s.mesh->status(v).deleted())
-            s.record_of[x] = k_absent;
+    for (std::uint32_t x = 0; x < s.input.nodes; ++x) {
+        const VH v = s.input.lattice ? VH(vertex_of[x]) : VH(int(x));
+        if (!v.is_valid() || s.input.mesh->status(v).deleted())
+            s.history.record_of[x] = k_absent;
         else
             add_live(s, x, -1, v);
     }
@@ -167,19 +170,19 @@ NodeEraser::NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions
     : state_(std::make_unique<erase::EraserState>()) {
     check_options(options);
     EraserState &s = *state_;
-    s.mesh = &mesh;
-    assert(s.mesh->is_trimesh());
-    std::int64_t absent = deleted_vertices(*s.mesh);
+    s.input.mesh = &mesh;
+    assert(s.input.mesh->is_trimesh());
+    std::int64_t absent = deleted_vertices(*s.input.mesh);
     std::vector<std::int32_t> vertex_of = bind_nodes(s, options.lattice, absent);
-    s.live = std::int64_t(s.nodes) - absent;
-    s.live_faces = std::int64_t(s.mesh->n_faces());
+    s.live.count = std::int64_t(s.input.nodes) - absent;
+    s.live.faces = std::int64_t(s.input.mesh->n_faces());
     choose_projection(s, options.projection, absent);
     allocate(s);
     place_grid(s);
     build_live_set(s, std::move(vertex_of));
-    s.absent_for_good = absent > 0 && !options.absent_history;
+    s.history.absent_for_good = absent > 0 && !options.absent_history;
     if (absent > 0 && options.absent_history)
-        record_absent_samples(s, options.retrieval_tin);
+        record_absent_samples(s.input, s.live, s.history, options.retrieval_tin);
     if (absent > 0)
         swallow_absent(s);
     set_view(model, options);
@@ -192,16 +195,16 @@ NodeEraser &NodeEraser::operator=(NodeEraser &&) noexcept = default;
 void NodeEraser::set_view(const Significance &model, const EraseOptions &options) {
     check_options(options);
     EraserState &s = *state_;
-    s.options = options;
-    s.model = model.model();
-    s.significance = model.options();
-    std::fill(s.seen.face_seen_dev.begin(), s.seen.face_seen_dev.end(),
+    s.input.options = options;
+    s.weights.model = model.model();
+    s.weights.significance = model.options();
+    std::fill(s.frame.seen.face_seen_dev.begin(), s.frame.seen.face_seen_dev.end(),
               -1.0f); // the model may change
-    forget_nodes(s);
+    forget_nodes(s.live);
     if (const std::optional<View> &view = model.view()) {
-        s.view = *view;
-        if (s.model == SpModel::paper)
-            s.focal_distance = std::max(focal_point(*s.mesh, *view).distance, 1e-9);
+        s.weights.view = *view;
+        if (s.weights.model == SpModel::paper)
+            s.weights.focal_distance = std::max(focal_point(*s.input.mesh, *view).distance, 1e-9);
     }
     classify_nodes(s);
 }
@@ -211,19 +214,19 @@ namespace {
 // Back to the per-vertex stamps (and keys, which the erase resets) from the live nodes, where
 // compact() moved them.
 void per_vertex_keys(EraserState &s) {
-    if (!s.node_keys)
+    if (!s.live.node_keys)
         return;
-    s.stamp.assign(s.nodes, 0);
-    for (const LiveNode &l : s.live_list)
-        s.stamp[l.node] = l.stamp;
-    s.node_keys = false;
+    s.live.stamp.assign(s.input.nodes, 0);
+    for (const LiveNode &l : s.live.list)
+        s.live.stamp[l.node] = l.stamp;
+    s.live.node_keys = false;
 }
 
 // The sweep (sweep.hpp) where the key is the cost (not the paper model) and a bound or a budget
 // stops it, else the queue: rank every node, then pop the least.
 std::int64_t erase_by_model(EraserState &s) {
-    if (s.model != SpModel::paper &&
-        (s.options.max_nodes > 0 || std::isfinite(s.options.tolerance)))
+    if (s.weights.model != SpModel::paper &&
+        (s.input.options.max_nodes > 0 || std::isfinite(s.input.options.tolerance)))
         return sweep_erase(s);
     rank_nodes(s);
     return erase_loop(s);
@@ -233,21 +236,21 @@ std::int64_t erase_by_model(EraserState &s) {
 
 EraseStats NodeEraser::erase() {
     EraserState &s = *state_;
-    s.fans_stale = true;
+    s.frame.fans_stale = true;
     Stopwatch clock;
     EraseStats stats;
-    stats.input_nodes = s.live;
-    stats.input_triangles = s.live_faces;
-    const std::int64_t evaluations = s.evaluations;
+    stats.input_nodes = s.live.count;
+    stats.input_triangles = s.live.faces;
+    const std::int64_t evaluations = s.counters.evaluations;
     per_vertex_keys(s);
     stats.erased = erase_by_model(s);
-    if (s.live_list.capacity() > 2 * s.live_list.size())
-        s.live_list.shrink_to_fit(); // an update keeps the live nodes only
-    forget_nodes(s);
+    if (s.live.list.capacity() > 2 * s.live.list.size())
+        s.live.list.shrink_to_fit(); // an update keeps the live nodes only
+    forget_nodes(s.live);
     const EraseStats now = measure();
-    stats.output_nodes = s.live;
-    stats.output_triangles = s.live_faces;
-    stats.evaluations = s.evaluations - evaluations;
+    stats.output_nodes = s.live.count;
+    stats.output_triangles = s.live.faces;
+    stats.evaluations = s.counters.evaluations - evaluations;
     stats.max_weighted = now.max_weighted;
     stats.max_screen_px = now.max_screen_px;
     stats.max_vertical = now.max_vertical;
@@ -255,38 +258,38 @@ EraseStats NodeEraser::erase() {
     return stats;
 }
 
-const Mesh &NodeEraser::mesh() const { return *state_->mesh; }
-std::int64_t NodeEraser::live_nodes() const { return state_->live; }
-std::int64_t NodeEraser::live_triangles() const { return state_->live_faces; }
+const Mesh &NodeEraser::mesh() const { return *state_->input.mesh; }
+std::int64_t NodeEraser::live_nodes() const { return state_->live.count; }
+std::int64_t NodeEraser::live_triangles() const { return state_->live.faces; }
 
 NodeEraser::Cost NodeEraser::erase_cost(Mesh::VertexHandle v) {
     EraserState &s = *state_;
     const std::uint32_t x = node_of(s, v);
-    if (s.record_of[x] >= 0)
+    if (s.history.record_of[x] >= 0)
         throw std::invalid_argument("NodeEraser::erase_cost: the node is erased");
     Cost out;
-    if (s.xy && s.area_per_node > 0.0)
+    if (s.input.xy && s.input.area_per_node > 0.0)
         out.covered = covered_estimate(s, x);
-    if (s.flags[x] & k_locked)
+    if (s.live.flags[x] & k_locked)
         return out;
-    const std::int64_t evaluations = s.evaluations;
+    const std::int64_t evaluations = s.counters.evaluations;
     if (evaluate(s, v, INFINITY)) {
-        out.cost = s.hole.sp;
-        if (s.grid_w > 0)
-            out.covered = std::max(out.covered, double(lattice_inside(s, s.hole)));
+        out.cost = s.scratch.hole.sp;
+        if (s.input.grid_w > 0)
+            out.covered = std::max(out.covered, double(lattice_inside(s, s.scratch.hole)));
     }
-    s.evaluations = evaluations;
+    s.counters.evaluations = evaluations;
     return out;
 }
 
 EraseStats NodeEraser::measure() const {
     const EraserState &s = *state_;
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     EraseStats stats;
-    stats.output_nodes = s.live;
-    stats.output_triangles = s.live_faces;
-    const bool has_view = s.model != SpModel::vertical;
-    const double k = has_view ? s.view.k() : 0.0;
+    stats.output_nodes = s.live.count;
+    stats.output_triangles = s.live.faces;
+    const bool has_view = s.weights.model != SpModel::vertical;
+    const double k = has_view ? s.weights.view.k() : 0.0;
     // Each TIN face's bounds on what its swallowed nodes can show: its largest deviation, alone,
     // times the largest weight in its box and times k over the box's distance (a surface mesh's
     // faces get no bounds: each is scanned). Faces go from the largest weighted bound down, and a
@@ -297,19 +300,21 @@ EraseStats NodeEraser::measure() const {
         FH f;
     };
     std::vector<Bounded> faces;
-    faces.reserve(std::size_t(s.live_faces));
+    faces.reserve(std::size_t(s.live.faces));
     for (auto f : m.faces()) {
-        if (s.face_head[f.idx()] < 0 || m.status(f).deleted())
+        if (s.faces.face_head[f.idx()] < 0 || m.status(f).deleted())
             continue;
         const HH he = m.halfedge_handle(f);
         const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he))),
                          b = to_glm(m.point(m.to_vertex_handle(he))),
                          c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
-        const double dev = 1.001 * double(s.face_maxdev[f.idx()]);
-        const auto [lo, hi] = swallowed_box(s, f, a, b, c);
-        const double near = glm::length(glm::clamp(s.view.eye, lo, hi) - s.view.eye);
-        faces.push_back({s.xy ? dev * s.weigher.bound(lo, hi) * k_rounded_weight : INFINITY,
-                         s.xy && has_view ? dev * k / near : INFINITY, s.xy ? dev : INFINITY, f});
+        const double dev = 1.001 * double(s.faces.face_maxdev[f.idx()]);
+        const auto [lo, hi] = swallowed_box(s.faces, s.input.xy, f, a, b, c);
+        const double near =
+            glm::length(glm::clamp(s.weights.view.eye, lo, hi) - s.weights.view.eye);
+        faces.push_back(
+            {s.input.xy ? dev * s.weights.weigher.bound(lo, hi) * k_rounded_weight : INFINITY,
+             s.input.xy && has_view ? dev * k / near : INFINITY, s.input.xy ? dev : INFINITY, f});
     }
     std::sort(faces.begin(), faces.end(),
               [](const Bounded &x, const Bounded &y) { return x.weighted > y.weighted; });
@@ -318,32 +323,24 @@ EraseStats NodeEraser::measure() const {
             (!has_view || !(bounded.screen > stats.max_screen_px)))
             continue;
         const FH f = bounded.f;
-        std::int32_t u = s.face_head[f.idx()];
+        std::int32_t u = s.faces.face_head[f.idx()];
         HH he = m.halfedge_handle(f);
         const VH va = m.from_vertex_handle(he), vb = m.to_vertex_handle(he),
                  vc = m.to_vertex_handle(m.next_halfedge_handle(he));
         const glm::dvec3 a = to_glm(m.point(va)), b = to_glm(m.point(vb)), c = to_glm(m.point(vc));
-        const glm::dvec3 normal = glm::cross(b - a, c - a);
-        const double area = normal.z;
+        const TrianglePlane plane = s.input.xy ? TrianglePlane(a, b, c) : TrianglePlane();
         auto add = [&](std::int32_t node) {
             const glm::dvec3 p = to_glm(node_point(s, std::uint32_t(node)));
-            double dev;
-            if (s.xy) {
-                const glm::dvec2 x(p.x, p.y);
-                const double b0 = orient({b.x, b.y}, {c.x, c.y}, x) / area;
-                const double b1 = orient({c.x, c.y}, {a.x, a.y}, x) / area;
-                dev = std::abs(p.z - (b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z));
-            } else {
-                dev = triangle_distance(p, a, b, c); // as locate() measures what the erase bounds
-            }
+            // The output's own error: node_deviation without the widening for float corners.
+            const double dev = s.input.xy ? plane.vertical(p) : triangle_distance(p, a, b, c);
             stats.max_vertical = std::max(stats.max_vertical, dev);
             stats.max_weighted =
                 std::max(stats.max_weighted, weighted(s, std::uint32_t(node), dev));
-            if (has_view && s.view.in_frustum(p))
+            if (has_view && s.weights.view.in_frustum(p))
                 stats.max_screen_px =
-                    std::max(stats.max_screen_px, dev * k / glm::length(p - s.view.eye));
+                    std::max(stats.max_screen_px, dev * k / glm::length(p - s.weights.view.eye));
         };
-        if (s.grid_w > 0)
+        if (s.input.grid_w > 0)
             scan_lattice(
                 s, node_of(s, va), node_of(s, vb), node_of(s, vc),
                 [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
@@ -352,7 +349,7 @@ EraseStats NodeEraser::measure() const {
                     return true;
                 });
         else
-            for (; u >= 0; u = s.next_swallowed[u])
+            for (; u >= 0; u = s.faces.next_swallowed[u])
                 add(u);
     }
     return stats;

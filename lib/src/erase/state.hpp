@@ -41,7 +41,7 @@ struct EraseRecord {
 // What an update needs to know of a live node without walking its fan (see NodeEraser::update).
 struct LiveNode {
     std::uint32_t node;
-    std::int32_t vertex; // its vertex (the node id itself unless EraserState::lattice)
+    std::int32_t vertex; // its vertex (the node id itself unless Input::lattice)
     Mesh::Point p;       // its point (an update reads it for every node it visits)
     // The node whose deviation gave the last evaluated cost, and that deviation: the cost under
     // any later view is at least star_dev times the star's weight there while the fan stands.
@@ -66,7 +66,7 @@ struct LiveNode {
     std::uint32_t low_at = 0;
     bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
     bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
-    // Once compact() ran (EraserState::node_keys): the node's key and sweep stamp (see node_key).
+    // Once compact() ran (LiveSet::node_keys): the node's key and sweep stamp (see node_key).
     std::uint8_t stamp = 0;
     float key = 0.0f;
 };
@@ -99,12 +99,18 @@ constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN nev
 // record_of of a sample left out whose ring is its lattice's regular one (RegularRings): no record.
 constexpr std::int32_t k_regular_ring = std::numeric_limits<std::int32_t>::max();
 
-// The eraser's state, grouped by the part each field belongs to. NodeEraser holds one; the stages
-// (the free functions of lib/src/erase and lib/src/refine) take it whole for now, but for the
-// refiner's grid and view bounds, parts of their own (refine/frame_state.hpp) that the stages
-// which read only them take alone.
-struct EraserState {
-    // ---- The input: the mesh, the options, node ids ----
+// The eraser's parts. Each states its invariants and counts its heap memory (bytes(): capacities,
+// as NodeEraser::history_bytes reports them). A stage takes the parts it reads and writes; the hot
+// accessors below (vh, node_of, node_point) and the stages that need nearly every part take the
+// whole EraserState.
+
+// The input: the mesh, the options, node ids.
+// Invariants: node ids are 0..nodes-1: a sparse lattice's samples (lattice set), else the mesh's
+// vertex indices (sample_of empty). With a lattice, sample_of has an entry per vertex of the mesh
+// (the sample it holds), lattice_x / lattice_y the columns' x and rows' y as the mesh's float
+// points have them, and inverse_width = 1 / lattice->width. grid_w > 0 exactly for a grid TIN
+// (xy projection, see grid_width), the lattice's width.
+struct Input {
     Mesh *mesh = nullptr; // borrowed from the caller
     EraseOptions options;
     bool xy = true;
@@ -116,9 +122,9 @@ struct EraserState {
     // A sparse grid TIN (EraseOptions::lattice): the lattice's samples, and the columns' x and the
     // rows' y as the mesh's float points have them. Only the live samples have a vertex, in their
     // LiveNode (see vh), and sample_of maps each vertex to its sample; an erase frees its node's
-    // vertex (free_vertices) for the next sample that enters or comes back, which takes its point
-    // from here. Node ids are samples; without a lattice (a dense grid TIN or any mesh) they are
-    // vertex indices, and sample_of stays empty.
+    // vertex (History::free_vertices) for the next sample that enters or comes back, which takes
+    // its point from here. Node ids are samples; without a lattice (a dense grid TIN or any mesh)
+    // they are vertex indices, and sample_of stays empty.
     const Heightfield *lattice = nullptr;
     std::vector<float> lattice_x, lattice_y;
     double inverse_width = 0.0;
@@ -126,39 +132,68 @@ struct EraserState {
     OpenMesh::VPropHandleT<std::int64_t> origin; // a sparse lattice's: its vertices' samples
     double area_per_node = 0.0;                  // xy: the input's bounding-box area over its nodes
 
-    // ---- The view and the weights ----
+    std::size_t bytes() const {
+        return sample_of.capacity() * sizeof(std::uint32_t) +
+               (lattice_x.capacity() + lattice_y.capacity()) * sizeof(float);
+    }
+};
+
+// The view and the weights.
+// Invariants: weigher is the model's (model, view, significance: the view is meaningful for the
+// screen and paper models only), unit_weights exactly for the vertical model; per_vertex is empty
+// or has an entry per node, each the weigher at the node rounded up (see weight_of).
+struct ViewWeights {
     SpModel model = SpModel::vertical; // set_view's model
     SignificanceOptions significance;  // its parameters
     View view;                         // its view, which update() moves (screen and paper models)
     double focal_distance = 1.0;
     Weigher weigher;          // pixels per unit deviation for the current view
     bool unit_weights = true; // no view, or the vertical model: every weight is 1
-    // Per vertex while erase() runs (it asks for a node's weight again and again): the weigher at
+    // Per node while erase() runs (it asks for a node's weight again and again): the weigher at
     // the node rounded up, all computed in one run over the vertices when the view is set: the
     // erase asks for most of them, many times each. An update computes each weight where it needs
     // it (as fast there, and 4 bytes per node less to keep;
     // docs/decisions/004-per-vertex-weights.md).
-    std::vector<float> weight;
+    std::vector<float> per_vertex;
 
-    // ---- The live set: the live nodes, their keys and flags ----
-    std::vector<LiveNode> live_list; // the live nodes, in no order
-    std::vector<std::uint8_t> flags; // per vertex: k_locked, k_dirty, k_recovered, k_unread
-    // Per vertex: the sweep pass (mod 256) that last changed its ring.
+    std::size_t bytes() const { return per_vertex.capacity() * sizeof(float); }
+};
+
+// The live set: the live nodes, their keys and flags.
+// Invariants: list holds each live node once (History::record_of[x] = -2 - its place), count is
+// its size (a sparse lattice's or a grid TIN's absent samples are not counted) and faces the live
+// faces; flags has an entry per node. With node_keys the live nodes' keys and stamps are in their
+// LiveNode and heap and stamp are empty; without it heap's keys and stamp have an entry per node.
+struct LiveSet {
+    std::vector<LiveNode> list;      // the live nodes, in no order
+    std::vector<std::uint8_t> flags; // per node: k_locked, k_dirty, k_recovered, k_unread
+    // Per node: the sweep pass (mod 256) that last changed its ring.
     std::vector<std::uint8_t> stamp;
-    // Set by compact(): the live nodes' keys and stamps are in their LiveNode, and the per-vertex
+    // Set by compact(): the live nodes' keys and stamps are in their LiveNode, and the per-node
     // ones (heap, stamp) are freed, as only an update's sweeps, over live nodes, read them; 5
     // bytes per input node, and a stamp reset that visits the live nodes, not the terrain. The
-    // next erase() goes back to the per-vertex arrays.
+    // next erase() goes back to the per-node arrays.
     bool node_keys = false;
     std::uint8_t pass = 0;
     std::size_t chain_cap = 0; // see sweep_node
     NodeHeap heap;
-    std::int64_t live = 0, live_faces = 0;
+    std::int64_t count = 0, faces = 0; // live nodes, live faces
 
-    // ---- The history: one record per erased node ----
-    // Per vertex: its erase record (>= 0; k_regular_ring: none, see regular), k_absent for a
+    std::size_t bytes() const {
+        return list.capacity() * sizeof(LiveNode) + flags.capacity() + stamp.capacity() +
+               heap.bytes();
+    }
+};
+
+// The history: one record per erased node.
+// Invariants: record_of has an entry per node: an erased node's record (an index into records,
+// whose ring is ring_size entries of ring_pool from ring_begin) or k_regular_ring (its ring is
+// regular's), k_absent for a sample that can never enter, -2 - its place in LiveSet::list for a
+// live node. The free lists hold deleted mesh elements that no live face uses.
+struct History {
+    // Per node: its erase record (>= 0; k_regular_ring: none, see regular), k_absent for a
     // sample the input TIN never held (see the constructor), or for a live node -2 - its place in
-    // live_list (so an update visits the live nodes without walking the whole terrain).
+    // LiveSet::list (so an update visits the live nodes without walking the whole terrain).
     std::vector<std::int32_t> record_of;
     ChunkedPool<EraseRecord> records;
     ChunkedPool<std::uint32_t> ring_pool;
@@ -173,11 +208,32 @@ struct EraserState {
     std::vector<FH> free_faces;
     std::vector<VH> free_vertices; // a sparse lattice's: the vertices its erases freed
 
-    // ---- The face index: each face's swallowed nodes ----
+    std::size_t bytes() const {
+        std::size_t bytes = record_of.capacity() * 4 + records.bytes() + ring_pool.bytes() +
+                            (regular ? regular->bytes() : 0) + free_edges.capacity() * sizeof(EH) +
+                            free_faces.capacity() * sizeof(FH) +
+                            free_vertices.capacity() * sizeof(VH);
+        for (const auto &[node, kept] : kept_fans) {
+            bytes += sizeof(node) + sizeof(kept) + 16 + kept.head.capacity() * 4 +
+                     kept.maxdev.capacity() * 4 + kept.tiles.capacity() * sizeof(kept.tiles[0]);
+            for (const std::vector<float> &tiles : kept.tiles)
+                bytes += tiles.capacity() * sizeof(float);
+        }
+        return bytes;
+    }
+};
+
+// The face index: each face's swallowed nodes.
+// Invariants: face_maxdev, face_head and face_blocked have an entry per face (deleted ones
+// included); a live face's swallowed nodes (its list from face_head through next_swallowed, or a
+// grid TIN's samples inside it) each deviate at most face_maxdev from it; next_swallowed and
+// swallowed_by have an entry per node without a grid (empty with one); face_blocked[f] is 1
+// exactly when face_blocks or face_tiles holds f.
+struct FaceIndex {
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
-    std::vector<std::int32_t> next_swallowed; // per vertex: next node in its face's list
+    std::vector<std::int32_t> next_swallowed; // per node: next node in its face's list
     std::vector<std::int32_t> face_head;      // per face: first swallowed node, -1 none
-    // Per vertex, with the lists: the face whose list holds it. A re-insert takes its node out of
+    // Per node, with the lists: the face whose list holds it. A re-insert takes its node out of
     // that list, wherever it is: on a surface mesh a recovery files a swallowed node by its
     // projection on the recovered node's mean plane, which may put it under a face outside its own
     // ring (see reinsert).
@@ -193,37 +249,60 @@ struct EraserState {
     // by rebind() or when a face is first tiled.
     std::vector<float> tile_z;
 
-    // ---- The update's grid (refine/frame_state.hpp, refine/update_grid.hpp) ----
-    // The live nodes' and cells' fan bounds (reach, fan_dev) are not kept: only an update reads
-    // them, so the constructor and erase() leave them, and the first update after them builds them
-    // from the fans (rebuild_fans), as keeping them cost a one-off erase time for nothing
-    // (docs/decisions/006-fan-bounds.md).
-    bool fans_stale = true;
-    refine::UpdateGrid grid;
-    // Where the mesh's vertex, edge and face arrays were when rebind() advised huge pages for them
-    // (all null: never, as for a one-off erase).
-    std::array<const void *, 3> advised{};
+    std::size_t bytes() const {
+        std::size_t bytes = face_maxdev.capacity() * 4 + next_swallowed.capacity() * 4 +
+                            face_head.capacity() * 4 + face_blocked.capacity() +
+                            tile_z.capacity() * sizeof(float) + swallowed_by.capacity() * 4;
+        for (const auto &[face, tiles] : face_tiles)
+            bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
+        for (const auto &[face, blocks] : face_blocks)
+            bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
+        return bytes;
+    }
+};
 
-    // ---- The view bounds the updates carry over (refine/frame_state.hpp, motion_bounds.hpp) ----
-    refine::ViewBounds seen;
-
-    // ---- Counters ----
-    std::int64_t evaluations = 0;
-    std::int64_t reerased = 0;  // the update under way's erases of nodes it recovered
-    std::int64_t entered = 0;   // k_unread samples re-inserted so far
-    std::int64_t fans_kept = 0; // re-inserts whose fan faces took back a KeptFan so far
-
-    // ---- Scratch ----
+// Scratch: what one evaluation, edit or face scan leaves for the next to re-use (no invariant
+// across calls; hole holds the last evaluation's, which retriangulate reads).
+struct Scratch {
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
-    std::vector<std::uint32_t> chain; // the update's last dependency chain (see ready_dependency)
     std::vector<std::int32_t> block_scratch; // build_blocks' scratch
     std::vector<std::uint8_t> block_cell_scratch;
     std::vector<std::int32_t> block_order_scratch;
+
+    // The blocks' (the others hold one hole's worth).
+    std::size_t bytes() const {
+        return block_scratch.capacity() * 4 + block_cell_scratch.capacity() +
+               block_order_scratch.capacity() * 4;
+    }
 };
 
-// ---- Node ids and vertices (see EraserState::lattice) ----
+// Counters over the eraser's life (no heap memory).
+struct Counters {
+    std::int64_t evaluations = 0;
+    std::int64_t entered = 0;   // k_unread samples re-inserted so far
+    std::int64_t fans_kept = 0; // re-inserts whose fan faces took back a KeptFan so far
+};
+
+// The eraser's state: its parts. NodeEraser holds one.
+struct EraserState {
+    Input input;
+    ViewWeights weights;
+    LiveSet live;
+    History history;
+    FaceIndex faces;
+    refine::FrameState frame; // the refiner's (refine/frame_state.hpp)
+    Counters counters;
+    Scratch scratch;
+
+    std::size_t bytes() const {
+        return input.bytes() + weights.bytes() + live.bytes() + history.bytes() + faces.bytes() +
+               frame.bytes() + scratch.bytes();
+    }
+};
+
+// ---- Node ids and vertices (see Input::lattice) ----
 
 // These three run for most nodes an update touches: inlined wherever they are called
 // (docs/decisions/008-inlined-node-lookups.md).
@@ -231,30 +310,31 @@ struct EraserState {
 // The vertex of node x: invalid for a sparse lattice's sample that is not live. A live node's is
 // in its LiveNode, not in an array over the samples (4 bytes each).
 [[gnu::always_inline]] inline VH vh(const EraserState &s, std::uint32_t x) {
-    if (!s.lattice)
+    if (!s.input.lattice)
         return VH(int(x));
-    const std::int32_t r = s.record_of[x];
-    return r < -1 ? VH(s.live_list[std::size_t(-2 - r)].vertex) : VH();
+    const std::int32_t r = s.history.record_of[x];
+    return r < -1 ? VH(s.live.list[std::size_t(-2 - r)].vertex) : VH();
 }
 
 // The node id of vertex v.
 [[gnu::always_inline]] inline std::uint32_t node_of(const EraserState &s, VH v) {
-    return s.sample_of.empty() ? std::uint32_t(v.idx()) : s.sample_of[std::size_t(v.idx())];
+    return s.input.sample_of.empty() ? std::uint32_t(v.idx())
+                                     : s.input.sample_of[std::size_t(v.idx())];
 }
 
 // The point of node x, live or erased (a sparse lattice's sample has it without a vertex). Its
 // row comes from a multiplication by 1 / width, corrected once: a division took most of the
 // function's time.
 [[gnu::always_inline]] inline Mesh::Point node_point(const EraserState &s, std::uint32_t x) {
-    if (!s.lattice)
-        return s.mesh->point(VH(int(x)));
-    const auto w = std::uint32_t(s.lattice->width);
-    auto r = std::uint32_t(double(x) * s.inverse_width);
+    if (!s.input.lattice)
+        return s.input.mesh->point(VH(int(x)));
+    const auto w = std::uint32_t(s.input.lattice->width);
+    auto r = std::uint32_t(double(x) * s.input.inverse_width);
     if (r * w > x)
         --r;
     else if ((r + 1) * w <= x)
         ++r;
-    return {s.lattice_x[x - r * w], s.lattice_y[r], s.lattice->z[x]};
+    return {s.input.lattice_x[x - r * w], s.input.lattice_y[r], s.input.lattice->z[x]};
 }
 
 // A grid TIN's samples by lattice column and row: the mesh's points, or a sparse lattice's.
@@ -279,15 +359,15 @@ struct Samples {
     }
 };
 
-inline Samples samples(const EraserState &s) {
+inline Samples samples(const Input &input) {
     Samples g;
-    g.w = s.grid_w;
-    if (s.lattice) {
-        g.z = s.lattice->z.data();
-        g.xs = s.lattice_x.data();
-        g.ys = s.lattice_y.data();
+    g.w = input.grid_w;
+    if (input.lattice) {
+        g.z = input.lattice->z.data();
+        g.xs = input.lattice_x.data();
+        g.ys = input.lattice_y.data();
     } else {
-        g.pts = s.mesh->points();
+        g.pts = input.mesh->points();
     }
     return g;
 }
@@ -297,13 +377,13 @@ inline Samples samples(const EraserState &s) {
 inline void add_live(EraserState &s, std::uint32_t x, std::int32_t record, VH v) {
     const Mesh::Point point = node_point(s, x);
     const glm::dvec3 p = to_glm(point);
-    const std::uint32_t c = refine::cell_of(s.grid, p);
-    Cell &cell = s.grid.cells[c];
+    const std::uint32_t c = refine::cell_of(s.frame.grid, p);
+    Cell &cell = s.frame.grid.cells[c];
     cell.zlo = std::min(cell.zlo, float_down(p.z));
     cell.zhi = std::max(cell.zhi, float_up(p.z));
     cell.star_dev = 0.0f;
     cell.dirty = true;
-    s.record_of[x] = -2 - std::int32_t(s.live_list.size());
+    s.history.record_of[x] = -2 - std::int32_t(s.live.list.size());
     LiveNode l{};
     l.node = x;
     l.vertex = v.idx();
@@ -311,69 +391,69 @@ inline void add_live(EraserState &s, std::uint32_t x, std::int32_t record, VH v)
     l.star = x;
     l.last_record = record;
     l.cell = c;
-    s.live_list.push_back(l);
+    s.live.list.push_back(l);
 }
 
 inline LiveNode &live_node(EraserState &s, std::uint32_t x) {
-    assert(s.record_of[x] < 0);
-    return s.live_list[std::size_t(-2 - s.record_of[x])];
+    assert(s.history.record_of[x] < 0);
+    return s.live.list[std::size_t(-2 - s.history.record_of[x])];
 }
 
 // Live node x's key (a lower bound of its cost under the current view; +inf: parked, or no erase
-// possible until its ring changes) and its sweep stamp, wherever EraserState::node_keys keeps them.
+// possible until its ring changes) and its sweep stamp, wherever LiveSet::node_keys keeps them.
 inline float node_key(EraserState &s, std::uint32_t x) {
-    return s.node_keys ? live_node(s, x).key : s.heap.key(x);
+    return s.live.node_keys ? live_node(s, x).key : s.live.heap.key(x);
 }
 
 // The same for live node l at hand: without the look-up of its place in the live list (a cache
 // miss per node of an update's walks over them).
-inline float node_key(const EraserState &s, const LiveNode &l) {
-    return s.node_keys ? l.key : s.heap.key(l.node);
+inline float node_key(const LiveSet &live, const LiveNode &l) {
+    return live.node_keys ? l.key : live.heap.key(l.node);
 }
 
 inline void store_node_key(EraserState &s, std::uint32_t x, float key) {
-    if (s.node_keys)
+    if (s.live.node_keys)
         live_node(s, x).key = key;
     else
-        s.heap.store_key(x, key);
+        s.live.heap.store_key(x, key);
 }
 
-inline void store_node_key(EraserState &s, LiveNode &l, float key) {
-    if (s.node_keys)
+inline void store_node_key(LiveSet &live, LiveNode &l, float key) {
+    if (live.node_keys)
         l.key = key;
     else
-        s.heap.store_key(l.node, key);
+        live.heap.store_key(l.node, key);
 }
 
 inline std::uint8_t &node_stamp(EraserState &s, std::uint32_t x) {
-    return s.node_keys ? live_node(s, x).stamp : s.stamp[x];
+    return s.live.node_keys ? live_node(s, x).stamp : s.live.stamp[x];
 }
 
 // Face f's swallowed nodes change: its blocks and its seen bound go.
-inline void face_changed(EraserState &s, FH f) {
-    s.seen.face_seen_dev[f.idx()] = -1.0f;
-    if (s.face_blocked[f.idx()]) {
-        s.face_blocked[f.idx()] = 0;
-        s.face_blocks.erase(f.idx());
-        s.face_tiles.erase(f.idx());
+inline void face_changed(FaceIndex &faces, refine::ViewBounds &seen, FH f) {
+    seen.face_seen_dev[f.idx()] = -1.0f;
+    if (faces.face_blocked[f.idx()]) {
+        faces.face_blocked[f.idx()] = 0;
+        faces.face_blocks.erase(f.idx());
+        faces.face_tiles.erase(f.idx());
     }
 }
 
 // Marks live node x dirty (its key predates a change of its fan).
 inline void mark_dirty(EraserState &s, std::uint32_t x) {
-    s.flags[x] |= k_dirty;
+    s.live.flags[x] |= k_dirty;
     LiveNode &l = live_node(s, x);
     l.low_log = -INFINITY;
-    s.grid.cells[l.cell].dirty = true;
+    s.frame.grid.cells[l.cell].dirty = true;
 }
 
-inline void remove_live(EraserState &s, std::uint32_t x, std::int32_t record) {
-    const std::int32_t place = -2 - s.record_of[x];
-    const LiveNode last = s.live_list.back();
-    s.live_list[std::size_t(place)] = last;
-    s.record_of[last.node] = -2 - place;
-    s.live_list.pop_back();
-    s.record_of[x] = record;
+inline void remove_live(LiveSet &live, History &history, std::uint32_t x, std::int32_t record) {
+    const std::int32_t place = -2 - history.record_of[x];
+    const LiveNode last = live.list.back();
+    live.list[std::size_t(place)] = last;
+    history.record_of[last.node] = -2 - place;
+    live.list.pop_back();
+    history.record_of[x] = record;
 }
 
 // The ring of erased node x's last erase: its record's, or its regular one (written to `scratch`).
@@ -383,16 +463,16 @@ struct ErasedRing {
     bool boundary;
 };
 
-inline ErasedRing erased_ring(const EraserState &s, std::uint32_t x,
+inline ErasedRing erased_ring(const History &history, std::uint32_t x,
                               std::array<std::uint32_t, 4> &scratch) {
-    assert(s.record_of[x] >= 0);
-    if (s.record_of[x] == k_regular_ring) {
+    assert(history.record_of[x] >= 0);
+    if (history.record_of[x] == k_regular_ring) {
         bool boundary = false;
-        const int n = s.regular->ring(x, scratch.data(), boundary);
+        const int n = history.regular->ring(x, scratch.data(), boundary);
         return {scratch.data(), n, boundary};
     }
-    const EraseRecord &record = s.records[std::size_t(s.record_of[x])];
-    return {s.ring_pool.run(record.ring_begin), record.ring_size, record.boundary};
+    const EraseRecord &record = history.records[std::size_t(history.record_of[x])];
+    return {history.ring_pool.run(record.ring_begin), record.ring_size, record.boundary};
 }
 
 } // namespace tinlod::erase

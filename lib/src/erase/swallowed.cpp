@@ -3,12 +3,12 @@
 
 namespace tinlod::erase {
 
-void unlink_swallowed(EraserState &s, std::int32_t f, std::uint32_t u) {
-    std::int32_t *link = &s.face_head[std::size_t(f)];
+void unlink_swallowed(FaceIndex &faces, refine::ViewBounds &seen, std::int32_t f, std::uint32_t u) {
+    std::int32_t *link = &faces.face_head[std::size_t(f)];
     while (*link != std::int32_t(u))
-        link = &s.next_swallowed[std::size_t(*link)];
-    *link = s.next_swallowed[u];
-    face_changed(s, FH(f)); // its blocks are runs of the list
+        link = &faces.next_swallowed[std::size_t(*link)];
+    *link = faces.next_swallowed[u];
+    face_changed(faces, seen, FH(f)); // its blocks are runs of the list
 }
 
 } // namespace tinlod::erase

@@ -3,7 +3,6 @@
 
 #include "erase/edits.hpp"
 #include "erase/erase_cost.hpp"
-#include "refine/motion_bounds.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,43 +10,39 @@
 
 namespace tinlod::erase {
 
-using refine::carry_seen;
-using refine::remember_low;
-using refine::seen_before;
-
 void rank_nodes(EraserState &s) {
-    s.heap.reset(s.nodes);
+    s.live.heap.reset(s.input.nodes);
     std::vector<std::uint32_t> ranked;
-    ranked.reserve(std::size_t(s.live));
-    for (auto v : s.mesh->vertices()) {
+    ranked.reserve(std::size_t(s.live.count));
+    for (auto v : s.input.mesh->vertices()) {
         const std::uint32_t x = node_of(s, v);
-        if (s.flags[x] & k_locked)
+        if (s.live.flags[x] & k_locked)
             continue;
-        s.flags[x] &= std::uint8_t(~k_dirty);
-        const bool erasable = evaluate(s, v, s.options.tolerance);
-        s.heap.store_key(x, erasable ? key_of(s, s.hole) : INFINITY);
+        s.live.flags[x] &= std::uint8_t(~k_dirty);
+        const bool erasable = evaluate(s, v, s.input.options.tolerance);
+        s.live.heap.store_key(x, erasable ? key_of(s, s.scratch.hole) : INFINITY);
         if (erasable)
             ranked.push_back(x);
     }
-    s.heap.build(std::move(ranked));
+    s.live.heap.build(std::move(ranked));
 }
 
 namespace {
 
 // The cost an erase may reach: the tolerance less a hair that keeps float rounding inside it.
-static double erase_limit(const EraserState &s) { return s.options.tolerance * (1.0 - 1e-6); }
+static double erase_limit(const EraserState &s) { return s.input.options.tolerance * (1.0 - 1e-6); }
 
 // After an erase its ring nodes' keys are stale: they are marked dirty (re-evaluated when they
 // reach the top of the queue) and re-enter the queue if a failed evaluation had dropped them.
 static void touch_ring(EraserState &s) {
-    const Hole &h = s.hole;
+    const Hole &h = s.scratch.hole;
     for (int i = 0; i < h.n; ++i) {
         const std::uint32_t u = node_of(s, h.r[i]);
-        if (s.flags[u] & k_locked)
+        if (s.live.flags[u] & k_locked)
             continue;
         mark_dirty(s, u);
-        if (!s.heap.contains(u))
-            s.heap.set(u, float(std::min<double>(s.heap.key(u), erase_limit(s))));
+        if (!s.live.heap.contains(u))
+            s.live.heap.set(u, float(std::min<double>(s.live.heap.key(u), erase_limit(s))));
     }
 }
 
@@ -55,41 +50,42 @@ static void touch_ring(EraserState &s) {
 
 std::int64_t erase_loop(EraserState &s) {
     const double tau = erase_limit(s);
-    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
+    const std::int64_t budget = std::max<std::int64_t>(s.input.options.max_nodes, 3);
     std::int64_t erased = 0;
-    while (!s.heap.empty() && s.live > budget) {
-        const std::uint32_t v = s.heap.top();
-        const float key = s.heap.key(v);
-        if (double(key) > tau && s.model != SpModel::paper)
+    while (!s.live.heap.empty() && s.live.count > budget) {
+        const std::uint32_t v = s.live.heap.top();
+        const float key = s.live.heap.key(v);
+        if (double(key) > tau && s.weights.model != SpModel::paper)
             break; // every remaining key exceeds the bound (dirty keys are re-checked below)
-        const bool dirty = s.flags[v] & k_dirty;
-        s.flags[v] &= std::uint8_t(~k_dirty);
+        const bool dirty = s.live.flags[v] & k_dirty;
+        s.live.flags[v] &= std::uint8_t(~k_dirty);
         // A dirty node is erased only if its cost is still the least: its evaluation stops once
         // the cost passes the next key, and it goes back with that lower bound as its key, dirty
         // (the keys stay lower bounds of the costs, so the order is the one exact keys give),
         // not scanned whole (docs/decisions/013-sweep.md).
-        const double second = double(s.heap.second_key());
-        const bool by_cost = s.model != SpModel::paper;
+        const double second = double(s.live.heap.second_key());
+        const bool by_cost = s.weights.model != SpModel::paper;
         bool erasable = evaluate(s, vh(s, v), dirty && by_cost ? std::min(tau, second) : tau);
-        if (erasable && dirty && by_cost && second < tau && s.hole.sp > second) {
-            if (float(s.hole.sp) > float(second)) {
-                s.heap.set(v, float(s.hole.sp));
-                s.flags[v] |= k_dirty;
+        if (erasable && dirty && by_cost && second < tau && s.scratch.hole.sp > second) {
+            if (float(s.scratch.hole.sp) > float(second)) {
+                s.live.heap.set(v, float(s.scratch.hole.sp));
+                s.live.flags[v] |= k_dirty;
                 continue;
             }
             erasable = evaluate(s, vh(s, v), tau); // equal as floats: the exact cost decides
         }
-        if (!erasable || !(s.hole.sp <= tau)) {
-            s.heap.pop(); // cannot be erased now; touch_ring brings it back when its ring changes
-            s.heap.store_key(v, erasable ? float(s.hole.sp) : INFINITY);
+        if (!erasable || !(s.scratch.hole.sp <= tau)) {
+            s.live.heap
+                .pop(); // cannot be erased now; touch_ring brings it back when its ring changes
+            s.live.heap.store_key(v, erasable ? float(s.scratch.hole.sp) : INFINITY);
             continue;
         }
-        const float fresh = key_of(s, s.hole);
-        if (dirty && fresh > key && fresh > s.heap.second_key()) {
-            s.heap.set(v, fresh); // its cost rose past another node's since it was ranked
+        const float fresh = key_of(s, s.scratch.hole);
+        if (dirty && fresh > key && fresh > s.live.heap.second_key()) {
+            s.live.heap.set(v, fresh); // its cost rose past another node's since it was ranked
             continue;
         }
-        s.heap.pop();
+        s.live.heap.pop();
         retriangulate(s);
         touch_ring(s);
         ++erased;
@@ -100,33 +96,33 @@ std::int64_t erase_loop(EraserState &s) {
 namespace {
 
 static double tau_rung_ratio(const EraserState &s) {
-    return s.options.shallow_history ? k_history_rung_ratio : k_tau_rung_ratio;
+    return s.input.options.shallow_history ? k_history_rung_ratio : k_tau_rung_ratio;
 }
 
 static int tau_rungs(const EraserState &s) {
-    if (s.options.shallow_history)
+    if (s.input.options.shallow_history)
         return int(std::ceil(std::log(k_history_rung_floor) / std::log(k_history_rung_ratio)));
-    return s.grid_w > 0 ? 0 : 1;
+    return s.input.grid_w > 0 ? 0 : 1;
 }
 
-// A new sweep pass: its number in s.pass, the stamps of 256 passes ago cleared.
+// A new sweep pass: its number in s.live.pass, the stamps of 256 passes ago cleared.
 static void next_pass(EraserState &s) {
-    if (++s.pass == 0) {
-        if (s.node_keys)
-            for (LiveNode &l : s.live_list)
+    if (++s.live.pass == 0) {
+        if (s.live.node_keys)
+            for (LiveNode &l : s.live.list)
                 l.stamp = 0;
         else
-            std::fill(s.stamp.begin(), s.stamp.end(), std::uint8_t(0));
-        s.pass = 1;
+            std::fill(s.live.stamp.begin(), s.live.stamp.end(), std::uint8_t(0));
+        s.live.pass = 1;
     }
-    s.chain_cap = std::size_t(double(k_chain_swallowed) * double(s.nodes) /
-                              double(std::max<std::int64_t>(s.live, 1)));
+    s.live.chain_cap = std::size_t(double(k_chain_swallowed) * double(s.input.nodes) /
+                                   double(std::max<std::int64_t>(s.live.count, 1)));
 }
 
 } // namespace
 
 double covered_estimate(const EraserState &s, std::uint32_t x) {
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     const VH v = vh(s, x);
     const glm::dvec2 c(to_glm(m.point(v)));
     double twice = 0.0;
@@ -136,68 +132,70 @@ double covered_estimate(const EraserState &s, std::uint32_t x) {
         const VH a = m.to_vertex_handle(he), b = m.to_vertex_handle(m.next_halfedge_handle(he));
         twice += orient(c, glm::dvec2(to_glm(m.point(a))), glm::dvec2(to_glm(m.point(b))));
     }
-    return 0.5 * twice / s.area_per_node;
+    return 0.5 * twice / s.input.area_per_node;
 }
 
 namespace {
 
 // Leaves x as it is (not dirty, infinite key) until a change of its ring marks it dirty again.
 static void park(EraserState &s, std::uint32_t x) {
-    s.flags[x] &= std::uint8_t(~k_dirty);
+    s.live.flags[x] &= std::uint8_t(~k_dirty);
     store_node_key(s, x, INFINITY);
     live_node(s, x).low_log = INFINITY;
 }
 
 // One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
 // cost is within the limit; a node whose fan swallowed more than `cap` nodes is left as it is
-// until its ring changes. s.stamp holds, per node, the pass (mod 256) in which its ring last
+// until its ring changes. s.live.stamp holds, per node, the pass (mod 256) in which its ring last
 // changed. Returns true when x was erased; x stays dirty when it must wait for the next pass.
+// `observer` (may be null): see sweep_dirty.
 static bool sweep_node(EraserState &s, std::uint32_t x, double limit,
-                       std::size_t cap = std::numeric_limits<std::size_t>::max()) {
+                       std::size_t cap = std::numeric_limits<std::size_t>::max(),
+                       SweepObserver *observer = nullptr) {
     // A node whose ring this pass changed waits for the next pass when its fan swallowed more
-    // than s.chain_cap nodes (else a run of erases along a row, as on a flat sea where every cost
-    // is 0, drags one growing face's nodes from erase to erase, quadratic in the run's length),
-    // and always with a shallow history.
-    const bool fresh = node_stamp(s, x) == s.pass;
-    if (fresh && s.options.shallow_history)
+    // than s.live.chain_cap nodes (else a run of erases along a row, as on a flat sea where every
+    // cost is 0, drags one growing face's nodes from erase to erase, quadratic in the run's
+    // length), and always with a shallow history.
+    const bool fresh = node_stamp(s, x) == s.live.pass;
+    if (fresh && s.input.options.shallow_history)
         return false;
     // Over the cap by its area: left as it is without locating the first `cap` nodes
     // (docs/decisions/015-chain-and-update-caps.md). The fan lies in the disc of its reach (an
     // update keeps the live nodes' fan bounds), so most fans need no walk to pass.
     const auto over_cap = [&] {
-        assert(!s.fans_stale);
         const double reach = double(live_node(s, x).reach);
-        return M_PI * reach * reach > double(cap) * s.area_per_node &&
+        return M_PI * reach * reach > double(cap) * s.input.area_per_node &&
                covered_estimate(s, x) > double(cap);
     };
-    if (cap != std::numeric_limits<std::size_t>::max() && s.xy && s.area_per_node > 0.0 &&
-        over_cap()) {
+    if (cap != std::numeric_limits<std::size_t>::max() && s.input.xy &&
+        s.input.area_per_node > 0.0 && over_cap()) {
         park(s, x);
         return false;
     }
-    if (!evaluate(s, vh(s, x), limit, fresh ? std::min(cap, s.chain_cap) : cap)) {
+    if (!evaluate(s, vh(s, x), limit, fresh ? std::min(cap, s.live.chain_cap) : cap)) {
         park(s, x);
         return false;
     }
-    if (s.hole.deferred) {
+    if (s.scratch.hole.deferred) {
         if (!fresh)
             park(s, x); // over the cap
         return false;
     }
-    s.flags[x] &= std::uint8_t(~k_dirty);
-    if (!(s.hole.sp <= limit)) {
-        store_node_key(s, x, float(s.hole.sp));
-        remember_low(s, live_node(s, x), s.hole.sp);
+    s.live.flags[x] &= std::uint8_t(~k_dirty);
+    if (!(s.scratch.hole.sp <= limit)) {
+        store_node_key(s, x, float(s.scratch.hole.sp));
+        if (observer)
+            observer->too_costly(live_node(s, x), s.scratch.hole.sp);
         return false;
     }
-    s.reerased += (s.flags[x] & k_recovered) != 0;
-    std::array<double, k_max_ring> seen;
-    seen_before(s, s.hole, seen);
+    if (observer)
+        observer->erasing(x, s.scratch.hole);
     retriangulate(s);
-    carry_seen(s, s.hole, seen);
-    for (int i = 0; i < s.hole.n; ++i) {
-        mark_dirty(s, node_of(s, s.hole.r[i]));
-        node_stamp(s, node_of(s, s.hole.r[i])) = s.pass;
+    if (observer)
+        observer->erased(s.scratch.hole);
+    for (int i = 0; i < s.scratch.hole.n; ++i) {
+        mark_dirty(s, node_of(s, s.scratch.hole.r[i]));
+        node_stamp(s, node_of(s, s.scratch.hole.r[i])) = s.live.pass;
     }
     return true;
 }
@@ -211,14 +209,14 @@ static std::int64_t sweep_pass(EraserState &s, std::vector<std::uint32_t> &order
     next_pass(s);
     std::int64_t erased = 0;
     std::size_t kept = 0, i = 0;
-    for (; i < order.size() && s.live > stop_at; ++i) {
+    for (; i < order.size() && s.live.count > stop_at; ++i) {
         if (report && i % 4096 == 0)
             report(double(i) / double(order.size()));
         const std::uint32_t x = order[i];
-        if (s.record_of[x] >= 0)
+        if (s.history.record_of[x] >= 0)
             continue;
         order[kept++] = x;
-        if (!(s.flags[x] & k_dirty) && double(node_key(s, x)) > limit)
+        if (!(s.live.flags[x] & k_dirty) && double(node_key(s, x)) > limit)
             continue;
         erased += sweep_node(s, x, limit);
     }
@@ -231,25 +229,25 @@ static std::int64_t sweep_pass(EraserState &s, std::vector<std::uint32_t> &order
 } // namespace
 
 std::int64_t sweep_dirty(EraserState &s, double limit, std::vector<std::uint32_t> list,
-                         std::size_t cap, std::int64_t stop_at) {
+                         std::size_t cap, std::int64_t stop_at, SweepObserver *observer) {
     std::int64_t erased = 0;
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    while (!list.empty() && s.live > stop_at) {
+    while (!list.empty() && s.live.count > stop_at) {
         next_pass(s);
         std::vector<std::uint32_t> next;
         for (const std::uint32_t x : list) {
-            if (s.live <= stop_at)
+            if (s.live.count <= stop_at)
                 break;
-            if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
+            if ((s.live.flags[x] & k_locked) || s.history.record_of[x] >= 0)
                 continue;
-            if (!(s.flags[x] & k_dirty) && double(node_key(s, x)) > limit)
+            if (!(s.live.flags[x] & k_dirty) && double(node_key(s, x)) > limit)
                 continue;
-            if (sweep_node(s, x, limit, cap)) {
+            if (sweep_node(s, x, limit, cap, observer)) {
                 ++erased;
-                for (int i = 0; i < s.hole.n; ++i)
-                    next.push_back(node_of(s, s.hole.r[i]));
-            } else if (s.flags[x] & k_dirty) {
+                for (int i = 0; i < s.scratch.hole.n; ++i)
+                    next.push_back(node_of(s, s.scratch.hole.r[i]));
+            } else if (s.live.flags[x] & k_dirty) {
                 next.push_back(x); // waits for the next pass
             }
         }
@@ -272,22 +270,22 @@ static std::int64_t fine_rungs(EraserState &s, double limit, double tau, std::in
                                const std::function<void()> &report) {
     std::int64_t erased = 0;
     limit = std::min(limit, tau);
-    while (s.live > budget) {
+    while (s.live.count > budget) {
         if (report)
             report();
         std::vector<std::uint32_t> list;
-        for (const LiveNode &l : s.live_list)
-            if (!(s.flags[l.node] & k_locked) &&
-                ((s.flags[l.node] & k_dirty) || double(node_key(s, l)) <= limit))
+        for (const LiveNode &l : s.live.list)
+            if (!(s.live.flags[l.node] & k_locked) &&
+                ((s.live.flags[l.node] & k_dirty) || double(node_key(s.live, l)) <= limit))
                 list.push_back(l.node);
         erased +=
             sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(), budget);
         if (limit >= tau)
             break;
         double least = INFINITY;
-        for (const LiveNode &l : s.live_list)
-            if (!(s.flags[l.node] & k_locked))
-                least = std::min(least, double(node_key(s, l)));
+        for (const LiveNode &l : s.live.list)
+            if (!(s.live.flags[l.node] & k_locked))
+                least = std::min(least, double(node_key(s.live, l)));
         if (!(least < INFINITY))
             break; // no live node can be erased
         limit = std::min(tau, std::max(limit * k_fine_rung_ratio, least));
@@ -302,13 +300,13 @@ namespace {
 // The nodes a sweep visits, in ascending ids: the live, unlocked ones. Their keys are reset (0
 // until a node is first measured) and none is dirty.
 std::vector<std::uint32_t> sweep_order(EraserState &s) {
-    s.heap.reset(s.nodes); // keys only
-    for (auto v : s.mesh->vertices())
-        s.flags[node_of(s, v)] &= std::uint8_t(~k_dirty);
+    s.live.heap.reset(s.input.nodes); // keys only
+    for (auto v : s.input.mesh->vertices())
+        s.live.flags[node_of(s, v)] &= std::uint8_t(~k_dirty);
     std::vector<std::uint32_t> order;
-    order.reserve(std::size_t(s.live));
-    for (std::uint32_t x = 0; x < s.nodes; ++x)
-        if (!(s.flags[x] & k_locked) && s.record_of[x] < 0)
+    order.reserve(std::size_t(s.live.count));
+    for (std::uint32_t x = 0; x < s.input.nodes; ++x)
+        if (!(s.live.flags[x] & k_locked) && s.history.record_of[x] < 0)
             order.push_back(x);
     return order;
 }
@@ -318,13 +316,13 @@ std::vector<std::uint32_t> sweep_order(EraserState &s) {
 class SweepProgress {
   public:
     SweepProgress(const EraserState &s, std::int64_t budget)
-        : s_(s), progress_(s.options.progress), budget_(budget), first_live_(s.live) {}
+        : s_(s), progress_(s.input.options.progress), budget_(budget), first_live_(s.live.count) {}
     // The report within a pass (null without a progress callback), and the step to the next pass.
     std::function<void(double)> within_pass() {
         if (!progress_)
             return nullptr;
         return [this](double within) {
-            if (s_.options.max_nodes > 0)
+            if (s_.input.options.max_nodes > 0)
                 by_erases();
             else
                 progress_(1.0 - pass_share_ + 0.9 * pass_share_ * within);
@@ -340,10 +338,10 @@ class SweepProgress {
 
   private:
     void by_erases() const {
-        progress_(first_live_ > budget_
-                      ? std::clamp(double(first_live_ - s_.live) / double(first_live_ - budget_),
-                                   0.0, 1.0)
-                      : 1.0);
+        progress_(first_live_ > budget_ ? std::clamp(double(first_live_ - s_.live.count) /
+                                                         double(first_live_ - budget_),
+                                                     0.0, 1.0)
+                                        : 1.0);
     }
     const EraserState &s_;
     const std::function<void(double)> &progress_;
@@ -387,18 +385,19 @@ struct CoarseRungs {
 CoarseRungs coarse_rungs(EraserState &s, std::vector<std::uint32_t> &order, double tau,
                          std::int64_t far, SweepProgress &progress) {
     CoarseRungs out;
-    if (!(s.live > far))
+    if (!(s.live.count > far))
         return out;
     std::vector<float> costs;
-    for (std::uint32_t x = 0; x < s.nodes; x += k_sample_stride) {
-        if ((s.flags[x] & k_locked) || s.record_of[x] >= 0)
+    for (std::uint32_t x = 0; x < s.input.nodes; x += k_sample_stride) {
+        if ((s.live.flags[x] & k_locked) || s.history.record_of[x] >= 0)
             continue;
-        const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.hole.sp) : INFINITY;
-        s.heap.store_key(x, cost);
+        const float cost = evaluate(s, vh(s, x), INFINITY) ? float(s.scratch.hole.sp) : INFINITY;
+        s.live.heap.store_key(x, cost);
         costs.push_back(cost);
     }
-    const auto nth = costs.begin() +
-                     std::ptrdiff_t(double(costs.size()) * double(s.live - far) / double(s.live));
+    const auto nth =
+        costs.begin() +
+        std::ptrdiff_t(double(costs.size()) * double(s.live.count - far) / double(s.live.count));
     if (nth == costs.end())
         return out;
     std::nth_element(costs.begin(), nth, costs.end());
@@ -408,7 +407,7 @@ CoarseRungs coarse_rungs(EraserState &s, std::vector<std::uint32_t> &order, doub
             highest = std::max(highest, double(c));
     double &limit = out.limit;
     for (limit = std::max(double(*nth), 1e-30);
-         s.live > far && limit < tau && limit <= 2.0 * highest; limit *= k_budget_rung_ratio)
+         s.live.count > far && limit < tau && limit <= 2.0 * highest; limit *= k_budget_rung_ratio)
         out.erased += sweep(s, order, limit, far, progress);
     limit /= k_budget_rung_ratio;
     return out;
@@ -419,9 +418,9 @@ CoarseRungs coarse_rungs(EraserState &s, std::vector<std::uint32_t> &order, doub
 std::int64_t sweep_erase(EraserState &s) {
     const double tau = erase_limit(s);
     std::vector<std::uint32_t> order = sweep_order(s);
-    const std::int64_t budget = std::max<std::int64_t>(s.options.max_nodes, 3);
+    const std::int64_t budget = std::max<std::int64_t>(s.input.options.max_nodes, 3);
     SweepProgress progress(s, budget);
-    if (s.options.max_nodes <= 0)
+    if (s.input.options.max_nodes <= 0)
         return tolerance_passes(s, order, tau, progress);
     const CoarseRungs coarse = coarse_rungs(s, order, tau, k_coarse_share * budget, progress);
     return coarse.erased + fine_rungs(s, coarse.limit, tau, budget, progress.erases());

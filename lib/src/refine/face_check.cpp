@@ -23,13 +23,13 @@ namespace {
 template <class Deviation>
 static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi,
                          const Deviation &deviation) {
-    std::vector<std::int32_t> &nodes = s.block_scratch;
+    std::vector<std::int32_t> &nodes = s.scratch.block_scratch;
     nodes.clear();
-    for (std::int32_t u = s.face_head[f.idx()]; u >= 0; u = s.next_swallowed[u])
+    for (std::int32_t u = s.faces.face_head[f.idx()]; u >= 0; u = s.faces.next_swallowed[u])
         nodes.push_back(u);
     constexpr int cells = k_block_side * k_block_side;
     std::array<std::uint32_t, cells + 1> start{};
-    std::vector<std::uint8_t> &cell_of_node = s.block_cell_scratch;
+    std::vector<std::uint8_t> &cell_of_node = s.scratch.block_cell_scratch;
     cell_of_node.resize(nodes.size());
     const glm::dvec2 scale = double(k_block_side) / glm::max(hi - lo, glm::dvec2(1e-300));
     for (std::size_t k = 0; k < nodes.size(); ++k) {
@@ -41,7 +41,7 @@ static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::
     }
     for (int c = 0; c < cells; ++c)
         start[c + 1] += start[c];
-    std::vector<std::int32_t> &order = s.block_order_scratch;
+    std::vector<std::int32_t> &order = s.scratch.block_order_scratch;
     order.resize(nodes.size());
     std::array<std::uint32_t, cells> fill;
     std::copy(start.begin(), start.end() - 1, fill.begin());
@@ -69,62 +69,49 @@ static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::
         blocks.push_back(b);
     }
     // Relink the list run by run.
-    s.face_head[f.idx()] = nodes[std::size_t(order.front())];
+    s.faces.face_head[f.idx()] = nodes[std::size_t(order.front())];
     for (std::size_t k = 0; k + 1 < order.size(); ++k)
-        s.next_swallowed[nodes[std::size_t(order[k])]] = nodes[std::size_t(order[k + 1])];
-    s.next_swallowed[nodes[std::size_t(order.back())]] = -1;
-    s.face_blocks[f.idx()] = std::move(blocks);
-    s.face_blocked[f.idx()] = 1;
+        s.faces.next_swallowed[nodes[std::size_t(order[k])]] = nodes[std::size_t(order[k + 1])];
+    s.faces.next_swallowed[nodes[std::size_t(order.back())]] = -1;
+    s.faces.face_blocks[f.idx()] = std::move(blocks);
+    s.faces.face_blocked[f.idx()] = 1;
     if (nodes.capacity() > k_kept_scratch) {
         // A face over a whole flat (10^5 nodes and more) is blocked once: its scratch goes.
         std::vector<std::int32_t>().swap(nodes);
-        std::vector<std::uint8_t>().swap(s.block_cell_scratch);
-        std::vector<std::int32_t>().swap(s.block_order_scratch);
+        std::vector<std::uint8_t>().swap(s.scratch.block_cell_scratch);
+        std::vector<std::int32_t>().swap(s.scratch.block_order_scratch);
     }
 }
 
 } // namespace
 
 std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double above) {
-    const Mesh &m = *s.mesh;
-    std::int32_t u = s.face_head[f.idx()];
+    const Mesh &m = *s.input.mesh;
+    std::int32_t u = s.faces.face_head[f.idx()];
     if (u < 0)
         return {-1, above};
     HH he = m.halfedge_handle(f);
     const glm::dvec3 a = to_glm(m.point(m.from_vertex_handle(he)));
     const glm::dvec3 b = to_glm(m.point(m.to_vertex_handle(he)));
     const glm::dvec3 c = to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he))));
-    const glm::dvec3 normal = glm::cross(b - a, c - a);
-    const double slope =
-        s.xy ? glm::length(glm::dvec2(normal.x, normal.y)) / std::abs(normal.z) : 0.0;
+    const TrianglePlane plane = s.input.xy ? TrianglePlane(a, b, c) : TrianglePlane();
     // A node's weight is looked up only when its deviation times a bound of the weights over the
     // face (TINs: over its corners' box in xy, within its largest deviation in z) could beat the
     // worst so far; that bound may clear the whole face at once (with a margin for the float
     // rounding of the stored deviation and of its recomputation here).
     std::pair<std::int32_t, double> worst{-1, above};
     double weight_bound = INFINITY;
-    if (s.xy && !s.unit_weights) {
-        weight_bound = swallowed_weight_bound(s, a, b, c, s.face_maxdev[f.idx()]);
-        if (!(1.001 * double(s.face_maxdev[f.idx()]) * weight_bound > above))
+    if (s.input.xy && !s.weights.unit_weights) {
+        weight_bound = swallowed_weight_bound(s, a, b, c, s.faces.face_maxdev[f.idx()]);
+        if (!(1.001 * double(s.faces.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
     }
     const bool screen = keeps_bounds(s);
-    const auto [box_lo, box_hi] = swallowed_box(s, f, a, b, c);
+    const auto [box_lo, box_hi] = swallowed_box(s.faces, s.input.xy, f, a, b, c);
     if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
         return worst;
-    // A TIN face's height at (x, y), and the deviation from f of a swallowed node at p, computed
-    // the same way by every scan.
-    auto plane_at = [&](double x, double y) {
-        const double b0 = orient({b.x, b.y}, {c.x, c.y}, {x, y}) / normal.z;
-        const double b1 = orient({c.x, c.y}, {a.x, a.y}, {x, y}) / normal.z;
-        return b0 * a.z + b1 * b.z + (1.0 - b0 - b1) * c.z;
-    };
     auto deviation_at = [&](const glm::dvec3 &p) {
-        if (!s.xy)
-            return triangle_distance(p, a, b, c);
-        // The same float-rounding widening as locate(): the bound is never overstated.
-        return std::abs(p.z - plane_at(p.x, p.y)) +
-               rounding_margin(std::max(std::abs(p.x), std::abs(p.y)), slope);
+        return node_deviation(s.input.xy, plane, p, a, b, c);
     };
     auto deviation = [&](std::int32_t u) {
         return deviation_at(to_glm(node_point(s, std::uint32_t(u))));
@@ -136,20 +123,20 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
         if (w > worst.second)
             worst = {u, w};
     };
-    if (s.grid_w > 0) {
+    if (s.input.grid_w > 0) {
         // Band by band, skipping a band whose largest weight cannot make the face's largest
         // deviation matter; or, on a large face, tile by tile with each tile's.
-        const double dz = 1.001 * double(s.face_maxdev[f.idx()]);
+        const double dz = 1.001 * double(s.faces.face_maxdev[f.idx()]);
         const double zlo = std::min({a.z, b.z, c.z}) - dz, zhi = std::max({a.z, b.z, c.z}) + dz;
         const std::uint32_t ia = node_of(s, m.from_vertex_handle(he)),
                             ib = node_of(s, m.to_vertex_handle(he)),
                             ic = node_of(s, m.to_vertex_handle(m.next_halfedge_handle(he)));
-        std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane_at, slope);
+        std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane);
         // Visits sample(u, q, dev, bound) for each sample (point q, deviation dev) of a tile or
         // band whose largest deviation times its largest weight (`bound`) may exceed `above`.
         const auto scan = [&](const double &above, const auto &sample) {
             const auto bound_over = [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-                return s.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
+                return s.weights.weigher.bound({lo, zlo}, {hi, zhi}) * k_rounded_weight;
             };
             if (tiles) {
                 scan_tiles(
@@ -164,7 +151,7 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
             scan_lattice(
                 s, ia, ib, ic,
                 [&](const glm::dvec2 &lo, const glm::dvec2 &hi) {
-                    if (s.unit_weights)
+                    if (s.weights.unit_weights)
                         return 1.0;
                     const double bound = bound_over(lo, hi);
                     return dz * bound > above ? bound : -1.0;
@@ -185,34 +172,34 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
             double seen = 0.0;
             scan(seen, [&](std::uint32_t, const glm::dvec3 &q, double dev, double bound) {
                 if (dev * bound > seen)
-                    seen = std::max(seen, dev * s.weigher(q));
+                    seen = std::max(seen, dev * s.weights.weigher(q));
             });
-            remember_seen(s, f, seen, box_lo, box_hi);
+            remember_seen(s.frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
         }
         return worst;
     }
-    if (s.face_blocked[f.idx()]) {
-        for (const Block &block : s.face_blocks.find(f.idx())->second) {
-            const double bound = s.weigher.bound(block.lo, block.hi) * k_rounded_weight;
+    if (s.faces.face_blocked[f.idx()]) {
+        for (const Block &block : s.faces.face_blocks.find(f.idx())->second) {
+            const double bound = s.weights.weigher.bound(block.lo, block.hi) * k_rounded_weight;
             if (!(block.dev * bound > worst.second))
                 continue;
             u = block.head;
-            for (std::uint32_t k = 0; k < block.count; ++k, u = s.next_swallowed[u])
+            for (std::uint32_t k = 0; k < block.count; ++k, u = s.faces.next_swallowed[u])
                 visit(u, deviation(u), bound);
         }
         return worst;
     }
     std::size_t length = 0;
     double seen = 0.0;
-    for (; u >= 0; u = s.next_swallowed[u], ++length) {
+    for (; u >= 0; u = s.faces.next_swallowed[u], ++length) {
         const glm::dvec3 q = to_glm(node_point(s, std::uint32_t(u)));
         const double dev = deviation_at(q);
         visit(u, dev, weight_bound);
         if (screen)
-            seen = std::max(seen, dev * s.weigher(q));
+            seen = std::max(seen, dev * s.weights.weigher(q));
     }
     if (screen && worst.first < 0)
-        remember_seen(s, f, seen, box_lo, box_hi);
+        remember_seen(s.frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
     // A long list scanned whole gets blocks (when a weight bound can use them).
     if (std::isfinite(weight_bound) && length >= k_block_list)
         build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),

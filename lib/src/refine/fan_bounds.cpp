@@ -11,14 +11,16 @@ namespace tinlod::refine {
 using namespace erase;
 
 double face_bound(const EraserState &s, FH f) {
-    const Mesh &m = *s.mesh;
-    if (s.face_head[f.idx()] < 0 || s.face_maxdev[f.idx()] <= 0.0f)
+    const Mesh &m = *s.input.mesh;
+    if (s.faces.face_head[f.idx()] < 0 || s.faces.face_maxdev[f.idx()] <= 0.0f)
         return 0.0;
     const HH he = m.halfedge_handle(f);
-    const auto [lo, hi] = swallowed_box(
-        s, f, to_glm(m.point(m.from_vertex_handle(he))), to_glm(m.point(m.to_vertex_handle(he))),
-        to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he)))));
-    return std::min(double(s.face_maxdev[f.idx()]) * s.weigher.bound(lo, hi) * k_rounded_weight,
+    const auto [lo, hi] =
+        swallowed_box(s.faces, s.input.xy, f, to_glm(m.point(m.from_vertex_handle(he))),
+                      to_glm(m.point(m.to_vertex_handle(he))),
+                      to_glm(m.point(m.to_vertex_handle(m.next_halfedge_handle(he)))));
+    return std::min(double(s.faces.face_maxdev[f.idx()]) * s.weights.weigher.bound(lo, hi) *
+                        k_rounded_weight,
                     seen_bound(s, f, lo, hi));
 }
 
@@ -27,7 +29,7 @@ namespace {
 // Sets live node l's fan bounds from its fan as it stands: the largest deviation of its faces'
 // swallowed nodes, and their reach (the farthest corner, plus that deviation).
 static void fan_extent(const EraserState &s, LiveNode &l) {
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     const glm::dvec3 px = to_glm(l.p);
     double far2 = 0.0;
     float fan_dev = 0.0f;
@@ -36,7 +38,7 @@ static void fan_extent(const EraserState &s, LiveNode &l) {
         far2 = std::max(far2, glm::dot(d, d));
         const FH f = m.face_handle(he);
         if (f.is_valid())
-            fan_dev = std::max(fan_dev, s.face_maxdev[f.idx()]);
+            fan_dev = std::max(fan_dev, s.faces.face_maxdev[f.idx()]);
     }
     l.reach = float_up(std::sqrt(far2) + double(fan_dev));
     l.fan_dev = fan_dev;
@@ -46,26 +48,26 @@ static void fan_extent(const EraserState &s, LiveNode &l) {
 } // namespace
 
 void rebuild_fans(EraserState &s) {
-    for (Cell &cell : s.grid.cells) {
+    for (Cell &cell : s.frame.grid.cells) {
         cell.fan_dev = 0.0f;
         cell.reach = 0.0f;
     }
-    for (LiveNode &l : s.live_list) {
+    for (LiveNode &l : s.live.list) {
         fan_extent(s, l);
         l.seen_log = INFINITY;
-        Cell &cell = s.grid.cells[l.cell];
+        Cell &cell = s.frame.grid.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
         cell.reach = std::max(cell.reach, l.reach);
     }
-    s.fans_stale = false;
+    s.frame.fans_stale = false;
 }
 
 void seed_fan(EraserState &s, LiveNode &l, double recover_above, std::vector<FH> &work) {
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     const VH x(l.vertex);
     if (!l.fan_exact)
         fan_extent(s, l); // else its bounds are what the walk would give
-    const double box = fan_bound(s, l);
+    const double box = fan_bound(s.weights.weigher, l);
     if (!(box > recover_above)) {
         remember_fan(s, l, box);
         return;

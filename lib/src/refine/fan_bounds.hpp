@@ -14,12 +14,12 @@ namespace tinlod::refine {
 // A bound on the weighted deviation of the swallowed nodes of live node l's fan under the current
 // view, from its bounds alone: the largest deviation times the largest weight in the cube they lie
 // in.
-inline double fan_bound(const EraserState &s, const LiveNode &l) {
+inline double fan_bound(const Weigher &weigher, const LiveNode &l) {
     if (l.fan_dev <= 0.0f)
         return 0.0;
     const glm::dvec3 p = to_glm(l.p);
     const glm::dvec3 r(double(l.reach));
-    return double(l.fan_dev) * s.weigher.bound(p - r, p + r) * k_rounded_weight;
+    return double(l.fan_dev) * weigher.bound(p - r, p + r) * k_rounded_weight;
 }
 
 // A bound on the weighted deviation of live face f's swallowed nodes under the current view: the
@@ -33,8 +33,8 @@ inline void remember_fan(const EraserState &s, LiveNode &l, double bound) {
     if (keeps_bounds(s)) {
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::log(bound) + 1e-6);
-        l.seen_at = s.seen.updates;
-        l.seen_cone = s.weigher.in_cone(p - r, p + r);
+        l.seen_at = s.frame.seen.updates;
+        l.seen_cone = s.weights.weigher.in_cone(p - r, p + r);
     }
 }
 
@@ -45,8 +45,8 @@ inline bool fan_cleared(const EraserState &s, LiveNode &l, double recover_above,
                         double log_recover) {
     if (l.seen_log < INFINITY) {
         if (const ViewBounds::Since *d = since(s, l.seen_at)) {
-            const double falloff = s.weigher.falloff();
-            if (moved_within(s.view.eye, to_glm(l.p), double(l.reach), d->moved,
+            const double falloff = s.weights.weigher.falloff();
+            if (moved_within(s.weights.view.eye, to_glm(l.p), double(l.reach), d->moved,
                              log_recover - double(l.seen_log) -
                                  (l.seen_cone ? 0.0 : d->turn / falloff),
                              l.seen_cone ? 1.0 : 1.0 + k_asin_quarter / falloff))
@@ -55,7 +55,7 @@ inline bool fan_cleared(const EraserState &s, LiveNode &l, double recover_above,
                 return true;
         }
     }
-    const double box = fan_bound(s, l);
+    const double box = fan_bound(s.weights.weigher, l);
     if (!(box > recover_above)) {
         remember_fan(s, l, box);
         return true;
@@ -64,7 +64,7 @@ inline bool fan_cleared(const EraserState &s, LiveNode &l, double recover_above,
 }
 
 // The fan bounds of every live node and cell, from the fans as they stand (see
-// EraserState::fans_stale).
+// FrameState::fans_stale).
 void rebuild_fans(EraserState &s);
 
 // Seeds the recover worklist with the faces of live node l's fan whose swallowed nodes may cost

@@ -1,6 +1,7 @@
-// The parts of the eraser's state that only the refiner's frame step reads: the update's grid
-// (UpdateGrid) and the view bounds the updates carry over (ViewBounds). EraserState holds one of
-// each (grid, seen); the stages that read only these take them, not the whole state.
+// The parts of the eraser's state that only the refiner's frame step reads (FrameState): the
+// update's grid (UpdateGrid), the view bounds the updates carry over (ViewBounds), and what an
+// update keeps between its steps. EraserState holds one (frame); the stages that read only these
+// take them, not the whole state.
 #pragma once
 
 #include "erase/tuning.hpp"
@@ -74,6 +75,26 @@ struct ViewBounds {
     std::size_t bytes() const {
         return face_seen_dev.capacity() * 4 + face_seen.capacity() * 4 + sizeof(seen_views);
     }
+};
+
+// The refiner's part of the eraser's state.
+// Invariants: with fans_stale, the live nodes' and cells' fan bounds (LiveNode::reach, fan_dev,
+// Cell::fan_dev, reach) are not kept, else they hold for the fans as they stand; advised is all
+// null, or where the mesh's vertex, edge and face arrays were when they were last advised.
+struct FrameState {
+    // The live nodes' and cells' fan bounds are not kept while this is set: only an update reads
+    // them, so the constructor and erase() leave them, and the first update after them builds them
+    // from the fans (rebuild_fans), as keeping them cost a one-off erase time for nothing
+    // (docs/decisions/006-fan-bounds.md).
+    bool fans_stale = true;
+    UpdateGrid grid;
+    // Where the mesh's vertex, edge and face arrays were when rebind() advised huge pages for them
+    // (all null: never, as for a one-off erase).
+    std::array<const void *, 3> advised{};
+    ViewBounds seen;
+    std::vector<std::uint32_t> chain; // the update's last dependency chain (see ready_dependency)
+
+    std::size_t bytes() const { return grid.bytes() + seen.bytes(); }
 };
 
 } // namespace tinlod::refine

@@ -27,7 +27,7 @@ using erase::to_glm;
 // Whether the bounds an update makes carry over to the updates that follow (the screen model's, see
 // ViewBounds::face_seen_dev and LiveNode::seen_log).
 inline bool keeps_bounds(const EraserState &s) {
-    return s.model == SpModel::screen && s.seen.updates > 0;
+    return s.weights.model == SpModel::screen && s.frame.seen.updates > 0;
 }
 
 // Live node l's erase cost under the current view is at least `cost` (see LiveNode::low_log).
@@ -35,16 +35,16 @@ inline void remember_low(const EraserState &s, LiveNode &l, double cost) {
     l.low_log = -INFINITY;
     if (keeps_bounds(s)) {
         l.low_log = float_down(std::log(cost) - 1e-6);
-        l.low_at = s.seen.updates;
+        l.low_at = s.frame.seen.updates;
     }
 }
 
 // The eye's move and the axis's turn since the view of update `at`, or null when a bound made under
 // that view does not carry over to the current one.
 inline const ViewBounds::Since *since(const EraserState &s, std::uint32_t at) {
-    if (!keeps_bounds(s) || at == 0 || s.seen.updates - at >= k_seen_views)
+    if (!keeps_bounds(s) || at == 0 || s.frame.seen.updates - at >= k_seen_views)
         return nullptr;
-    const ViewBounds::Since &d = s.seen.since[at % k_seen_views];
+    const ViewBounds::Since &d = s.frame.seen.since[at % k_seen_views];
     return d.ok ? &d : nullptr;
 }
 
@@ -52,12 +52,12 @@ inline const ViewBounds::Since *since(const EraserState &s, std::uint32_t at) {
 // since `d` (see ViewBounds::face_seen_dev); infinite when the eye moved that far. `cone`: the
 // node was inside the view cone then (peripheral factor 1, which no view exceeds): the distance's
 // share alone.
-inline double weight_growth(const EraserState &s, const ViewBounds::Since &d, double nearest,
+inline double weight_growth(const Weigher &weigher, const ViewBounds::Since &d, double nearest,
                             bool cone) {
     if (!(d.moved < nearest))
         return INFINITY;
     const double x = d.moved / nearest;
-    return cone ? 1.0 + x : (1.0 + x) * std::exp((d.turn + std::asin(x)) / s.weigher.falloff());
+    return cone ? 1.0 + x : (1.0 + x) * std::exp((d.turn + std::asin(x)) / weigher.falloff());
 }
 
 // The logarithms of that factor and of the one by which such a weight may have shrunk
@@ -66,20 +66,20 @@ inline double weight_growth(const EraserState &s, const ViewBounds::Since &d, do
 // share), over-estimated without transcendental functions: ln(1 + x) <= x, -ln(1 - x) <=
 // x / (1 - x) and asin x <= x / sqrt(1 - x²). For the per-node tests an update makes for every
 // live node it visits.
-inline double log_growth(const EraserState &s, const ViewBounds::Since &d, double nearest,
+inline double log_growth(const Weigher &weigher, const ViewBounds::Since &d, double nearest,
                          bool cone) {
     if (!(d.moved < nearest))
         return INFINITY;
     const double x = d.moved / nearest;
-    return cone ? x : x + (d.turn + x / std::sqrt(1.0 - x * x)) / s.weigher.falloff();
+    return cone ? x : x + (d.turn + x / std::sqrt(1.0 - x * x)) / weigher.falloff();
 }
 
-inline double log_shrink(const EraserState &s, const ViewBounds::Since &d, double nearest,
+inline double log_shrink(const Weigher &weigher, const ViewBounds::Since &d, double nearest,
                          bool cone) {
     if (!(d.moved < nearest))
         return INFINITY;
     const double x = d.moved / nearest;
-    const double angle = cone ? 0.0 : (d.turn + x / std::sqrt(1.0 - x * x)) / s.weigher.falloff();
+    const double angle = cone ? 0.0 : (d.turn + x / std::sqrt(1.0 - x * x)) / weigher.falloff();
     return x / (1.0 - x) + angle;
 }
 
@@ -110,19 +110,19 @@ inline bool moved_within(const glm::dvec3 &eye, const glm::dvec3 &p, double r, d
 inline double seen_now(const EraserState &s, const LiveNode &l) {
     if (!(l.seen_log < INFINITY))
         return INFINITY;
-    if (l.seen_at == s.seen.updates)
+    if (l.seen_at == s.frame.seen.updates)
         return double(l.seen_log);
     const ViewBounds::Since *d = since(s, l.seen_at);
     if (!d)
         return INFINITY;
-    const double nearest = glm::length(to_glm(l.p) - s.view.eye) - double(l.reach);
-    return double(l.seen_log) + log_growth(s, *d, nearest, l.seen_cone);
+    const double nearest = glm::length(to_glm(l.p) - s.weights.view.eye) - double(l.reach);
+    return double(l.seen_log) + log_growth(s.weights.weigher, *d, nearest, l.seen_cone);
 }
 
 // Before an update's erase of h.v: its ring nodes' seen bounds carried to this view (+inf: none),
 // for carry_seen.
 inline void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_ring> &old) {
-    const bool kept = !s.fans_stale && keeps_bounds(s);
+    const bool kept = !s.frame.fans_stale && keeps_bounds(s);
     for (int i = 0; i < h.n; ++i)
         old[std::size_t(i)] = kept ? seen_now(s, live_node(s, node_of(s, h.r[i]))) : INFINITY;
 }
@@ -139,8 +139,8 @@ inline void carry_seen(EraserState &s, const Hole &h, const std::array<double, k
         LiveNode &l = live_node(s, node_of(s, h.r[i]));
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::max(old[std::size_t(i)], cost) + 1e-6);
-        l.seen_at = s.seen.updates;
-        l.seen_cone = s.weigher.in_cone(p - r, p + r);
+        l.seen_at = s.frame.seen.updates;
+        l.seen_cone = s.weights.weigher.in_cone(p - r, p + r);
     }
 }
 
@@ -150,6 +150,7 @@ double seen_bound(const EraserState &s, FH f, const glm::dvec3 &lo, const glm::d
 
 // Face f's swallowed nodes, in the box [lo, hi], have weighted deviations <= seen under the
 // current view: kept for the updates that follow (see ViewBounds::face_seen_dev).
-void remember_seen(EraserState &s, FH f, double seen, const glm::dvec3 &lo, const glm::dvec3 &hi);
+void remember_seen(ViewBounds &bounds, const Weigher &weigher, FH f, double seen,
+                   const glm::dvec3 &lo, const glm::dvec3 &hi);
 
 } // namespace tinlod::refine

@@ -21,12 +21,12 @@ namespace tinlod::refine {
 using namespace erase;
 
 std::uint32_t ready_dependency(EraserState &s, std::uint32_t v) {
-    std::vector<std::uint32_t> &chain = s.chain;
+    std::vector<std::uint32_t> &chain = s.frame.chain;
     if (chain.empty() || chain.front() != v) {
         chain.assign(1, v);
     } else {
         std::size_t kept = 1;
-        while (kept < chain.size() && s.record_of[chain[kept]] >= 0)
+        while (kept < chain.size() && s.history.record_of[chain[kept]] >= 0)
             ++kept;
         chain.resize(kept);
     }
@@ -34,14 +34,14 @@ std::uint32_t ready_dependency(EraserState &s, std::uint32_t v) {
     for (;;) {
         const std::uint32_t at = chain.back();
         std::array<std::uint32_t, 4> scratch;
-        const ErasedRing erased = erased_ring(s, at, scratch);
+        const ErasedRing erased = erased_ring(s.history, at, scratch);
         const std::uint32_t *ring = erased.nodes;
         std::uint32_t next = at;
         double nearest = INFINITY;
         for (int i = 0; i < erased.size; ++i)
-            if (s.record_of[ring[i]] >= 0) {
+            if (s.history.record_of[ring[i]] >= 0) {
                 glm::dvec3 d = to_glm(node_point(s, ring[i])) - target;
-                if (s.xy)
+                if (s.input.xy)
                     d.z = 0.0;
                 if (glm::dot(d, d) < nearest) {
                     nearest = glm::dot(d, d);
@@ -62,38 +62,39 @@ using namespace erase;
 using namespace refine;
 
 void NodeEraser::rebind(Mesh &mesh) {
-    assert(mesh.n_vertices() == state_->mesh->n_vertices() &&
-           mesh.n_faces() == state_->face_head.size());
-    state_->mesh = &mesh;
+    assert(mesh.n_vertices() == state_->input.mesh->n_vertices() &&
+           mesh.n_faces() == state_->faces.face_head.size());
+    state_->input.mesh = &mesh;
     advise_huge(*state_);
-    if (state_->fans_stale)
+    if (state_->frame.fans_stale)
         rebuild_fans(*state_); // here, not in the first update (docs/decisions/006-fan-bounds.md)
-    if (state_->grid_w > 0 && state_->tile_z.empty())
-        build_tile_z(*state_); // and these (a pass over every sample)
+    if (state_->input.grid_w > 0 && state_->faces.tile_z.empty())
+        build_tile_z(state_->faces, state_->input); // and these (a pass over every sample)
 }
 
 namespace {
 
 // The update's grid sized for the live nodes, and their fan bounds built, if need be.
 void prepare(EraserState &s) {
-    if (s.live > k_regrid_ratio * s.grid.grid_live || k_regrid_ratio * s.live < s.grid.grid_live)
-        regrid(s);
-    if (s.fans_stale)
+    if (s.live.count > k_regrid_ratio * s.frame.grid.grid_live ||
+        k_regrid_ratio * s.live.count < s.frame.grid.grid_live)
+        regrid(s.frame.grid, s.live);
+    if (s.frame.fans_stale)
         rebuild_fans(s);
 }
 
 // The new view's weigher, and how far the eye has moved and the axis turned since each kept view
 // (ViewBounds::since), for the bounds carried over.
 void new_view(EraserState &s, const View &view) {
-    s.view = view;
-    if (s.model == SpModel::paper)
-        s.focal_distance = std::max(focal_point(*s.mesh, view).distance, 1e-9);
-    s.weigher = Weigher(s.view, s.significance);
+    s.weights.view = view;
+    if (s.weights.model == SpModel::paper)
+        s.weights.focal_distance = std::max(focal_point(*s.input.mesh, view).distance, 1e-9);
+    s.weights.weigher = Weigher(s.weights.view, s.weights.significance);
     new_weights(s, false);
-    s.seen.seen_views[++s.seen.updates % k_seen_views] = view;
+    s.frame.seen.seen_views[++s.frame.seen.updates % k_seen_views] = view;
     for (std::uint32_t i = 0; i < k_seen_views; ++i) {
-        const View &then = s.seen.seen_views[i];
-        ViewBounds::Since &d = s.seen.since[i];
+        const View &then = s.frame.seen.seen_views[i];
+        ViewBounds::Since &d = s.frame.seen.since[i];
         d.ok = then.fov_deg == view.fov_deg && then.viewport_w == view.viewport_w &&
                then.viewport_h == view.viewport_h;
         d.moved = glm::length(view.eye - then.eye);
@@ -106,23 +107,23 @@ void new_view(EraserState &s, const View &view) {
 // grid skips the cells whose bounds clear every node in them; the walk over the live nodes
 // rebuilds those bounds (widen_fans raises them as the update changes fans).
 std::vector<FH> seed_recover(EraserState &s, double recover_above) {
-    std::vector<std::uint8_t> &visit = s.grid.cell_visit;
-    visit.resize(s.grid.cells.size());
-    for (std::uint32_t c = 0; c < std::uint32_t(s.grid.cells.size()); ++c) {
-        Cell &cell = s.grid.cells[c];
-        const auto [lo, hi] = cell_box(s.grid, c, double(cell.reach));
-        visit[c] =
-            cell.fan_dev > 0.0f &&
-            double(cell.fan_dev) * s.weigher.bound(lo, hi) * k_rounded_weight > recover_above;
+    std::vector<std::uint8_t> &visit = s.frame.grid.cell_visit;
+    visit.resize(s.frame.grid.cells.size());
+    for (std::uint32_t c = 0; c < std::uint32_t(s.frame.grid.cells.size()); ++c) {
+        Cell &cell = s.frame.grid.cells[c];
+        const auto [lo, hi] = cell_box(s.frame.grid, c, double(cell.reach));
+        visit[c] = cell.fan_dev > 0.0f &&
+                   double(cell.fan_dev) * s.weights.weigher.bound(lo, hi) * k_rounded_weight >
+                       recover_above;
         cell.fan_dev = 0.0f;
         cell.reach = 0.0f;
     }
     std::vector<FH> work;
     const double log_recover = std::log(recover_above);
-    for (LiveNode &l : s.live_list) {
+    for (LiveNode &l : s.live.list) {
         if (visit[l.cell] && !fan_cleared(s, l, recover_above, log_recover))
             seed_fan(s, l, recover_above, work);
-        Cell &cell = s.grid.cells[l.cell];
+        Cell &cell = s.frame.grid.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
         cell.reach = std::max(cell.reach, l.reach);
     }
@@ -136,10 +137,10 @@ std::vector<FH> seed_recover(EraserState &s, double recover_above) {
 // by the same update). Returns the nodes recovered.
 std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, double recover_above,
                                          UpdateStats &stats) {
-    const Mesh &m = *s.mesh;
-    const std::int64_t entered = s.entered, fans_kept = s.fans_kept;
+    const Mesh &m = *s.input.mesh;
+    const std::int64_t entered = s.counters.entered, fans_kept = s.counters.fans_kept;
     std::vector<std::uint32_t> recovered;
-    s.chain.clear(); // the erases since the last update may have changed any choice
+    s.frame.chain.clear(); // the erases since the last update may have changed any choice
     while (!work.empty()) {
         const FH f = work.back();
         work.pop_back();
@@ -152,7 +153,7 @@ std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, d
         const std::uint32_t x = ready_dependency(s, std::uint32_t(u));
         reinsert(s, x);
         ++stats.recovered;
-        s.flags[x] |= k_recovered;
+        s.live.flags[x] |= k_recovered;
         recovered.push_back(x);
         // Re-evaluated by this update's erase: a node recovered only because a worse one depended
         // on it may cost little, and a key of "significant" would keep it forever. So are its ring
@@ -161,15 +162,15 @@ std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, d
         // nodes than its erase bound asks for (docs/decisions/018-recovery-order.md).
         mark_dirty(s, x);
         for (auto r : m.vv_range(vh(s, x)))
-            if (!(s.flags[node_of(s, r)] & k_locked))
+            if (!(s.live.flags[node_of(s, r)] & k_locked))
                 mark_dirty(s, node_of(s, r));
         for (auto g : m.vf_range(vh(s, x)))
             work.push_back(g);
         if (!m.status(f).deleted())
             work.push_back(f);
     }
-    stats.entered = s.entered - entered;
-    stats.fans_kept = s.fans_kept - fans_kept;
+    stats.entered = s.counters.entered - entered;
+    stats.fans_kept = s.counters.fans_kept - fans_kept;
     return recovered;
 }
 
@@ -178,17 +179,18 @@ std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, d
 // weight in the box the stars lie in says so), and each node's lower bound on its cost, carried
 // from the view it was made under, settles most of the rest without a weight.
 std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
-    std::vector<std::uint8_t> &visit = s.grid.cell_visit;
-    for (std::uint32_t c = 0; c < std::uint32_t(s.grid.cells.size()); ++c) {
-        Cell &cell = s.grid.cells[c];
-        const auto [lo, hi] = cell_box(s.grid, c, double(cell.reach));
-        visit[c] = cell.dirty || !(double(cell.star_dev) * s.weigher.lower(lo, hi) > erase_below);
+    std::vector<std::uint8_t> &visit = s.frame.grid.cell_visit;
+    for (std::uint32_t c = 0; c < std::uint32_t(s.frame.grid.cells.size()); ++c) {
+        Cell &cell = s.frame.grid.cells[c];
+        const auto [lo, hi] = cell_box(s.frame.grid, c, double(cell.reach));
+        visit[c] =
+            cell.dirty || !(double(cell.star_dev) * s.weights.weigher.lower(lo, hi) > erase_below);
         cell.star_dev = INFINITY;
     }
     std::vector<LiveNode *> unsettled;
     const double log_below = std::log(erase_below);
-    for (LiveNode &l : s.live_list) {
-        Cell &cell = s.grid.cells[l.cell];
+    for (LiveNode &l : s.live.list) {
+        Cell &cell = s.frame.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
         if (!visit[l.cell])
             continue;
@@ -202,15 +204,17 @@ std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
                 // square root and a division per node) only when that bound does not settle the
                 // node (docs/decisions/007-seen-bounds.md).
                 const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
-                const double falloff = s.weigher.falloff();
-                if (moved_within(s.view.eye, p, r.x, d->moved,
+                const double falloff = s.weights.weigher.falloff();
+                if (moved_within(s.weights.view.eye, p, r.x, d->moved,
                                  double(l.low_log) - log_below - d->turn / falloff,
                                  4.0 / 3.0 + k_asin_quarter / falloff))
                     continue;
-                const double nearest = glm::length(p - s.view.eye) - r.x;
-                if (double(l.low_log) - log_shrink(s, *d, nearest, false) > log_below ||
-                    (s.weigher.in_cone(p - r, p + r) &&
-                     double(l.low_log) - log_shrink(s, *d, nearest, true) > log_below))
+                const double nearest = glm::length(p - s.weights.view.eye) - r.x;
+                if (double(l.low_log) - log_shrink(s.weights.weigher, *d, nearest, false) >
+                        log_below ||
+                    (s.weights.weigher.in_cone(p - r, p + r) &&
+                     double(l.low_log) - log_shrink(s.weights.weigher, *d, nearest, true) >
+                         log_below))
                     continue;
             }
         }
@@ -230,54 +234,75 @@ std::vector<std::uint32_t> pick_candidates(EraserState &s, const std::vector<Liv
     for (std::size_t i = 0; i < unsettled.size(); ++i) {
         if (i + k_ahead < unsettled.size()) {
             const LiveNode &ahead = *unsettled[i + k_ahead];
-            __builtin_prefetch(&s.flags[ahead.node]);
-            if (s.lattice)
-                __builtin_prefetch(&s.lattice->z[ahead.star]);
+            __builtin_prefetch(&s.live.flags[ahead.node]);
+            if (s.input.lattice)
+                __builtin_prefetch(&s.input.lattice->z[ahead.star]);
         }
         LiveNode &l = *unsettled[i];
         const std::uint32_t x = l.node;
-        if (s.flags[x] & k_locked)
+        if (s.live.flags[x] & k_locked)
             continue;
-        const float key = node_key(s, l);
+        const float key = node_key(s.live, l);
         if (!std::isfinite(key))
             continue; // its hole cannot be re-triangulated: only a change of its ring can help
-        if (!(s.flags[x] & k_dirty)) {
+        if (!(s.live.flags[x] & k_dirty)) {
             // The cost under this view is at least the star's deviation times its weight now.
             const double least = double(l.star_dev) * weight_of(s, l.star);
             if (least > erase_below) {
-                store_node_key(s, l, float_down(least));
+                store_node_key(s.live, l, float_down(least));
                 remember_low(s, l, least);
                 continue;
             }
         }
         ++stats.candidates;
-        s.flags[x] |= k_dirty;
+        s.live.flags[x] |= k_dirty;
         candidates.push_back(x);
     }
     return candidates;
 }
 
+// What the update's sweep keeps for the updates that follow (SweepObserver): a node that costs too
+// much keeps that cost as a lower bound (remember_low), an erase's ring nodes get back seen bounds
+// (seen_before, carry_seen); and it counts the erases of nodes this update recovered.
+class KeepBounds final : public SweepObserver {
+  public:
+    explicit KeepBounds(EraserState &s) : s_(s) {}
+    void too_costly(LiveNode &l, double cost) override { remember_low(s_, l, cost); }
+    void erasing(std::uint32_t x, const Hole &h) override {
+        reerased += (s_.live.flags[x] & k_recovered) != 0;
+        seen_before(s_, h, seen_);
+    }
+    void erased(const Hole &h) override { carry_seen(s_, h, seen_); }
+
+    std::int64_t reerased = 0;
+
+  private:
+    EraserState &s_;
+    std::array<double, k_max_ring> seen_; // the ring's seen bounds before the erase under way
+};
+
 // The sweep over the candidates and the rings their erases change, at `erase_below`.
 void erase_candidates(EraserState &s, std::vector<std::uint32_t> candidates, double erase_below,
                       UpdateStats &stats) {
-    s.reerased = 0;
-    const std::int64_t evaluations = s.evaluations;
-    stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_cap);
-    stats.evaluations = s.evaluations - evaluations;
-    stats.reerased = s.reerased;
+    assert(!s.frame.fans_stale); // the cap reads the fans' reach
+    KeepBounds keep(s);
+    const std::int64_t evaluations = s.counters.evaluations;
+    stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_cap, 0, &keep);
+    stats.evaluations = s.counters.evaluations - evaluations;
+    stats.reerased = keep.reerased;
 }
 
 // The update's flags go (the sweep left no live node dirty), and the mesh's arrays are advised
 // again if one grew out of its room.
 void finish(EraserState &s, const std::vector<std::uint32_t> &recovered) {
-    const Mesh &m = *s.mesh;
+    const Mesh &m = *s.input.mesh;
     for (const std::uint32_t x : recovered)
-        s.flags[x] &= std::uint8_t(~k_recovered);
-    for (Cell &cell : s.grid.cells)
+        s.live.flags[x] &= std::uint8_t(~k_recovered);
+    for (Cell &cell : s.frame.grid.cells)
         cell.dirty = false;
-    if (s.advised[0] &&
-        (s.advised[0] != m.points() || (m.n_edges() > 0 && s.advised[1] != &m.edge(EH(0))) ||
-         (m.n_faces() > 0 && s.advised[2] != &m.face(FH(0)))))
+    if (s.frame.advised[0] && (s.frame.advised[0] != m.points() ||
+                               (m.n_edges() > 0 && s.frame.advised[1] != &m.edge(EH(0))) ||
+                               (m.n_faces() > 0 && s.frame.advised[2] != &m.face(FH(0)))))
         advise_huge(s);
 }
 
@@ -285,8 +310,8 @@ void finish(EraserState &s, const std::vector<std::uint32_t> &recovered) {
 
 UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
     EraserState &s = *state_;
-    assert(s.model != SpModel::vertical && erase_below <= recover_above);
-    if (s.absent_for_good)
+    assert(s.weights.model != SpModel::vertical && erase_below <= recover_above);
+    if (s.history.absent_for_good)
         throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
                                "EraseOptions::absent_history to follow a view");
     UpdateStats stats;

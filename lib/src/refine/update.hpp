@@ -14,7 +14,7 @@ using erase::EraserState;
 // erases v's recovery depends on, taking at each step the erased ring node nearest v (in xy for a
 // TIN). The chain then stays over v, and each node recovered refines the faces around it (fewer
 // recoveries than with the first erased ring node: docs/decisions/018-recovery-order.md).
-// The chain is kept in s.chain: the update asks again for the same v once the chain's end is
+// The chain is kept in s.frame.chain: the update asks again for the same v once the chain's end is
 // back, and the nodes before the first one recovered since chose as they would now (a recovery
 // only takes nodes out of their choice), so the walk resumes there instead of from v, which read
 // each node's ring again per step.

@@ -22,11 +22,11 @@ inline std::pair<glm::dvec3, glm::dvec3> cell_box(const UpdateGrid &g, std::uint
             {lo.x + g.cell_side + margin, lo.y + g.cell_side + margin, double(cell.zhi) + margin}};
 }
 
-// Sizes the update's grid for s.live live nodes over the input's extent, at most ~4000 cells a side
-// however thin the outline, and puts the live nodes in its cells. The cells' fan bounds are their
-// nodes' (rebuild_fans makes them when the nodes' are stale); their star bounds and dirty flags are
-// the conservative ones, so the next update visits every cell once.
-void regrid(EraserState &s);
+// Sizes the update's grid for the live nodes (live.count) over the input's extent, at most ~4000
+// cells a side however thin the outline, and puts the live nodes in its cells. The cells' fan
+// bounds are their nodes' (rebuild_fans makes them when the nodes' are stale); their star bounds
+// and dirty flags are the conservative ones, so the next update visits every cell once.
+void regrid(UpdateGrid &grid, erase::LiveSet &live);
 
 // The arrays an update reads at random, one entry per node (or edge, face), on huge pages: on a
 // 4097² grid they span hundreds of MB, and with 4 KiB pages most reads miss the TLB. Only for a
@@ -34,7 +34,7 @@ void regrid(EraserState &s);
 // what the erase saves (docs/decisions/017-huge-pages.md).
 // The mesh's arrays move when they grow past their reserved room (a sparse lattice's vertices as
 // samples enter, edges and faces as the TIN grows): update() advises them again then (see
-// EraserState::advised). The heightfield of a sparse lattice, which its scans read, is advised too.
+// FrameState::advised). The heightfield of a sparse lattice, which its scans read, is advised too.
 void advise_huge(EraserState &s);
 
 } // namespace tinlod::refine

@@ -79,7 +79,7 @@ GeoRect footprint(const Heightfield &d, const std::string &path) {
                                     glm::dvec2(d.width - 1, r)})
             outline.emplace_back(d.native_x0 + p.x * d.native_dx, d.native_y0 + p.y * d.native_dy);
     }
-    const auto geo = tiles::CrsTransform(d.native_epsg, 4326, path).apply(outline);
+    const auto geo = crs::Transformation(path, d.native_epsg, 4326).apply(outline);
     GeoRect box{INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (const glm::dvec2 &p : geo) {
         if (std::isnan(p.x))
@@ -102,7 +102,7 @@ glm::dvec2 spacing_degrees(const Heightfield &d, const std::string &path) {
                        d.native_y0 + 0.5 * (d.height - 1) * d.native_dy);
     const std::vector<glm::dvec2> pts{c, c + glm::dvec2(d.native_dx, 0),
                                       c + glm::dvec2(0, d.native_dy)};
-    const auto geo = tiles::CrsTransform(d.native_epsg, 4326, path).apply(pts);
+    const auto geo = crs::Transformation(path, d.native_epsg, 4326).apply(pts);
     const glm::dvec2 s(glm::length(geo[1] - geo[0]), glm::length(geo[2] - geo[0]));
     if (!(s.x > 0.0) || !(s.y > 0.0))
         throw Error(path, "its spacing does not transform to degrees");
@@ -122,7 +122,7 @@ GeoLattice warp(const std::vector<Heightfield> &dems, const std::vector<std::str
         all.north = std::max(all.north, boxes[k].north);
     }
     // Aligned to the first DEM's south-west sample, so a geographic DEM keeps its own grid.
-    const auto sw = tiles::CrsTransform(dems[0].native_epsg, 4326, paths[0])
+    const auto sw = crs::Transformation(paths[0], dems[0].native_epsg, 4326)
                         .apply(std::vector{glm::dvec2(dems[0].native_x0, dems[0].native_y0)})[0];
     GeoLattice g;
     g.resampled = true;
@@ -144,7 +144,7 @@ GeoLattice warp(const std::vector<Heightfield> &dems, const std::vector<std::str
             std::max<std::int64_t>(0, std::int64_t(std::floor((boxes[k].south - g.lat0) / g.dlat)));
         const auto j1 = std::min<std::int64_t>(
             h - 1, std::int64_t(std::ceil((boxes[k].north - g.lat0) / g.dlat)));
-        const tiles::CrsTransform to_dem(4326, d.native_epsg, paths[k]);
+        const crs::Transformation to_dem(paths[k], 4326, d.native_epsg);
         std::vector<glm::dvec2> row;
         for (std::int64_t j = j0; j <= j1; ++j) {
             row.clear();

@@ -8,6 +8,7 @@
 // header range of D steps with D a divisor of 32767, so a height on the step is an exact code. An
 // edge vertex takes the coarser step of the tiles that share it (two, four at a corner), so both
 // decode it to the same height.
+#include "../triangle_plane.hpp"
 #include "geodesy.hpp"
 
 #include "tinlod/decimate.hpp"
@@ -396,9 +397,7 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
             ++m.flipped;
         if (area2 <= 0.0)
             continue;
-        // The plane z = a u + b v + d through the three corners.
-        const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
-        const double a = -n.x / n.z, b = -n.y / n.z, d = c[0].z - a * c[0].x - b * c[0].y;
+        const TrianglePlane plane(c[0], c[1], c[2]);
         const double vlo = std::min({c[0].y, c[1].y, c[2].y}),
                      vhi = std::max({c[0].y, c[1].y, c[2].y});
         const auto jl = std::lower_bound(pv.begin(), pv.end(), vlo - k_eps) - pv.begin();
@@ -430,7 +429,7 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
                 if (!inside(x) || std::isnan(h))
                     continue;
                 seen[std::size_t(jr) * pu.size() + std::size_t(ir)] = 1;
-                m.max_error = std::max(m.max_error, std::abs(a * x + b * y + d - double(h)));
+                m.max_error = std::max(m.max_error, std::abs(plane.height(x, y) - double(h)));
             }
         }
     }
