@@ -44,7 +44,8 @@ const boundLevel = (scheme, z) => (scheme === 'mercator' ? z - 1 : z)
 
 function run (exe, argv, cwd = tmp) {
   const timeFile = path.join(tmp, 'time.txt')
-  const r = spawnSync('/usr/bin/time', ['-f', '%e %M', '-o', timeFile, exe, ...argv], { cwd, encoding: 'utf8', maxBuffer: 1 << 28 })
+  // Pinned to core 0, as bench_heightmap pins hmm and tinlod.
+  const r = spawnSync('taskset', ['-c', '0', '/usr/bin/time', '-f', '%e %M', '-o', timeFile, exe, ...argv], { cwd, encoding: 'utf8', maxBuffer: 1 << 28 })
   if (r.status !== 0) throw new Error(`${path.basename(exe)} ${argv.join(' ')}: exit ${r.status}\n${r.stderr.slice(-2000)}`)
   const [seconds, kb] = fs.readFileSync(timeFile, 'utf8').trim().split('\n').pop().split(' ').map(Number)
   return { seconds, mb: kb / 1024 }
@@ -111,6 +112,8 @@ function decodeHeightmap (buf) {
   }
   return { n, u, v, h, tri: Uint32Array.from(tri) }
 }
+
+const countTiles = (dir) => fs.readdirSync(dir, { recursive: true }).filter((f) => f.endsWith('.terrain')).length
 
 function readSet (dir, format) {
   const tiles = new Map()
@@ -268,6 +271,7 @@ const inputs = [
 ]
 const rows = []
 const runs = []
+const matchedRuns = []
 for (const input of inputs) {
   // The peers get the DEM with its voids filled by GDAL (tinlod fills its own); tin-terrain reads
   // Web Mercator only, so it gets that warped (bilinear) at gdalwarp's default resolution.
@@ -280,23 +284,31 @@ for (const input of inputs) {
   // coarser than the DEM's (docs/tiles.md, "The default --max-zoom").
   const spacing = Math.min(Math.abs(dem.lon(1) - dem.lon(0)), Math.abs(dem.lat(1) - dem.lat(0)))
   const maxZoom = Math.ceil(Math.log2(180 / (64 * spacing)) - 1e-9)
+  // argv(dir, lo, hi): the run writing levels lo to hi into dir (tin-terrain: its own levels).
   const tools = [
-    { tool: 'tinlod', scheme: 'geographic', format: 'quantized-mesh', exe: 'tinlod', argv: (o) => ['--threads', '1', 'tiles', input.file, '-o', o] },
+    { tool: 'tinlod', scheme: 'geographic', format: 'quantized-mesh', exe: 'tinlod', argv: (o, lo, hi) => ['--threads', '1', 'tiles', input.file, '-o', o, '--min-zoom', String(lo), '--max-zoom', String(hi)] },
     { tool: 'tin-terrain', scheme: 'mercator', format: 'quantized-mesh', exe: 'tin-terrain', argv: (o) => ['--log', 'none', 'dem2tintiles', '--input', mercator, '--output-dir', o, '--min-zoom', '0', '--max-zoom', '21'] },
-    { tool: 'ctb heightmap', scheme: 'geographic', format: 'heightmap', exe: 'ctb-tile', argv: (o) => ['-q', '-c', '1', '-s', String(maxZoom), '-e', '0', '-o', o, filled] },
-    { tool: 'ctb mesh', scheme: 'geographic', format: 'quantized-mesh', exe: 'ctb-tile', argv: (o) => ['-q', '-c', '1', '-f', 'Mesh', '-s', String(maxZoom), '-e', '0', '-o', o, filled] }
+    { tool: 'ctb heightmap', scheme: 'geographic', format: 'heightmap', exe: 'ctb-tile', argv: (o, lo, hi) => ['-q', '-c', '1', '-s', String(hi), '-e', String(lo), '-o', o, filled] },
+    { tool: 'ctb mesh', scheme: 'geographic', format: 'quantized-mesh', exe: 'ctb-tile', argv: (o, lo, hi) => ['-q', '-c', '1', '-f', 'Mesh', '-s', String(hi), '-e', String(lo), '-o', o, filled] }
   ]
-  const best = new Map()
-  for (let rep = 0; rep < reps; ++rep) {
-    for (const t of rep % 2 ? [...tools].reverse() : tools) {
-      const dir = path.join(tmp, `${input.name}-${t.tool.replace(' ', '-')}`)
-      fs.rmSync(dir, { recursive: true, force: true })
-      fs.mkdirSync(dir)
-      const r = run(path.join(bin, t.exe), t.argv(dir))
-      const b = best.get(t.tool)
-      best.set(t.tool, { seconds: Math.min(b?.seconds ?? Infinity, r.seconds), mb: Math.max(b?.mb ?? 0, r.mb), dir })
+  // Each tool `reps` times, alternated (reversed every other round); the least wall time.
+  const timeRuns = (list, lo, hi, keep) => {
+    const best = new Map()
+    for (let rep = 0; rep < reps; ++rep) {
+      for (const t of rep % 2 ? [...list].reverse() : list) {
+        const dir = path.join(tmp, `${input.name}-${t.tool.replace(' ', '-')}`)
+        fs.rmSync(dir, { recursive: true, force: true })
+        fs.mkdirSync(dir)
+        const r = run(path.join(bin, t.exe), t.argv(dir, lo, hi))
+        const b = best.get(t.tool)
+        const tiles = keep ? 0 : countTiles(dir)
+        if (!keep) fs.rmSync(dir, { recursive: true })
+        best.set(t.tool, { seconds: Math.min(b?.seconds ?? Infinity, r.seconds), mb: Math.max(b?.mb ?? 0, r.mb), dir, tiles })
+      }
     }
+    return best
   }
+  const best = timeRuns(tools, 0, maxZoom, true)
   for (const t of tools) {
     const { seconds, mb, dir } = best.get(t.tool)
     const levels = measure(readSet(dir, t.format), t.scheme, dem)
@@ -313,6 +325,12 @@ for (const input of inputs) {
     for (const l of levels) rows.push({ dem: input.name, tool: t.tool, scheme: t.scheme, format: t.format, bound_level: boundLevel(t.scheme, l.level), bound_m: levelError(t.scheme, l.level), ...l })
     console.error(`bench_tiles: ${input.name} ${t.tool}: ${total.tiles} tiles in ${seconds} s, worst ${total.worst_ratio.toFixed(3)}, ${total.cracked_edges}/${total.shared_edges} edges differ`)
   }
+  // Time on tin-terrain's levels alone (by bound): the others run again on just those.
+  const tt = runs.find((r) => r.dem === input.name && r.tool === 'tin-terrain')
+  const lo = boundLevel('mercator', tt.first); const hi = Math.min(maxZoom, boundLevel('mercator', tt.last))
+  const others = tools.filter((t) => t.scheme === 'geographic')
+  const matched = timeRuns(others, lo, hi, false)
+  matchedRuns.push({ dem: input.name, lo, hi, tools: [{ tool: 'tin-terrain', seconds: tt.seconds, tiles: tt.tiles }, ...others.map((t) => ({ tool: t.tool, ...matched.get(t.tool) }))] })
 }
 fs.rmSync(tmp, { recursive: true, force: true })
 
@@ -320,7 +338,8 @@ fs.rmSync(tmp, { recursive: true, force: true })
 fs.mkdirSync(out, { recursive: true })
 const csvCols = ['dem', 'tool', 'scheme', 'format', 'level', 'bound_level', 'bound_m', 'tiles', 'triangles', 'tri_max', 'bytes', 'worst_ratio', 'inner_tiles', 'worst_inner', 'samples', 'uncovered', 'shared_edges', 'cracked_edges', 'max_gap_m', 'seconds', 'peak_mb']
 const csvRow = (r) => csvCols.map((k) => (r[k] === undefined ? '' : typeof r[k] === 'number' && !Number.isInteger(r[k]) ? r[k].toPrecision(6) : r[k])).join(',')
-fs.writeFileSync(path.join(out, 'tiles.csv'), [csvCols.join(','), ...runs.map((r) => csvRow({ ...r, level: 'all' })), ...rows.map(csvRow)].join('\n') + '\n')
+fs.writeFileSync(path.join(out, 'tiles.csv'), [csvCols.join(','), ...runs.map((r) => csvRow({ ...r, level: 'all' })),
+  ...matchedRuns.flatMap((m) => m.tools.map((x) => csvRow({ dem: m.dem, tool: x.tool, level: `bounds ${m.lo}-${m.hi}`, tiles: x.tiles, seconds: x.seconds, peak_mb: x.mb }))), ...rows.map(csvRow)].join('\n') + '\n')
 
 const f = (x, d = 2) => x.toFixed(d)
 const ratio = (a, b) => (b ? `${f(a / b)}×` : '–')
@@ -328,27 +347,32 @@ let md = `\n## Terrain tiles: tinlod tiles against tin-terrain and cesium-terrai
 md += `\`${command}\`: each builder as a whole process on one core (\`tinlod --threads 1\`, \`ctb-tile -c 1\`; tin-terrain has one thread), alternated, least wall time of ${reps}; `
 md += 'every set read back by an npm decoder (heightmap tiles as CesiumJS tessellates them) and measured at every DEM sample inside every tile against the error CesiumJS assumes for the tile\'s level. '
 md += 'tin-terrain writes Web Mercator tiles (a level z tile has the longitudes and the bound of a geographic level z - 1 tile) and only the levels its DEM\'s resolution suggests; ctb-tile is given tinlod\'s levels. '
-md += 'Bytes are gzip as served (tin-terrain\'s plain tiles gzipped here). Cracks: shared tile edges whose vertices differ (position or decoded height), of all shared edges; gap: the largest height difference along such an edge.\n'
+md += 'Inner tiles: those wholly inside the DEM\'s samples (no coverage edge). Bytes are gzip as served (tin-terrain\'s plain tiles gzipped here). Cracks: shared tile edges whose vertices differ (position or decoded height), of all shared edges; gap: the largest height difference along such an edge.\n'
 for (const input of inputs) {
   const mine = runs.filter((r) => r.dem === input.name)
   const base = mine.find((r) => r.tool === 'tinlod')
   md += `\n### ${input.name} (${input.about})\n\n`
-  md += '| tool | levels | tiles | time s | tiles/s | MB gzip | triangles/tile mean, max | worst error / bound | samples under no triangle | cracks (edges) | gap m | peak MB | time, bytes, triangles vs tinlod |\n'
+  md += '| tool | levels | tiles | time s | tiles/s | MB gzip | triangles/tile mean, max | worst error / bound: all tiles, inner | samples under no triangle | cracks (edges) | gap m | peak MB | time, bytes, triangles vs tinlod |\n'
   md += '| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n'
   for (const r of mine) {
-    md += `| ${r.tool} | ${r.first}-${r.last}${r.scheme === 'mercator' ? ' (Mercator)' : ''} | ${r.tiles} | ${f(r.seconds)} | ${f(r.tiles / r.seconds, 0)} | ${f(r.bytes / 1e6)} | ${f(r.triangles / r.tiles, 0)}, ${r.tri_max} | ${f(r.worst_ratio, 3)} | ${r.uncovered} | ${r.cracked_edges} / ${r.shared_edges} | ${f(r.max_gap_m, 1)} | ${f(r.peak_mb, 0)} | `
+    md += `| ${r.tool} | ${r.first}-${r.last}${r.scheme === 'mercator' ? ' (Mercator)' : ''} | ${r.tiles} | ${f(r.seconds)} | ${f(r.tiles / r.seconds, 0)} | ${f(r.bytes / 1e6)} | ${f(r.triangles / r.tiles, 0)}, ${r.tri_max} | ${f(r.worst_ratio, 3)}, ${r.inner_tiles ? f(r.worst_inner, 3) : '–'} | ${r.uncovered} | ${r.cracked_edges} / ${r.shared_edges} | ${f(r.max_gap_m, 1)} | ${f(r.peak_mb, 0)} | `
     md += r === base ? '1 |\n' : `${ratio(r.seconds, base.seconds)}, ${ratio(r.bytes, base.bytes)}, ${ratio(r.triangles, base.triangles)} |\n`
   }
-  // The levels every builder wrote, by bound: what each needs to cover the DEM at the same error.
-  const levelsOf = (tool) => new Set(rows.filter((x) => x.dem === input.name && x.tool === tool).map((x) => x.bound_level))
-  const common = [...levelsOf('tinlod')].filter((l) => mine.every((r) => levelsOf(r.tool).has(l))).sort((a, b) => a - b)
-  if (!common.length) continue
-  md += `\nOn the bounds every builder made (geographic levels ${common[0]}-${common.at(-1)}; tin-terrain's Mercator ${common[0] + 1}-${common.at(-1) + 1}), per level: triangles (× tinlod's), worst error / bound, cracks.\n\n`
+  // tin-terrain's levels, by bound: what each builder needs to cover the DEM at the same error.
+  const m = matchedRuns.find((x) => x.dem === input.name)
+  const at = (tool, l) => rows.find((x) => x.dem === input.name && x.tool === tool && x.bound_level === l)
+  const mBase = m.tools.find((x) => x.tool === 'tinlod')
+  md += `\nOn tin-terrain's levels (Web Mercator ${m.lo + 1}-${m.hi + 1}), the others run again on the geographic levels of the same bounds, ${m.lo}-${m.hi}: `
+  md += `${m.tools.map((x) => `${x.tool} ${x.tiles} tiles in ${f(x.seconds)} s (${f(x.tiles / x.seconds, 0)} tiles/s${x === mBase ? '' : `, time ${ratio(x.seconds, mBase.seconds)} tinlod's`})`).join('; ')}. `
+  md += 'Per level: triangles (× tinlod\'s), worst error / bound, cracked / shared edges, and samples under no triangle where there are any.\n\n'
   md += `| level | bound m | ${mine.map((r) => r.tool).join(' | ')} |\n| ---: | ---: |${mine.map(() => ' --- |').join('')}\n`
-  for (const l of common) {
-    const at = (tool) => rows.find((x) => x.dem === input.name && x.tool === tool && x.bound_level === l)
-    const b = at('tinlod')
-    md += `| ${l} | ${f(b.bound_m, 1)} | ${mine.map((r) => { const x = at(r.tool); return `${x.triangles}${x === b ? '' : ` (${ratio(x.triangles, b.triangles)})`}, ${f(x.worst_ratio, 2)}, ${x.cracked_edges}/${x.shared_edges}` }).join(' | ')} |\n`
+  for (let l = m.lo; l <= m.hi; ++l) {
+    const b = at('tinlod', l)
+    md += `| ${l} | ${f(b.bound_m, 1)} | ${mine.map((r) => {
+      const x = at(r.tool, l)
+      if (!x) return '–'
+      return `${x.triangles}${x === b ? '' : ` (${ratio(x.triangles, b.triangles)})`}, ${f(x.worst_ratio, 2)}, ${x.cracked_edges}/${x.shared_edges}${x.uncovered ? `, ${x.uncovered} uncovered` : ''}`
+    }).join(' | ')} |\n`
   }
 }
 fs.writeFileSync(path.join(out, 'tiles.md'), md)
