@@ -1,5 +1,5 @@
 // Checks a quantized-mesh tile set with code tinlod's writer does not share: every tile is read by
-// @here/quantized-mesh-decoder (npm), and the DEM (an SRTM .hgt) by the few lines below.
+// @here/quantized-mesh-decoder (npm), and the DEM (an SRTM .hgt) by srtm.mjs.
 //
 //   node check_tiles.mjs DIR [DEM.hgt...] [--no-error]
 //
@@ -15,6 +15,7 @@ import decoder from '@here/quantized-mesh-decoder'
 import fs from 'node:fs'
 import path from 'node:path'
 import zlib from 'node:zlib'
+import { WGS84_A, WGS84_B, levelError, readHgt, tileRect } from './srtm.mjs'
 
 const decode = decoder.default
 const [dir, ...rest] = process.argv.slice(2)
@@ -23,42 +24,11 @@ const demPaths = rest.filter((a) => !a.startsWith('--'))
 const failures = []
 const fail = (what) => { if (failures.length < 50) failures.push(what) }
 
-// CesiumJS: TerrainProvider.getEstimatedLevelZeroGeometricErrorForAHeightmap(Ellipsoid.WGS84, 65,
-// 2) (heightmapTerrainQuality 0.25), halved per level by CesiumTerrainProvider.
-const WGS84_A = 6378137.0
-const WGS84_B = 6356752.3142451793
-const levelError = (z) => (WGS84_A * 2 * Math.PI * 0.25) / (65 * 2) / 2 ** z
-
-function tileRect (z, x, y) {
-  const size = 180 / 2 ** z
-  return { west: -180 + x * size, south: -90 + y * size, east: -180 + (x + 1) * size, north: -90 + (y + 1) * size }
-}
-
 function ecef (lonDeg, latDeg, h) {
   const l = lonDeg * Math.PI / 180; const p = latDeg * Math.PI / 180
   const e2 = 1 - (WGS84_B * WGS84_B) / (WGS84_A * WGS84_A)
   const n = WGS84_A / Math.sqrt(1 - e2 * Math.sin(p) ** 2)
   return [(n + h) * Math.cos(p) * Math.cos(l), (n + h) * Math.cos(p) * Math.sin(l), (n * (1 - e2) + h) * Math.sin(p)]
-}
-
-// --- the DEM: SRTM .hgt, big-endian int16, square, row 0 north, named by its south-west corner
-function readHgt (file) {
-  const buf = fs.readFileSync(file)
-  const n = Math.round(Math.sqrt(buf.length / 2))
-  const z = new Int16Array(n * n)
-  for (let i = 0; i < n * n; ++i) z[i] = buf.readInt16BE(2 * i)
-  const m = /([NS])(\d\d)([EW])(\d\d\d)/i.exec(path.basename(file))
-  const lat0 = Number(m[2]) * (m[1].toUpperCase() === 'S' ? -1 : 1)
-  const lon0 = Number(m[4]) * (m[3].toUpperCase() === 'W' ? -1 : 1)
-  return {
-    n,
-    lon: (c) => lon0 + c / (n - 1),
-    lat: (r) => lat0 + 1 - r / (n - 1),
-    col: (lon) => (lon - lon0) * (n - 1),
-    row: (lat) => (lat0 + 1 - lat) * (n - 1),
-    height: (c, r) => z[r * n + c], // -32768: a void, no sample
-    covers: (lon, lat) => lon >= lon0 && lon <= lon0 + 1 && lat >= lat0 && lat <= lat0 + 1
-  }
 }
 
 // --- tiles
