@@ -33,7 +33,8 @@ const fail = (what) => { if (failures.length < 50) failures.push(what) }
 const CHROMIUM = '/usr/bin/chromium'
 const LOAD_TIMEOUT_MS = 40000
 const PIXEL_DIFFERS = 24 // a pixel differs when a channel does by more than this
-const MIN_DIFFERING_SHARE = 0.4 // of the picture's pixels (the DEM fills most of the view)
+const MIN_DIFFERING_SHARE = 0.4 // of the DEM view's pixels (the DEM fills most of it)
+const MAX_EARTH_SHARE = 0.02 // of the Earth view's pixels (the DEM is a speck in it)
 const HEIGHT_SLACK = 1.0 // metres: Cesium stores a small tile's positions in 12 bits of its box
 
 const here = path.dirname(url.fileURLToPath(import.meta.url))
@@ -66,8 +67,8 @@ function serve (req, res) {
   send(200, fs.readFileSync(file), headers)
 }
 
-// --- what the page does: one view, over the set's terrain and over the bare ellipsoid
-async function inPage ({ view, ramp, samples, timeoutMs, png }) {
+// --- what the page does: each view over the bare ellipsoid, then over the set's terrain
+async function inPage ({ views, ramp, light, samples, timeoutMs, png }) {
   const C = window.Cesium
   const errors = []
   const widget = new C.CesiumWidget('globe', {
@@ -84,8 +85,8 @@ async function inPage ({ view, ramp, samples, timeoutMs, png }) {
   // The globe loads tiles for at most this many milliseconds a frame (5 by default, for a smooth
   // frame rate): a frame of SwiftShader takes far longer anyway.
   globe._surface._loadQueueTimeSlice = 200
-  // Heights as colours: a ramp from the DEM's lowest to its highest sample, lit by a fixed sun
-  // from the north-west (the tiles' vertex normals) so the relief reads in the picture.
+  // Heights as colours: a ramp from the DEM's lowest to its highest sample; a lit view takes a
+  // fixed sun from the north-west (on the tiles' vertex normals) so the relief reads.
   const canvas = document.createElement('canvas')
   canvas.width = 256; canvas.height = 1
   const g = canvas.getContext('2d')
@@ -93,18 +94,20 @@ async function inPage ({ view, ramp, samples, timeoutMs, png }) {
   for (const [at, colour] of ramp.stops) grad.addColorStop(at, colour)
   g.fillStyle = grad; g.fillRect(0, 0, 256, 1)
   globe.material = C.Material.fromType('ElevationRamp', { image: canvas, minimumHeight: ramp.min, maximumHeight: ramp.max })
-  globe.enableLighting = true
-  const centre = C.Cartesian3.fromDegrees(view.lon, view.lat)
-  const enu = C.Transforms.eastNorthUpToFixedFrame(centre)
+  const enu = C.Transforms.eastNorthUpToFixedFrame(C.Cartesian3.fromDegrees(light.lon, light.lat))
   const towardsGround = C.Matrix4.multiplyByPointAsVector(enu, new C.Cartesian3(0.5, -0.5, -0.6), new C.Cartesian3())
   scene.light = new C.DirectionalLight({ direction: C.Cartesian3.normalize(towardsGround, towardsGround), intensity: 2.2 })
-  scene.camera.setView({
-    destination: C.Cartesian3.fromDegrees(view.cameraLon, view.cameraLat, view.cameraHeight),
-    orientation: { heading: C.Math.toRadians(view.heading), pitch: C.Math.toRadians(view.pitch), roll: 0 }
-  })
 
-  // Resolves with the picture once the globe has had nothing to load for a few frames.
-  const settled = () => new Promise((resolve, reject) => {
+  // Shows a view and resolves with its picture once the globe has had nothing to load for a few
+  // frames.
+  const container = document.getElementById('globe')
+  const show = (view) => new Promise((resolve, reject) => {
+    container.style.width = `${view.width}px`; container.style.height = `${view.height}px`
+    globe.enableLighting = view.lit
+    scene.camera.setView({
+      destination: C.Cartesian3.fromDegrees(view.camera.lon, view.camera.lat, view.camera.height),
+      orientation: { heading: C.Math.toRadians(view.camera.heading), pitch: C.Math.toRadians(view.camera.pitch), roll: 0 }
+    })
     const start = performance.now()
     let frames = 0; let calm = 0
     const remove = scene.postRender.addEventListener(() => {
@@ -116,31 +119,36 @@ async function inPage ({ view, ramp, samples, timeoutMs, png }) {
         copy.width = scene.canvas.width; copy.height = scene.canvas.height
         const c2 = copy.getContext('2d')
         c2.drawImage(scene.canvas, 0, 0)
-        resolve({ frames, ms: performance.now() - start, pixels: c2.getImageData(0, 0, copy.width, copy.height).data, png: png ? scene.canvas.toDataURL('image/png') : undefined })
+        resolve({ frames, ms: Math.round(performance.now() - start), pixels: c2.getImageData(0, 0, copy.width, copy.height).data, png: png && view.saved ? scene.canvas.toDataURL('image/png') : undefined })
       } else if (performance.now() - start > timeoutMs) {
         remove()
-        reject(new Error(`the globe's tiles were not loaded after ${timeoutMs} ms (${frames} frames)`))
+        reject(new Error(`${view.name}: the globe's tiles were not loaded after ${timeoutMs} ms (${frames} frames)`))
       }
     })
   })
 
-  const bare = await settled()
+  const bare = []
+  for (const view of views) bare.push(await show(view))
   const provider = await C.CesiumTerrainProvider.fromUrl('/terrain/', { requestVertexNormals: true })
   provider.errorEvent.addEventListener((e) => errors.push(e.message))
   globe.terrainProvider = provider
-  const shown = await settled()
-
-  // The pixels the terrain changed.
-  let differing = 0
-  const a = bare.pixels; const b = shown.pixels
-  for (let i = 0; i < a.length; i += 4) {
-    const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]))
-    if (d > view.pixelDiffers) differing++
+  const out = { errors, views: {} }
+  for (const [k, view] of views.entries()) {
+    const shown = await show(view)
+    // The share of pixels the terrain changed.
+    let differing = 0
+    const a = bare[k].pixels; const b = shown.pixels
+    for (let i = 0; i < a.length; i += 4) {
+      const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]))
+      if (d > view.pixelDiffers) differing++
+    }
+    out.views[view.name] = { frames: [bare[k].frames, shown.frames], ms: [bare[k].ms, shown.ms], differing_share: differing / (a.length / 4) }
+    if (shown.png) out.png = shown.png
   }
 
-  // The height Cesium draws at each sample, and the level of the tile it takes it from (the
-  // deepest one holding a mesh, as Globe.getHeight walks the quadtree).
-  const heights = samples.map(([lon, lat]) => {
+  // In the last view: the height Cesium draws at each sample, and the level of the tile it takes
+  // it from (the deepest one holding a mesh, as Globe.getHeight walks the quadtree).
+  out.heights = samples.map(([lon, lat]) => {
     const c = C.Cartographic.fromDegrees(lon, lat)
     const h = globe.getHeight(c)
     let tile = globe._surface._levelZeroTiles.find((t) => C.Rectangle.contains(t.rectangle, c))
@@ -151,15 +159,7 @@ async function inPage ({ view, ramp, samples, timeoutMs, png }) {
     }
     return { h, level }
   })
-  return {
-    errors,
-    frames: { bare: bare.frames, terrain: shown.frames },
-    ms: { bare: Math.round(bare.ms), terrain: Math.round(shown.ms) },
-    pixels: a.length / 4,
-    differing_share: differing / (a.length / 4),
-    heights,
-    png: shown.png
-  }
+  return out
 }
 
 // --- the run
@@ -194,9 +194,13 @@ try {
   await tab.goto(`${origin}/`, { waitUntil: 'load' })
   lap('page')
 
-  // The view: the DEM tile's middle, seen from the south, and DEM samples on a grid over it.
+  // The views: the Earth from 4,000 km over the prime meridian (both level-0 tiles, the DEM a
+  // speck: the rest must be the bare ellipsoid), then the DEM tile from the south, lit.
   const lonC = dem.lon0 + 0.5; const latC = dem.lat0 + 0.5
-  const view = { lon: lonC, lat: latC, cameraLon: lonC, cameraLat: dem.lat0 - 0.25, cameraHeight: 20000, heading: 0, pitch: -22, pixelDiffers: PIXEL_DIFFERS }
+  const views = [
+    { name: 'earth', width: 320, height: 200, lit: false, camera: { lon: 0, lat: latC - 4, height: 4e6, heading: 0, pitch: -90 }, pixelDiffers: PIXEL_DIFFERS },
+    { name: 'dem', width, height, lit: true, saved: true, camera: { lon: lonC, lat: dem.lat0 - 0.25, height: 20000, heading: 0, pitch: -22 }, pixelDiffers: PIXEL_DIFFERS }
+  ]
   let lo = Infinity; let hi = -Infinity
   for (let r = 0; r < dem.n; ++r) for (let c = 0; c < dem.n; ++c) { const h = dem.height(c, r); if (h !== -32768) { lo = Math.min(lo, h); hi = Math.max(hi, h) } }
   const ramp = { min: lo, max: hi, stops: [[0, '#2f6b3a'], [0.25, '#7fa65a'], [0.5, '#c9b97a'], [0.75, '#9a7b5a'], [1, '#f4f1ec']] }
@@ -205,7 +209,7 @@ try {
   for (let r = 30; r < dem.n; r += 60) for (let c = 30; c < dem.n; c += 60) if (dem.height(c, r) !== -32768) posts.push([c, r])
   const samples = posts.map(([c, r]) => [dem.lon(c), dem.lat(r)])
 
-  const got = await tab.evaluate(inPage, { view, ramp, samples, timeoutMs: LOAD_TIMEOUT_MS, png: Boolean(pngPath) })
+  const got = await tab.evaluate(inPage, { views, ramp, light: { lon: lonC, lat: latC }, samples, timeoutMs: LOAD_TIMEOUT_MS, png: Boolean(pngPath) })
   lap('views')
   if (pngPath) fs.writeFileSync(pngPath, Buffer.from(got.png.replace(/^data:image\/png;base64,/, ''), 'base64'))
 
@@ -220,7 +224,10 @@ try {
     if (r.status !== 200) fail(`${r.path}: requested, not in the set`)
   }
   if (!tiles.length) fail('no tile was requested')
-  if (got.differing_share < MIN_DIFFERING_SHARE) fail(`the picture differs from the bare ellipsoid's in ${(100 * got.differing_share).toFixed(1)}% of its pixels, not ${100 * MIN_DIFFERING_SHARE}%`)
+  const share = (name) => got.views[name].differing_share
+  const percent = (x) => `${(100 * x).toFixed(1)}%`
+  if (share('dem') < MIN_DIFFERING_SHARE) fail(`the DEM's picture differs from the bare ellipsoid's in ${percent(share('dem'))} of its pixels, not ${percent(MIN_DIFFERING_SHARE)}`)
+  if (share('earth') > MAX_EARTH_SHARE) fail(`the Earth's picture differs from the bare ellipsoid's in ${percent(share('earth'))} of its pixels, over ${percent(MAX_EARTH_SHARE)}`)
 
   // Heights: within the error of the deepest level `available` lists at or above the drawing one
   // (Cesium upsamples a tile the set leaves out from its parent).
@@ -240,10 +247,8 @@ try {
   Object.assign(report, {
     tile_requests: tiles.length,
     tile_levels: [...new Set(tiles.map((r) => Number(r.path.split('/')[0])))].sort((p, q) => p - q),
-    frames: got.frames,
-    ms: { ...got.ms, launch: clock.launch, page: clock.page, views: clock.views },
-    pixels: got.pixels,
-    differing_share: got.differing_share,
+    views: got.views,
+    ms: { launch: clock.launch, page: clock.page, views: clock.views },
     height_samples: checked,
     height_levels: levels,
     worst_height_ratio: worst

@@ -72,7 +72,10 @@ const tiles = new Map()
 for (const k of onDisk) tiles.set(k, readTile(path.join(dir, `${k}.terrain`)))
 
 const dems = checkError ? demPaths.map(readHgt) : []
-const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, levels: {} }
+const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, worst_chord_ratio: 0, levels: {} }
+// CesiumJS draws a triangle flat between its vertices' Earth-centred positions: that may stray from
+// the tile's surface (heights linear in u/v) by at most this share of the level's error.
+const CHORD_SHARE = 1 / 16
 
 // CesiumJS's EllipsoidalOccluder.computeMagnitude, for the occlusion point's check.
 function occlusionMagnitude (radii, p, dir) {
@@ -131,6 +134,22 @@ for (const [key, t] of tiles) {
   }
   if (Number.isFinite(magnitude) && hopLength < magnitude * (1 - 1e-9)) fail(`${key}: horizon occlusion point nearer than CesiumJS's (${hopLength} < ${magnitude})`)
   if (t.header.minHeight > t.header.maxHeight) fail(`${key}: minimum height over maximum`)
+  // The flat triangle against the surface at its centroid, its edges' midpoints and three points
+  // between (where the gap, nearly a paraboloid over the triangle, peaks).
+  let chord = 0
+  const places = [[1 / 3, 1 / 3, 1 / 3], [0.5, 0.5, 0], [0, 0.5, 0.5], [0.5, 0, 0.5], [2 / 3, 1 / 6, 1 / 6], [1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]]
+  for (let i = 0; i < tri.length; i += 3) {
+    const k = [tri[i], tri[i + 1], tri[i + 2]]
+    const corners = k.map((j) => ecef(lon(t.u[j]), lat(t.v[j]), t.h[j]))
+    for (const w of places) {
+      const at = (a) => w[0] * a[0] + w[1] * a[1] + w[2] * a[2]
+      const flat = [0, 1, 2].map((c) => at(corners.map((p) => p[c])))
+      const surface = ecef(lon(at(k.map((j) => t.u[j]))), lat(at(k.map((j) => t.v[j]))), at(k.map((j) => t.h[j])))
+      chord = Math.max(chord, Math.hypot(flat[0] - surface[0], flat[1] - surface[1], flat[2] - surface[2]))
+    }
+  }
+  if (chord > CHORD_SHARE * levelError(z)) fail(`${key}: a triangle drawn flat strays ${chord.toFixed(1)} m from the tile's surface, over ${CHORD_SHARE} of the level's error`)
+  summary.worst_chord_ratio = Math.max(summary.worst_chord_ratio, chord / levelError(z))
   if (t.extensions?.vertexNormals && t.extensions.vertexNormals.length !== 2 * t.n) fail(`${key}: normals of ${t.extensions.vertexNormals.length / 2} vertices`)
 
   // Neighbours: the east and north ones share the tile's east and north edges.
