@@ -24,7 +24,7 @@ import { levelError, readHgt, tileRect } from './srtm.mjs'
 const args = process.argv.slice(2)
 const option = (name) => { const i = args.indexOf(name); return i >= 0 ? args.splice(i, 2)[1] : undefined }
 const pngPath = option('--png')
-const [width, height] = (option('--size') ?? '640x400').split('x').map(Number)
+const [width, height] = (option('--size') ?? '480x300').split('x').map(Number)
 const [dir, demPath] = args
 const failures = []
 const fail = (what) => { if (failures.length < 50) failures.push(what) }
@@ -113,7 +113,7 @@ async function inPage ({ views, ramp, light, samples, timeoutMs, png }) {
     const remove = scene.postRender.addEventListener(() => {
       ++frames
       calm = globe.tilesLoaded ? calm + 1 : 0
-      if (calm >= 3 && frames >= 6) {
+      if (calm >= 2 && frames >= 5) {
         remove()
         const copy = document.createElement('canvas')
         copy.width = scene.canvas.width; copy.height = scene.canvas.height
@@ -195,11 +195,12 @@ try {
   lap('page')
 
   // The views: the Earth from 4,000 km over the prime meridian (both level-0 tiles, the DEM a
-  // speck: the rest must be the bare ellipsoid), then the DEM tile from the south, lit.
+  // speck: the rest must be the bare ellipsoid), then the DEM tile from its south edge at 9 km,
+  // looking north to the main ridge, lit.
   const lonC = dem.lon0 + 0.5; const latC = dem.lat0 + 0.5
   const views = [
     { name: 'earth', width: 320, height: 200, lit: false, camera: { lon: 0, lat: latC - 4, height: 4e6, heading: 0, pitch: -90 }, pixelDiffers: PIXEL_DIFFERS },
-    { name: 'dem', width, height, lit: true, saved: true, camera: { lon: lonC, lat: dem.lat0 - 0.25, height: 20000, heading: 0, pitch: -22 }, pixelDiffers: PIXEL_DIFFERS }
+    { name: 'dem', width, height, lit: true, saved: true, camera: { lon: dem.lon0 + 0.45, lat: dem.lat0 + 0.05, height: 9000, heading: 0, pitch: -16 }, pixelDiffers: PIXEL_DIFFERS }
   ]
   let lo = Infinity; let hi = -Infinity
   for (let r = 0; r < dem.n; ++r) for (let c = 0; c < dem.n; ++c) { const h = dem.height(c, r); if (h !== -32768) { lo = Math.min(lo, h); hi = Math.max(hi, h) } }
