@@ -153,29 +153,44 @@ static bool data_dependent(const EraserState &s) {
            s.input.options.max_nodes <= 0 && !s.input.options.shallow_history;
 }
 
-// Whether some triangle over three ring nodes (counter-clockwise, covering the sample at p,
-// edges included) keeps p within `limit`: none, and no triangulation of the hole does. Every
-// triangle a triangulation may use is among these, its plane computed as the min-max cost computes
-// it, and a hair over the limit still counts as within (rounding never prunes a triangulation).
-// The erased node and the ears' worst sample settle most of the holes whose min-max fails this way,
-// at the price of a few plane evaluations, where the dynamic programme scans the triangles'
-// samples (docs/decisions/024-simplify-speed.md).
-static bool some_triangle_holds(const Hole &h, const glm::dvec3 &p, double limit) {
-    const glm::dvec2 x(p.x, p.y);
-    std::array<double, k_max_ring> side; // orient(q[i], q[i + 1], x): > 0 on the ring's inside
-    for (int i = 0; i < h.n; ++i)
-        side[std::size_t(i)] = orient(h.q[i], h.q[(i + 1) % h.n], x);
+// Whether some triangle over three ring nodes (counter-clockwise, its closed lattice triangle
+// holding the sample) keeps the sample within `limit`: none, and no triangulation of the hole does.
+// Every triangle a triangulation may use is among these, its plane computed as the min-max cost
+// computes it, and a hair over the limit still counts as within (rounding never prunes a
+// triangulation). The erased node and the
+// ears' worst sample settle most of the holes whose min-max fails this way, at the price of a few
+// plane evaluations, where the dynamic programme scans the triangles' samples
+// (docs/decisions/024-simplify-speed.md).
+static bool some_triangle_holds(const EraserState &s, const Hole &h, std::uint32_t sample,
+                                double limit) {
+    const std::int64_t w = s.input.grid_w, xs = sample % w, ys = sample / w;
+    const glm::dvec3 p = to_glm(node_point(s, sample));
     const double stop = limit * (1.0 + 1e-9);
+    // side[a][b]: twice the signed area of (ring node a, ring node b, the sample), lattice units.
+    std::array<std::int64_t, k_max_ring> rx, ry;
+    std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> side;
+    for (int i = 0; i < h.n; ++i) {
+        const std::int64_t u = node_of(s, h.r[i]);
+        rx[std::size_t(i)] = u % w - xs;
+        ry[std::size_t(i)] = u / w - ys;
+    }
     for (int a = 0; a < h.n; ++a)
         for (int b = a + 1; b < h.n; ++b) {
-            const double ab = b == a + 1 ? side[std::size_t(a)] : orient(h.q[a], h.q[b], x);
-            if (ab < 0.0)
-                continue;
+            side[std::size_t(a)][std::size_t(b)] = rx[a] * ry[b] - ry[a] * rx[b];
+            side[std::size_t(b)][std::size_t(a)] = -side[std::size_t(a)][std::size_t(b)];
+        }
+    for (int a = 0; a < h.n; ++a)
+        for (int b = a + 1; b < h.n; ++b)
             for (int c = b + 1; c < h.n; ++c) {
-                if (!(orient(h.q[a], h.q[b], h.q[c]) > 0.0) ||
-                    (c == b + 1 ? side[std::size_t(b)] : orient(h.q[b], h.q[c], x)) < 0.0 ||
-                    (a == 0 && c == h.n - 1 ? side[std::size_t(c)] : orient(h.q[c], h.q[a], x)) <
-                        0.0)
+                const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)],
+                                   s1 = side[std::size_t(b)][std::size_t(c)],
+                                   s2 = side[std::size_t(c)][std::size_t(a)];
+                if (!((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)))
+                    continue;
+                // The plane at the sample lies between the corners' heights.
+                const double lo = std::min({h.p[a].z, h.p[b].z, h.p[c].z}),
+                             hi = std::max({h.p[a].z, h.p[b].z, h.p[c].z});
+                if (p.z - hi > stop || lo - p.z > stop || !(orient(h.q[a], h.q[b], h.q[c]) > 0.0))
                     continue;
                 const TrianglePlane plane =
                     triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z)
@@ -183,7 +198,6 @@ static bool some_triangle_holds(const Hole &h, const glm::dvec3 &p, double limit
                 if (plane.vertical(p) <= stop)
                     return true;
             }
-        }
     return false;
 }
 
@@ -192,8 +206,8 @@ static bool some_triangle_holds(const Hole &h, const glm::dvec3 &p, double limit
 // when none does. The samples that put a triangle over its stop (the ears' worst first) are tried
 // first on the next ones: the triangles overlap, and most fail on the same few samples.
 static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
-    if (!some_triangle_holds(h, to_glm(s.input.mesh->point(h.v)), limit) ||
-        (h.star_dev > limit && !some_triangle_holds(h, to_glm(node_point(s, h.star)), limit)))
+    if (!some_triangle_holds(s, h, node_of(s, h.v), limit) ||
+        (h.star_dev > limit && !some_triangle_holds(s, h, h.star, limit)))
         return false;
     std::array<RingTriangle, k_max_ring> tri;
     std::array<glm::dvec3, 8> witness;
