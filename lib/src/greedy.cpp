@@ -135,45 +135,6 @@ struct Inserter {
 
     // ---- Scans ----
 
-    // A triangle whose box holds at most this many samples is scanned over its box with the
-    // corners' edge tests, one add each per sample, where a row span costs two divisions: most
-    // triangles hold a few samples (docs/decisions/024-simplify-speed.md).
-    static constexpr std::int64_t k_small_box = 64;
-
-    // scan's samples of the triangle with nodes na, nb, nc over the box [x0, x1] x [y0, y1].
-    void scan_box(std::int32_t na, std::int32_t nb, std::int32_t nc,
-                  const TrianglePlane::Rows &plane, std::int64_t x0, std::int64_t x1,
-                  std::int64_t y0, std::int64_t y1, double &worst, std::uint32_t &at) const {
-        if (orient(na, nb, nc) < 0)
-            std::swap(nb, nc);
-        else if (orient(na, nb, nc) == 0)
-            return; // no samples, as LatticeTriangle has it
-        // Edge k's test at (x, y): (x_l - x_k) (y - y_k) - (y_l - y_k) (x - x_k) >= 0 inside.
-        const std::int32_t n[3] = {na, nb, nc};
-        std::int64_t step[3], start[3];
-        for (int k = 0; k < 3; ++k) {
-            const std::int32_t a = n[k], b = n[(k + 1) % 3];
-            step[k] = -std::int64_t(py[b] - py[a]);
-            start[k] = std::int64_t(px[b] - px[a]) * (y0 - py[a]) + step[k] * (x0 - px[a]);
-        }
-        for (std::int64_t r = y0; r <= y1; ++r) {
-            const float *row = hf.z.data() + r * w;
-            const double base = plane.start(double(r));
-            std::int64_t e0 = start[0], e1 = start[1], e2 = start[2];
-            for (std::int64_t c = x0; c <= x1; ++c, e0 += step[0], e1 += step[1], e2 += step[2]) {
-                if ((e0 | e1 | e2) < 0)
-                    continue;
-                const double d = plane.deviation(base, double(c), double(row[c]));
-                if (d > worst) {
-                    worst = d;
-                    at = std::uint32_t(r * w + c);
-                }
-            }
-            for (int k = 0; k < 3; ++k)
-                start[k] += std::int64_t(px[n[(k + 1) % 3]] - px[n[k]]);
-        }
-    }
-
     // scan's samples of the triangle with corner samples sa, sb, sc, a row span at a time.
     void scan_rows(std::uint32_t sa, std::uint32_t sb, std::uint32_t sc,
                    const TrianglePlane::Rows &plane, double &worst, std::uint32_t &at) const {
@@ -217,12 +178,17 @@ struct Inserter {
             {px[na], py[na], hf.z[sa]}, {px[nb], py[nb], hf.z[sb]}, {px[nc], py[nc], hf.z[sc]});
         double worst = 0.0;
         std::uint32_t at = sa;
-        const std::int64_t x0 = std::min({px[na], px[nb], px[nc]}),
-                           x1 = std::max({px[na], px[nb], px[nc]}),
-                           y0 = std::min({py[na], py[nb], py[nc]}),
-                           y1 = std::max({py[na], py[nb], py[nc]});
-        if ((x1 - x0 + 1) * (y1 - y0 + 1) <= k_small_box)
-            scan_box(na, nb, nc, plane, x0, x1, y0, y1, worst, at);
+        const std::int64_t x[3] = {px[na], px[nb], px[nc]}, y[3] = {py[na], py[nb], py[nc]};
+        if (box_samples(x, y) <= k_small_box)
+            visit_box(x, y, [&](std::int64_t c, std::int64_t r) {
+                const double d = plane.deviation(plane.start(double(r)), double(c),
+                                                 double(hf.z[std::size_t(r * w + c)]));
+                if (d > worst) {
+                    worst = d;
+                    at = std::uint32_t(r * w + c);
+                }
+                return true;
+            });
         else
             scan_rows(sa, sb, sc, plane, worst, at);
         candidate[t] = at;

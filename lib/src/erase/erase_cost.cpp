@@ -219,6 +219,13 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
     };
     if (h.star_dev > limit)
         add_witness(h.star);
+    const std::int64_t w = s.input.grid_w;
+    const Samples lattice = samples(s.input);
+    std::array<std::int64_t, k_max_ring> rx, ry; // the ring's lattice columns and rows
+    for (int i = 0; i < h.n; ++i) {
+        rx[std::size_t(i)] = std::int64_t(node_of(s, h.r[i])) % w;
+        ry[std::size_t(i)] = std::int64_t(node_of(s, h.r[i])) / w;
+    }
     const auto cost = [&](int a, int b, int c, double stop) {
         const TrianglePlane plane =
             triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z).plane;
@@ -237,6 +244,20 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
             }
         }
         double most = 0.0;
+        const std::int64_t x[3] = {rx[a], rx[b], rx[c]}, y[3] = {ry[a], ry[b], ry[c]};
+        if (box_samples(x, y) <= k_small_box) {
+            visit_box(x, y, [&](std::int64_t col, std::int64_t row) {
+                if ((col == x[0] && row == y[0]) || (col == x[1] && row == y[1]) ||
+                    (col == x[2] && row == y[2]))
+                    return true; // a corner
+                most = std::max(most, deviation(lattice.at(col, row)));
+                if (!(most > stop))
+                    return true;
+                add_witness(std::uint32_t(row * w + col));
+                return false;
+            });
+            return most;
+        }
         scan_lattice(
             s, node_of(s, h.r[a]), node_of(s, h.r[b]), node_of(s, h.r[c]),
             [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
