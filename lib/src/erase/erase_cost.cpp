@@ -153,19 +153,20 @@ static bool data_dependent(const EraserState &s) {
            s.input.options.max_nodes <= 0 && !s.input.options.shallow_history;
 }
 
-// Whether some triangle over three ring nodes (counter-clockwise, its closed lattice triangle
-// holding the sample) keeps the sample within `limit`: none, and no triangulation of the hole does.
-// Every triangle a triangulation may use is among these, its plane computed as the min-max cost
-// computes it, and a hair over the limit still counts as within (rounding never prunes a
-// triangulation). The erased node and the
-// ears' worst sample settle most of the holes whose min-max fails this way, at the price of a few
-// plane evaluations, where the dynamic programme scans the triangles' samples
-// (docs/decisions/024-simplify-speed.md).
-static bool some_triangle_holds(const EraserState &s, const Hole &h, std::uint32_t sample,
-                                double limit) {
+// Whether a sample deviates more than `limit` (vertically) from every triangle over three ring
+// nodes (counter-clockwise, its closed lattice triangle holding the sample); a lower bound of the
+// least of those deviations in `least` (infinite when none holds the sample). Every triangle a
+// triangulation of the hole may use is among these, its plane computed as the erase computes it,
+// and a hair over the limit still counts as within (rounding never rules a triangulation out). When
+// the erased node or the ears' worst sample is over the limit under all of them, no triangulation
+// holds the bound: most failing evaluations end here, before the ears' samples are scanned or the
+// min-max hole's triangles (docs/decisions/024-simplify-speed.md).
+static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32_t sample,
+                                double limit, double &least) {
     const std::int64_t w = s.input.grid_w, xs = sample % w, ys = sample / w;
     const glm::dvec3 p = to_glm(node_point(s, sample));
-    const double stop = limit * (1.0 + 1e-9);
+    const double stop = limit + 1e-9 * (limit + std::abs(p.z));
+    least = INFINITY;
     // side[a][b]: twice the signed area of (ring node a, ring node b, the sample), lattice units.
     std::array<std::int64_t, k_max_ring> rx, ry;
     std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> side;
@@ -187,18 +188,35 @@ static bool some_triangle_holds(const EraserState &s, const Hole &h, std::uint32
                                    s2 = side[std::size_t(c)][std::size_t(a)];
                 if (!((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)))
                     continue;
-                // The plane at the sample lies between the corners' heights.
-                const double lo = std::min({h.p[a].z, h.p[b].z, h.p[c].z}),
-                             hi = std::max({h.p[a].z, h.p[b].z, h.p[c].z});
-                if (p.z - hi > stop || lo - p.z > stop || !(orient(h.q[a], h.q[b], h.q[c]) > 0.0))
+                if (!(orient(h.q[a], h.q[b], h.q[c]) > 0.0))
                     continue;
+                // The plane at the sample lies between the corners' heights.
+                const double below = p.z - std::max({h.p[a].z, h.p[b].z, h.p[c].z}),
+                             above = std::min({h.p[a].z, h.p[b].z, h.p[c].z}) - p.z;
+                if (below > stop || above > stop) {
+                    least = std::min(least, std::max(below, above));
+                    continue;
+                }
                 const TrianglePlane plane =
                     triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z)
                         .plane;
-                if (plane.vertical(p) <= stop)
-                    return true;
+                least = std::min(least, plane.vertical(p));
+                if (least <= stop)
+                    return false;
             }
-    return false;
+    return true;
+}
+
+// Whether the erase of the node in h cannot hold `limit` under any triangulation of its hole, on a
+// grid TIN at a vertical bound (data_dependent): the node deviates more under every ring triangle
+// that covers it (over_every_triangle). Then h's SP is a lower bound of the erase's cost.
+static bool beyond_any_triangulation(const EraserState &s, Hole &h, double limit) {
+    double least = 0.0;
+    if (!data_dependent(s) || !over_every_triangle(s, h, node_of(s, h.v), limit, least))
+        return false;
+    h.sp = h.delta = h.star_dev = least;
+    h.star = node_of(s, h.v);
+    return true;
 }
 
 // The hole's triangulation whose largest sample deviation is least (min_max_triangulation, each
@@ -206,8 +224,8 @@ static bool some_triangle_holds(const EraserState &s, const Hole &h, std::uint32
 // when none does. The samples that put a triangle over its stop (the ears' worst first) are tried
 // first on the next ones: the triangles overlap, and most fail on the same few samples.
 static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
-    if (!some_triangle_holds(s, h, node_of(s, h.v), limit) ||
-        (h.star_dev > limit && !some_triangle_holds(s, h, h.star, limit)))
+    double least = 0.0;
+    if (h.star_dev > limit && over_every_triangle(s, h, h.star, limit, least))
         return false;
     std::array<RingTriangle, k_max_ring> tri;
     std::array<glm::dvec3, 8> witness;
@@ -324,6 +342,8 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     h.ntri = clip_ears(h.q.data(), n, h.tri.data());
     if (h.ntri != n - 2)
         return false;
+    if (beyond_any_triangulation(s, h, limit))
+        return true;
     frame_triangles(h, s.input.xy);
     if (!s.input.xy)
         for (int t = 0; t < h.ntri; ++t) {
