@@ -165,7 +165,7 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
                                 double limit, double &least) {
     const std::int64_t w = s.input.grid_w, xs = sample % w, ys = sample / w;
     const glm::dvec3 p = to_glm(node_point(s, sample));
-    const double stop = limit + 1e-9 * (limit + std::abs(p.z));
+    const double stop = limit * (1.0 + 1e-6) + 1e-9 * std::abs(p.z);
     least = INFINITY;
     // side[a][b]: twice the signed area of (ring node a, ring node b, the sample), lattice units.
     std::array<std::int64_t, k_max_ring> rx, ry;
@@ -197,10 +197,12 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
                     least = std::min(least, std::max(below, above));
                     continue;
                 }
-                const TrianglePlane plane =
-                    triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z)
-                        .plane;
-                least = std::min(least, plane.vertical(p));
+                // The plane's height at the sample from its exact barycentric weights (lattice
+                // areas): within a few ulp of the plane the erase computes.
+                const double z =
+                    (h.p[a].z * double(s1) + h.p[b].z * double(s2) + h.p[c].z * double(s0)) /
+                    double(s0 + s1 + s2);
+                least = std::min(least, std::abs(p.z - z));
                 if (least <= stop)
                     return false;
             }
