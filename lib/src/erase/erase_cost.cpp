@@ -156,8 +156,9 @@ static bool data_dependent(const EraserState &s) {
 // Whether a sample deviates more than `limit` (vertically) from every triangle over three ring
 // nodes (counter-clockwise, its closed lattice triangle holding the sample); a lower bound of the
 // least of those deviations in `least` (infinite when none holds the sample). Every triangle a
-// triangulation of the hole may use is among these, its plane computed as the erase computes it,
-// and a hair over the limit still counts as within (rounding never rules a triangulation out). When
+// triangulation of the hole may use is among these, and a hair over the limit still counts as
+// within: the heights here, from the sample's exact lattice areas, round otherwise than the erase's
+// planes, and the rounding never rules a triangulation out. When
 // the erased node or the ears' worst sample is over the limit under all of them, no triangulation
 // holds the bound: most failing evaluations end here, before the ears' samples are scanned or the
 // min-max hole's triangles (docs/decisions/024-simplify-speed.md).
