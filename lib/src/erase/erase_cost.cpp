@@ -212,7 +212,8 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
 
 // Whether the erase of the node in h cannot hold `limit` under any triangulation of its hole, on a
 // grid TIN at a vertical bound (data_dependent): the node deviates more under every ring triangle
-// that covers it (over_every_triangle). Then h's SP is a lower bound of the erase's cost.
+// that covers it (over_every_triangle). Then h's SP is a lower bound of the erase's cost, found
+// before the ears are clipped (a ring the ears cannot clip is not erased either way).
 static bool beyond_any_triangulation(const EraserState &s, Hole &h, double limit) {
     double least = 0.0;
     if (!data_dependent(s) || !over_every_triangle(s, h, node_of(s, h.v), limit, least))
@@ -342,11 +343,11 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
             if (orient(glm::dvec2(0.0), h.q[i], h.q[(i + 1) % n]) <= 0.0)
                 return false; // the fan is not star-shaped in its mean plane
     }
+    if (beyond_any_triangulation(s, h, limit))
+        return true;
     h.ntri = clip_ears(h.q.data(), n, h.tri.data());
     if (h.ntri != n - 2)
         return false;
-    if (beyond_any_triangulation(s, h, limit))
-        return true;
     frame_triangles(h, s.input.xy);
     if (!s.input.xy)
         for (int t = 0; t < h.ntri; ++t) {
