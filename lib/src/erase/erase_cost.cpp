@@ -166,7 +166,9 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
                                 double limit, double &least) {
     const std::int64_t w = s.input.grid_w, xs = sample % w, ys = sample / w;
     const glm::dvec3 p = to_glm(node_point(s, sample));
-    const double stop = limit * (1.0 + 1e-6) + 1e-9 * std::abs(p.z);
+    // The hair: far under the erase's own (its limit sits 1e-6 under the bound, where quantised
+    // heights put many deviations exactly at the bound), far over the heights' rounding.
+    const double stop = limit * (1.0 + 1e-9) + 1e-12 * std::abs(p.z);
     least = INFINITY;
     // side[a][b]: twice the signed area of (ring node a, ring node b, the sample), lattice units.
     std::array<std::int64_t, k_max_ring> rx, ry;
