@@ -121,12 +121,14 @@ static void apply_threads(int n) {
 // The heap, set for one run over large arrays (docs/decisions/024-simplify-speed.md). By default
 // glibc maps each block over 128 KiB on its own, unmaps it when freed and trims the heap's top, so
 // each next array faults its pages in again, 4 KiB at a time: on a VM a few microseconds each, a
-// third of `simplify`'s CPU time on a small DEM. Here every block comes from the heap, a freed one
-// stays there for the next, and the heap reserves its first GiB at once, advised for 2 MiB pages
-// (one fault where there were 512). Address space only: a page costs memory once written.
+// third of `simplify`'s CPU time on a small DEM. Here blocks up to glibc's largest threshold
+// (32 MiB; larger ones are still mapped apart, and their memory goes back when freed) come from
+// the heap, a freed one stays there for the next, and the heap reserves its first GiB at once,
+// advised for 2 MiB pages (one fault where there were 512). Address space only: a page costs
+// memory once written.
 static void tune_heap() {
     constexpr int reserve = 1 << 30;
-    mallopt(M_MMAP_MAX, 0);
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
     mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
     mallopt(M_TOP_PAD, reserve);
     char *const before = static_cast<char *>(sbrk(0));
