@@ -461,6 +461,8 @@ void run(const Options &options) {
     Stopwatch section;
     Bench b;
     b.options = options;
+    std::filesystem::create_directories(options.tmp); // the PNGs and outputs are written there
+    std::filesystem::create_directories(options.out);
     const std::vector<double> all = {0.5, 1, 2, 5, 10, 20};
     const std::vector<double> few = {1, 5, 20};
     std::vector<Input> inputs;
