@@ -487,10 +487,10 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
     }
     std::vector<glm::dvec3> xyz;
     for (std::size_t k = 0; k < vs.size(); ++k)
-        xyz.push_back(tiles::ecef(
-            rect.west + double(vs[k].u) / k_quantized_max * (rect.east - rect.west),
-            rect.south + double(vs[k].v) / k_quantized_max * (rect.north - rect.south),
-            decoded_height(q, q.codes[k])));
+        xyz.push_back(
+            tiles::ecef(rect.west + double(vs[k].u) / k_quantized_max * (rect.east - rect.west),
+                        rect.south + double(vs[k].v) / k_quantized_max * (rect.north - rect.south),
+                        decoded_height(q, q.codes[k])));
     constexpr double k_eps = 1e-9;
     for (std::size_t t = 0; t < triangles.size(); t += 3) {
         std::array<glm::dvec3, 3> c;
