@@ -8,9 +8,12 @@
 // tiles on disk; per tile: indices in range, triangles counter-clockwise in u/v, the four edge lists
 // hold exactly the vertices on their edges, every vertex inside the bounding sphere, the horizon
 // occlusion point as CesiumJS computes one (EllipsoidalOccluder) or farther; neighbours of a level
-// share their common edge vertex for vertex (the same place, the same decoded height); and every
-// DEM sample inside a tile is within the level's error of the decoded TIN (where DEMs overlap, the
-// first one's samples, as tinlod takes them).
+// share their common edge vertex for vertex (the same place, the same decoded height); every DEM
+// sample inside a tile is within the level's error of the decoded TIN (where DEMs overlap, the
+// first one's samples, as tinlod takes them), and within it of the TIN as CesiumJS draws it: the
+// sample's Earth-centred position against the point of its triangle, drawn flat between its
+// vertices' Earth-centred positions, at the sample's place in the triangle (a point of the drawn
+// surface, so its distance bounds the sample's distance to that surface).
 import decoder from '@here/quantized-mesh-decoder'
 import fs from 'node:fs'
 import path from 'node:path'
@@ -72,7 +75,21 @@ const tiles = new Map()
 for (const k of onDisk) tiles.set(k, readTile(path.join(dir, `${k}.terrain`)))
 
 const dems = checkError ? demPaths.map(readHgt) : []
-const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, worst_chord_ratio: 0, levels: {} }
+// Each DEM's rows and columns as ecef() reads them, once: a sample's position is then a few
+// products.
+const E2 = 1 - (WGS84_B * WGS84_B) / (WGS84_A * WGS84_A)
+for (const dem of dems) {
+  const idx = [...Array(dem.n).keys()]
+  const rows = idx.map((r) => dem.lat(r) * Math.PI / 180)
+  const cols = idx.map((c) => dem.lon(c) * Math.PI / 180)
+  dem.rowTrig = rows.map((p) => ({ cos: Math.cos(p), sin: Math.sin(p), n: WGS84_A / Math.sqrt(1 - E2 * Math.sin(p) ** 2) }))
+  dem.colTrig = cols.map((l) => ({ cos: Math.cos(l), sin: Math.sin(l) }))
+  dem.ecef = (c, r, h) => {
+    const p = dem.rowTrig[r]; const l = dem.colTrig[c]
+    return [(p.n + h) * p.cos * l.cos, (p.n + h) * p.cos * l.sin, (p.n * (1 - E2) + h) * p.sin]
+  }
+}
+const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, worst_drawn_ratio: 0, worst_chord_ratio: 0, levels: {} }
 // CesiumJS draws a triangle flat between its vertices' Earth-centred positions: that may stray from
 // the tile's surface (heights linear in u/v) by at most this share of the level's error.
 const CHORD_SHARE = 1 / 16
@@ -99,7 +116,7 @@ for (const [key, t] of tiles) {
   const tri = t.triangleIndices
   summary.tiles++
   summary.triangles += tri.length / 3
-  const lv = (summary.levels[z] ??= { tiles: 0, triangles: 0, worst_ratio: 0 })
+  const lv = (summary.levels[z] ??= { tiles: 0, triangles: 0, worst_ratio: 0, worst_drawn_ratio: 0 })
   lv.tiles++; lv.triangles += tri.length / 3
   for (let i = 0; i < tri.length; ++i) if (tri[i] >= t.n) { fail(`${key}: index ${tri[i]} of ${t.n} vertices`); break }
   let flipped = 0
@@ -124,8 +141,10 @@ for (const [key, t] of tiles) {
   const hopLength = Math.hypot(...hop)
   const dir = hop.map((c) => c / hopLength)
   let magnitude = 0
+  const xyz = []
+  for (let i = 0; i < t.n; ++i) xyz.push(ecef(lon(t.u[i]), lat(t.v[i]), t.h[i]))
   for (let i = 0; i < t.n; ++i) {
-    const p = ecef(lon(t.u[i]), lat(t.v[i]), t.h[i])
+    const p = xyz[i]
     if (Math.hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]) > hd.boundingSphereRadius * (1 + 1e-9) + 1e-6) {
       fail(`${key}: vertex ${i} outside the bounding sphere`); break
     }
@@ -140,7 +159,7 @@ for (const [key, t] of tiles) {
   const places = [[1 / 3, 1 / 3, 1 / 3], [0.5, 0.5, 0], [0, 0.5, 0.5], [0.5, 0, 0.5], [2 / 3, 1 / 6, 1 / 6], [1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]]
   for (let i = 0; i < tri.length; i += 3) {
     const k = [tri[i], tri[i + 1], tri[i + 2]]
-    const corners = k.map((j) => ecef(lon(t.u[j]), lat(t.v[j]), t.h[j]))
+    const corners = k.map((j) => xyz[j])
     for (const w of places) {
       const at = (a) => w[0] * a[0] + w[1] * a[1] + w[2] * a[2]
       const flat = [0, 1, 2].map((c) => at(corners.map((p) => p[c])))
@@ -174,33 +193,34 @@ for (const [key, t] of tiles) {
       for (let bx = Math.floor(Math.min(...us) / cell); bx <= Math.floor(Math.max(...us) / cell); ++bx) buckets[by * B + bx].push(i)
     }
   }
-  // The height of the triangle holding (pu, pv), or NaN; the last triangle found is tried first
-  // (samples come row by row, most in the triangle of the one before).
+  // The triangle holding (pu, pv) and the place's barycentric weights, or null; the last triangle
+  // found is tried first (samples come row by row, most in the triangle of the one before).
   let last = -1
   const inTriangle = (i, pu, pv) => {
     const a = tri[i]; const b = tri[i + 1]; const c = tri[i + 2]
     const d = (t.v[b] - t.v[c]) * (t.u[a] - t.u[c]) + (t.u[c] - t.u[b]) * (t.v[a] - t.v[c])
-    if (d === 0) return NaN
+    if (d === 0) return null
     const l1 = ((t.v[b] - t.v[c]) * (pu - t.u[c]) + (t.u[c] - t.u[b]) * (pv - t.v[c])) / d
     const l2 = ((t.v[c] - t.v[a]) * (pu - t.u[c]) + (t.u[a] - t.u[c]) * (pv - t.v[c])) / d
     const l3 = 1 - l1 - l2
     const eps = -1e-9
-    return l1 >= eps && l2 >= eps && l3 >= eps ? l1 * t.h[a] + l2 * t.h[b] + l3 * t.h[c] : NaN
+    return l1 >= eps && l2 >= eps && l3 >= eps ? [a, b, c, l1, l2, l3] : null
   }
-  const heightAt = (pu, pv) => {
+  const locate = (pu, pv) => {
     if (last >= 0) {
-      const h = inTriangle(last, pu, pv)
-      if (!Number.isNaN(h)) return h
+      const w = inTriangle(last, pu, pv)
+      if (w) return w
     }
     const bx = Math.min(B - 1, Math.floor(pu / cell)); const by = Math.min(B - 1, Math.floor(pv / cell))
     for (const i of buckets[by * B + bx]) {
-      const h = inTriangle(i, pu, pv)
-      if (!Number.isNaN(h)) { last = i; return h }
+      const w = inTriangle(i, pu, pv)
+      if (w) { last = i; return w }
     }
-    return NaN
+    return null
   }
   const bound = levelError(z)
   let worst = 0
+  let worstDrawn = 0
   dems.forEach((dem, k) => {
     const earlier = dems.slice(0, k)
     const c0 = Math.max(0, Math.ceil(dem.col(rect.west))); const c1 = Math.min(dem.n - 1, Math.floor(dem.col(rect.east)))
@@ -213,16 +233,23 @@ for (const [key, t] of tiles) {
         const sample = dem.height(c, r)
         if (pu < 0 || pu > 32767 || sample === -32768) continue
         if (earlier.length && earlier.some((d) => d.covers(dem.lon(c), dem.lat(r)))) continue
-        const h = heightAt(pu, pv)
+        const w = locate(pu, pv)
         summary.samples++
-        if (Number.isNaN(h)) { fail(`${key}: sample (${c}, ${r}) under no triangle`); continue }
-        worst = Math.max(worst, Math.abs(h - sample) / bound)
+        if (!w) { fail(`${key}: sample (${c}, ${r}) under no triangle`); continue }
+        const [a, b, cc, l1, l2, l3] = w
+        worst = Math.max(worst, Math.abs(l1 * t.h[a] + l2 * t.h[b] + l3 * t.h[cc] - sample) / bound)
+        const p = dem.ecef(c, r, sample)
+        const d = [0, 1, 2].map((k) => l1 * xyz[a][k] + l2 * xyz[b][k] + l3 * xyz[cc][k] - p[k])
+        worstDrawn = Math.max(worstDrawn, Math.hypot(d[0], d[1], d[2]) / bound)
       }
     }
   })
   if (worst > 1) fail(`${key}: error ${(worst * bound).toFixed(3)} m over the level's ${bound.toFixed(3)} m`)
+  if (worstDrawn > 1) fail(`${key}: drawn flat, ${(worstDrawn * bound).toFixed(3)} m from a sample, over the level's ${bound.toFixed(3)} m`)
   lv.worst_ratio = Math.max(lv.worst_ratio, worst)
+  lv.worst_drawn_ratio = Math.max(lv.worst_drawn_ratio, worstDrawn)
   summary.worst_ratio = Math.max(summary.worst_ratio, worst)
+  summary.worst_drawn_ratio = Math.max(summary.worst_drawn_ratio, worstDrawn)
 }
 
 console.log(JSON.stringify({ ...summary, failures }))

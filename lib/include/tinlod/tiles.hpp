@@ -103,8 +103,9 @@ struct TileMesh {
     std::vector<std::uint32_t> west, south, east, north; // edge vertices, in CesiumJS's order
     float min_height = 0, max_height = 0;                // the header's height range
     std::vector<std::uint8_t> normals;                   // 2 bytes per vertex, or empty
-    // Measured as a decoder reads the tile: the largest |TIN - sample| over the covered posts
-    // inside the tile, and that over level_error(z).
+    // Measured as a decoder reads the tile: over the covered posts inside the tile, the largest
+    // of |TIN - sample| and the sample's distance to its triangle as CesiumJS draws it (flat
+    // between Earth-centred vertices), and that over level_error(z).
     double max_error = 0.0;
     double error_ratio = 0.0;
     std::int64_t samples = 0; // covered posts inside the tile (measured)

@@ -29,9 +29,10 @@ using tiles::k_quantized_max;
 
 namespace {
 
-// Share of the level's error the edges and the interior are built to: the rest is headroom for
-// the u/v rounding of the vertices, which the measure after quantization checks.
-constexpr double k_build_share = 15.0 / 16.0;
+// Share of the level's error the edges and the interior are built to: k_chord_share of the rest is
+// for the triangles drawn flat, the rest for the u/v rounding of the vertices. The measure after
+// quantization checks the sum: every post within the error of the tile as CesiumJS draws it.
+constexpr double k_build_share = 7.0 / 8.0;
 // A post within this many u/v units of an edge counts as on it (so no vertex rounds onto the edge
 // from inside it); the interior starts past it.
 constexpr double k_snap_units = 1.0;
@@ -282,7 +283,9 @@ struct InteriorTin {
 InteriorTin interior_tin(const Heightfield &win, double bound) {
     GreedyOptions go;
     go.max_error = bound;
-    go.seed_step = 16;                // the erase drops the seed's nodes the insertion did not need
+    // From the window's corners (no seed grid): the erase would spend more on dropping a seed's
+    // nodes than the insertion saves on its first scans.
+    go.seed_step = 0;
     go.slope_margin = std::sqrt(0.5); // a vertex moves by up to half a unit in u and v
     const GreedyTin greedy = greedy_tin(win, go);
     Mesh mesh = to_sparse_lattice_mesh(greedy.tin, win);
@@ -434,9 +437,13 @@ double decoded_height(const Quantized &q, std::uint16_t code) {
 }
 
 // The measure: every covered post inside the tile against the quantized TIN, by rows of posts
-// under each triangle. Counts the triangles that rounding turned over (not counter-clockwise).
+// under each triangle, twice: vertically, and as CesiumJS draws the triangle, flat between its
+// vertices' Earth-centred positions (the post's distance to the drawn point at its place in the
+// triangle, on the drawn surface: so at least its distance to that surface). Counts the triangles
+// that rounding turned over (not counter-clockwise).
 struct Measure {
-    double max_error = 0.0;
+    double max_error = 0.0; // vertical
+    double max_drawn = 0.0;
     std::int64_t samples = 0;
     std::int64_t flipped = 0;
     std::int64_t missed = 0; // covered posts inside the tile under no triangle
@@ -465,6 +472,27 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
         pv[std::size_t(j - j0)] = offset_units(g.lat0, g.dlat, j, rect.south, z);
     const auto inside = [](double x) { return x >= 0.0 && x <= double(k_quantized_max); };
     std::vector<std::uint8_t> seen((i1 - i0 + 1) * (j1 - j0 + 1), 0);
+    // The posts' Earth-centred frames (tiles::ecef's terms per column and row) and the vertices'
+    // positions as decoded.
+    const double e2 =
+        1.0 - (tiles::k_wgs84_b * tiles::k_wgs84_b) / (tiles::k_wgs84_a * tiles::k_wgs84_a);
+    std::vector<glm::dvec2> col_trig(pu.size());
+    std::vector<glm::dvec3> row_trig(pv.size());
+    for (std::size_t ir = 0; ir < pu.size(); ++ir) {
+        const double l = (g.lon0 + double(i0 + std::int64_t(ir)) * g.dlon) * M_PI / 180.0;
+        col_trig[ir] = {std::cos(l), std::sin(l)};
+    }
+    for (std::size_t jr = 0; jr < pv.size(); ++jr) {
+        const double p = (g.lat0 + double(j0 + std::int64_t(jr)) * g.dlat) * M_PI / 180.0;
+        row_trig[jr] = {std::cos(p), std::sin(p),
+                        tiles::k_wgs84_a / std::sqrt(1.0 - e2 * std::sin(p) * std::sin(p))};
+    }
+    std::vector<glm::dvec3> xyz;
+    for (std::size_t k = 0; k < vs.size(); ++k)
+        xyz.push_back(
+            tiles::ecef(rect.west + double(vs[k].u) / k_quantized_max * (rect.east - rect.west),
+                        rect.south + double(vs[k].v) / k_quantized_max * (rect.north - rect.south),
+                        decoded_height(q, q.codes[k])));
     constexpr double k_eps = 1e-9;
     for (std::size_t t = 0; t < triangles.size(); t += 3) {
         std::array<glm::dvec3, 3> c;
@@ -480,6 +508,9 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
         if (area2 <= 0.0)
             continue;
         const TrianglePlane plane(c[0], c[1], c[2]);
+        const PlaneWeights w = plane_weights(glm::dvec2(c[0]), glm::dvec2(c[1]), glm::dvec2(c[2]));
+        const glm::dvec3 &xa = xyz[triangles[t]], &xb = xyz[triangles[t + 1]],
+                         &xc = xyz[triangles[t + 2]];
         const double vlo = std::min({c[0].y, c[1].y, c[2].y}),
                      vhi = std::max({c[0].y, c[1].y, c[2].y});
         const auto jl = std::lower_bound(pv.begin(), pv.end(), vlo - k_eps) - pv.begin();
@@ -512,6 +543,15 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
                     continue;
                 seen[std::size_t(jr) * pu.size() + std::size_t(ir)] = 1;
                 m.max_error = std::max(m.max_error, std::abs(plane.height(x, y) - double(h)));
+                const double wa = glm::dot(w.a, glm::dvec3(x, y, 1.0)),
+                             wb = glm::dot(w.b, glm::dvec3(x, y, 1.0));
+                const glm::dvec2 &cl = col_trig[std::size_t(ir)];
+                const glm::dvec3 &rw = row_trig[std::size_t(jr)];
+                const double up = rw.z + double(h);
+                const glm::dvec3 post{up * rw.x * cl.x, up * rw.x * cl.y,
+                                      (rw.z * (1.0 - e2) + double(h)) * rw.y};
+                m.max_drawn = std::max(
+                    m.max_drawn, glm::length(wa * xa + wb * xb + (1.0 - wa - wb) * xc - post));
             }
         }
     }
@@ -729,7 +769,8 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         split_long_edges(a, max_edge_units(z), edge_step, step);
         const Quantized q = quantize(a.vertices, own, step);
         const Measure m = measure(g, id, a.vertices, q, a.triangles);
-        const double ratio = m.missed > 0 ? INFINITY : m.max_error / bound;
+        const double worst = std::max(m.max_error, m.max_drawn);
+        const double ratio = m.missed > 0 ? INFINITY : worst / bound;
         const bool better =
             m.flipped < best_flipped || (m.flipped == best_flipped && ratio < best.error_ratio);
         if (better || attempt == 0) {
@@ -743,7 +784,7 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             best.triangles = a.triangles;
             best.min_height = float(q.min_h);
             best.max_height = float(q.max_h);
-            best.max_error = m.max_error;
+            best.max_error = worst;
             best.error_ratio = ratio;
             best.samples = m.samples;
             best_flipped = m.flipped;
