@@ -89,7 +89,7 @@ void retriangulate(EraserState &s) {
         s.history.free_edges.push_back(e);
     }
     const std::uint32_t x = node_of(s, h.v);
-    if (s.input.grid_w > 0 && s.input.options.shallow_history &&
+    if (s.input.grid_w > 0 && s.input.history.shallow_history &&
         lattice_inside(s, h) > k_kept_fan_samples) {
         KeptFan &kept = s.history.kept_fans[x];
         kept.head.resize(std::size_t(fans));
@@ -108,7 +108,7 @@ void retriangulate(EraserState &s) {
     }
     for (int t = 0; t < fans; ++t) {
         s.faces.face_head[face[t].idx()] = -1;
-        face_changed(s.faces, s.frame.seen, face[t]);
+        face_changed(s.faces, s.follower, face[t]);
         s.faces.face_maxdev[face[t].idx()] = 0.0f;
     }
     for (int t = h.ntri; t < fans; ++t) {
@@ -143,7 +143,7 @@ void retriangulate(EraserState &s) {
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
         ids[i] = s.history.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
-    remove_live(s.live, s.history, x, k);
+    remove_live(s.live, s.history, s.follower, x, k);
     widen_fans(s, h.p.data(), ids.data(), n, h.tri.data(), tri_dev.data(), h.ntri);
     --s.live.count;
     s.live.faces -= fans - h.ntri;
@@ -165,8 +165,8 @@ static FH take_face(EraserState &s) {
         s.faces.face_head.push_back(-1);
         s.faces.face_blocked.push_back(0);
         s.faces.face_maxdev.push_back(0.0f);
-        s.frame.seen.face_seen_dev.push_back(-1.0f);
-        s.frame.seen.face_seen.push_back(0);
+        if (s.follower)
+            s.follower->face_added();
         return s.input.mesh->new_face();
     }
     const FH f = s.history.free_faces.back();
@@ -249,7 +249,7 @@ void reinsert(EraserState &s, std::uint32_t x) {
     if (s.input.grid_w == 0) {
         const std::int32_t by = s.faces.swallowed_by[x];
         if (std::none_of(face.begin(), face.begin() + n_faces, [&](FH f) { return f.idx() == by; }))
-            unlink_swallowed(s.faces, s.frame.seen, by, x);
+            unlink_swallowed(s.faces, s.follower, by, x);
     }
 
     std::vector<std::uint32_t> &swallowed = s.scratch.swallowed_scratch;
@@ -261,7 +261,7 @@ void reinsert(EraserState &s, std::uint32_t x) {
                 if (std::uint32_t(u) != x)
                     swallowed.push_back(std::uint32_t(u));
         s.faces.face_head[face[k].idx()] = -1;
-        face_changed(s.faces, s.frame.seen, face[k]);
+        face_changed(s.faces, s.follower, face[k]);
         s.faces.face_maxdev[face[k].idx()] = 0.0f;
     }
 

@@ -85,7 +85,8 @@ static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::
 
 } // namespace
 
-std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double above) {
+std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FrameState &frame, FH f,
+                                                double above) {
     const Mesh &m = *s.input.mesh;
     std::int32_t u = s.faces.face_head[f.idx()];
     if (u < 0)
@@ -106,9 +107,9 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
         if (!(1.001 * double(s.faces.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
     }
-    const bool screen = keeps_bounds(s);
+    const bool screen = keeps_bounds(s, frame);
     const auto [box_lo, box_hi] = swallowed_box(s.faces, s.input.xy, f, a, b, c);
-    if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
+    if (screen && !(seen_bound(s, frame, f, box_lo, box_hi) > above))
         return worst;
     auto deviation_at = [&](const glm::dvec3 &p) {
         return node_deviation(s.input.xy, plane, p, a, b, c);
@@ -174,7 +175,7 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
                 if (dev * bound > seen)
                     seen = std::max(seen, dev * s.weights.weigher(q));
             });
-            remember_seen(s.frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
+            remember_seen(frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
         }
         return worst;
     }
@@ -199,7 +200,7 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
             seen = std::max(seen, dev * s.weights.weigher(q));
     }
     if (screen && worst.first < 0)
-        remember_seen(s.frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
+        remember_seen(frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
     // A long list scanned whole gets blocks (when a weight bound can use them).
     if (std::isfinite(weight_bound) && length >= k_block_list)
         build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),
