@@ -45,7 +45,6 @@ struct Lattice {
         s.input.mesh = &mesh;
         s.input.grid_w = w;
         s.input.nodes = w * h;
-        s.faces.face_blocked.assign(1, 0);
     }
 };
 
@@ -155,7 +154,7 @@ TEST(LatticeScan, StopsWhenAVisitSaysSo) {
     EXPECT_EQ(visits, 7);
 }
 
-// Each tile's bound from lattice_tiles, made from the tiles' height ranges alone, is at least the
+// Each tile's bound from tile_bounds, made from the tiles' height ranges alone, is at least the
 // largest vertical distance of the face's samples in that tile to the face's plane, computed here
 // from the three corners (through its normal, not TrianglePlane).
 TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
@@ -164,6 +163,8 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
     for (int lattice = 0; lattice < 6; ++lattice) {
         const std::uint32_t w = 300 + 37 * std::uint32_t(lattice), h = 260;
         Lattice g(rng, w, h);
+        std::vector<float> tile_z;
+        build_tile_z(tile_z, g.s.input);
         for (int face = 0; face < 12; ++face) {
             std::array<std::uint32_t, 3> n = random_corners(rng, w, h);
             const auto point = [&](std::uint32_t u) { return to_glm(g.mesh.point(VH(int(u)))); };
@@ -174,14 +175,12 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
             const auto plane = [&](double x, double y) {
                 return pa.z - (normal.x * (x - pa.x) + normal.y * (y - pa.y)) / normal.z;
             };
-            g.s.faces.face_blocked[0] = 0;
-            g.s.faces.face_tiles.clear();
-            const std::vector<float> *tiles =
-                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], TrianglePlane(pa, pb, pc));
-            if (!tiles)
-                continue; // too few samples to be tiled
-            ++tiled;
             const Tiling tl = tiling(g.s, n[0], n[1], n[2]);
+            if (!worth_tiles(tl))
+                continue; // too few samples to be tiled
+            const std::vector<float> tiles =
+                tile_bounds(g.s, tile_z, tl, n[0], n[1], n[2], TrianglePlane(pa, pb, pc));
+            ++tiled;
             const std::array<std::int64_t, 6> t = {n[0] % w, n[0] / w, n[1] % w,
                                                    n[1] / w, n[2] % w, n[2] / w};
             for (std::uint32_t u = 0; u < w * h; ++u) {
@@ -190,9 +189,9 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
                     continue;
                 const std::size_t tile = std::size_t(((y - tl.row0) / k_band_rows) * tl.columns +
                                                      (x - tl.x0) / k_tile_cols);
-                ASSERT_LT(tile, tiles->size());
+                ASSERT_LT(tile, tiles.size());
                 const glm::dvec3 q = point(u);
-                EXPECT_LE(std::abs(q.z - plane(q.x, q.y)), double((*tiles)[tile]))
+                EXPECT_LE(std::abs(q.z - plane(q.x, q.y)), double(tiles[tile]))
                     << "sample " << u << " of face " << n[0] << ", " << n[1] << ", " << n[2];
             }
         }

@@ -14,6 +14,7 @@
 namespace tinlod::erase {
 
 struct EraserState;
+struct FaceIndex;
 
 class Follower {
   public:
@@ -32,8 +33,8 @@ class Follower {
     virtual void evaluated(std::uint32_t slot, float star_dev) = 0;
     // The reach of the fan of the node in `slot`: its swallowed nodes lie within it (3-D).
     virtual float reach(std::uint32_t slot) const = 0;
-    // Face f's swallowed nodes changed; a face was added to the mesh's arrays (the last); the
-    // faces were compacted to `faces`.
+    // Face f's swallowed nodes changed (or its list's order); a face was added to the mesh's
+    // arrays (the last); the faces were compacted to `faces`.
     virtual void face_changed(FH f) = 0;
     virtual void face_added() = 0;
     virtual void faces_compacted(std::size_t faces) = 0;
@@ -41,6 +42,12 @@ class Follower {
     // triangles tri[0..ntri) over those points, whose swallowed nodes deviate at most dev[t].
     virtual void fans_widened(const EraserState &s, const glm::dvec3 *p, const std::uint32_t *ids,
                               int count, const RingTriangle *tri, const float *dev, int ntri) = 0;
+    // The erase of node x, hole h, is about to take its fan faces face[0..fans) (in ring order)
+    // and what they hold; node x's re-insert made them again: restores what they held then into
+    // `faces` if the follower kept it, and says whether it did.
+    virtual void fan_erasing(const EraserState &s, std::uint32_t x, const Hole &h, const FH *face,
+                             int fans) = 0;
+    virtual bool fan_restoring(FaceIndex &faces, std::uint32_t x, const FH *face, int fans) = 0;
     // An erase() begins; it ended (the live list may have shrunk to fit); a new model and view.
     virtual void erasing() = 0;
     virtual void erased(bool shrunk) = 0;

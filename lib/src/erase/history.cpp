@@ -173,13 +173,8 @@ void compact(EraserState &s) {
     m.remove_property(head);
     s.faces.face_maxdev.shrink_to_fit();
     s.faces.face_head.shrink_to_fit();
-    // The blocks name faces by index: they go (the next scans build them again).
-    s.faces.face_blocked.assign(s.faces.face_head.size(), 0);
-    s.faces.face_blocked.shrink_to_fit();
     if (s.follower)
         s.follower->faces_compacted(s.faces.face_head.size());
-    s.faces.face_blocks.clear();
-    s.faces.face_tiles.clear();
     // With the list's room, so that they grow with it.
     s.live.slot_key.reserve(s.live.list.capacity());
     s.live.slot_stamp.reserve(s.live.list.capacity());

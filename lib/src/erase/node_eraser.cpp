@@ -110,7 +110,6 @@ void allocate(EraserState &s) {
         s.faces.swallowed_by.assign(s.input.nodes, -1);
     }
     s.faces.face_head.assign(s.input.mesh->n_faces(), -1);
-    s.faces.face_blocked.assign(s.input.mesh->n_faces(), 0);
     s.faces.face_maxdev.assign(s.input.mesh->n_faces(), 0.0f);
     s.history.record_of.resize(s.input.nodes);
     s.live.list.reserve(std::size_t(s.live.count));

@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 namespace tinlod::erase {
@@ -48,23 +47,6 @@ struct LiveNode {
     // evaluation (a one-off erase's too) tries it first (see measure_hole).
     std::uint32_t star;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
-};
-
-// What the faces of an erased node's fan knew of the samples they held, for the re-insert that
-// brings the same triangles back (see reinsert): per fan face, in ring order, its worst sample,
-// their largest deviation and its tile bounds (empty when it had none, see lattice_tiles).
-struct KeptFan {
-    std::vector<std::int32_t> head;
-    std::vector<float> maxdev;
-    std::vector<std::vector<float>> tiles;
-};
-
-// A run of a long swallowed list (see build_blocks).
-struct Block {
-    std::int32_t head;   // its first node
-    std::uint32_t count; // its length
-    double dev;          // >= the deviation of each of its nodes from the face
-    glm::dvec3 lo, hi;   // the box of its nodes
 };
 
 constexpr std::uint8_t k_locked = 1;    // never erased (corner, general-mesh boundary, isolated)
@@ -206,34 +188,22 @@ struct History {
     // them on a 2^k + 1 grid), and keep a record only where not (HistoryOptions::absent_history).
     std::unique_ptr<RegularRings> regular;
     bool absent_for_good = false; // some samples are k_absent: they can never enter
-    // A shallow history's erased nodes whose fan covered more than k_kept_fan_samples samples of a
-    // grid TIN: per fan face, what it knew of its samples (see KeptFan), by node.
-    std::unordered_map<std::uint32_t, KeptFan> kept_fans;
     std::vector<EH> free_edges;
     std::vector<FH> free_faces;
     std::vector<VH> free_vertices; // a sparse lattice's: the vertices its erases freed
 
     std::size_t bytes() const {
-        std::size_t bytes = record_of.capacity() * 4 + records.bytes() + ring_pool.bytes() +
-                            (regular ? regular->bytes() : 0) + free_edges.capacity() * sizeof(EH) +
-                            free_faces.capacity() * sizeof(FH) +
-                            free_vertices.capacity() * sizeof(VH);
-        for (const auto &[node, kept] : kept_fans) {
-            bytes += sizeof(node) + sizeof(kept) + 16 + kept.head.capacity() * 4 +
-                     kept.maxdev.capacity() * 4 + kept.tiles.capacity() * sizeof(kept.tiles[0]);
-            for (const std::vector<float> &tiles : kept.tiles)
-                bytes += tiles.capacity() * sizeof(float);
-        }
-        return bytes;
+        return record_of.capacity() * 4 + records.bytes() + ring_pool.bytes() +
+               (regular ? regular->bytes() : 0) + free_edges.capacity() * sizeof(EH) +
+               free_faces.capacity() * sizeof(FH) + free_vertices.capacity() * sizeof(VH);
     }
 };
 
 // The face index: each face's swallowed nodes.
-// Invariants: face_maxdev, face_head and face_blocked have an entry per face (deleted ones
-// included); a live face's swallowed nodes (its list from face_head through next_swallowed, or a
-// grid TIN's samples inside it) each deviate at most face_maxdev from it; next_swallowed and
-// swallowed_by have an entry per node without a grid (empty with one); face_blocked[f] is 1
-// exactly when face_blocks or face_tiles holds f.
+// Invariants: face_maxdev and face_head have an entry per face (deleted ones included); a live
+// face's swallowed nodes (its list from face_head through next_swallowed, or a grid TIN's samples
+// inside it) each deviate at most face_maxdev from it; next_swallowed and swallowed_by have an
+// entry per node without a grid (empty with one).
 struct FaceIndex {
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per node: next node in its face's list
@@ -243,51 +213,27 @@ struct FaceIndex {
     // projection on the recovered node's mean plane, which may put it under a face outside its own
     // ring (see reinsert).
     std::vector<std::int32_t> swallowed_by;
-    // Per face: 1 when its list has blocks (face_blocks, see build_blocks), dropped when the list
-    // is rebuilt.
-    std::vector<std::uint8_t> face_blocked;
-    std::unordered_map<std::int32_t, std::vector<Block>> face_blocks;
-    // A grid TIN's large faces: a bound on their samples' deviation per tile (face_blocked is 1
-    // for them too, see lattice_tiles).
-    std::unordered_map<std::int32_t, std::vector<float>> face_tiles;
-    // A grid TIN's lattice tiles (see lattice_tiles): the least and largest height of each, made
-    // by rebind() or when a face is first tiled.
-    std::vector<float> tile_z;
 
     std::size_t bytes() const {
-        std::size_t bytes = face_maxdev.capacity() * 4 + next_swallowed.capacity() * 4 +
-                            face_head.capacity() * 4 + face_blocked.capacity() +
-                            tile_z.capacity() * sizeof(float) + swallowed_by.capacity() * 4;
-        for (const auto &[face, tiles] : face_tiles)
-            bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
-        for (const auto &[face, blocks] : face_blocks)
-            bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
-        return bytes;
+        return face_maxdev.capacity() * 4 + next_swallowed.capacity() * 4 +
+               face_head.capacity() * 4 + swallowed_by.capacity() * 4;
     }
 };
 
-// Scratch: what one evaluation, edit or face scan leaves for the next to re-use (no invariant
-// across calls; hole holds the last evaluation's, which retriangulate reads).
+// Scratch: what one evaluation or edit leaves for the next to re-use (no invariant across calls;
+// hole holds the last evaluation's, which retriangulate reads). Not counted in bytes(): it holds
+// one hole's worth.
 struct Scratch {
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
-    std::vector<std::int32_t> block_scratch; // build_blocks' scratch
-    std::vector<std::uint8_t> block_cell_scratch;
-    std::vector<std::int32_t> block_order_scratch;
-
-    // The blocks' (the others hold one hole's worth).
-    std::size_t bytes() const {
-        return block_scratch.capacity() * 4 + block_cell_scratch.capacity() +
-               block_order_scratch.capacity() * 4;
-    }
 };
 
 // Counters over the eraser's life (no heap memory).
 struct Counters {
     std::int64_t evaluations = 0;
     std::int64_t entered = 0;   // k_unread samples re-inserted so far
-    std::int64_t fans_kept = 0; // re-inserts whose fan faces took back a KeptFan so far
+    std::int64_t fans_kept = 0; // re-inserts whose fan faces the follower restored so far
 };
 
 // The eraser's state: its parts. NodeEraser holds one.
@@ -303,8 +249,7 @@ struct EraserState {
     Follower *follower = nullptr;
 
     std::size_t bytes() const {
-        return input.bytes() + weights.bytes() + live.bytes() + history.bytes() + faces.bytes() +
-               scratch.bytes();
+        return input.bytes() + weights.bytes() + live.bytes() + history.bytes() + faces.bytes();
     }
 };
 
@@ -430,15 +375,10 @@ inline std::uint8_t &node_stamp(EraserState &s, std::uint32_t x) {
     return s.live.node_keys ? s.live.slot_stamp[live_slot(s, x)] : s.live.stamp[x];
 }
 
-// Face f's swallowed nodes change: its blocks and the follower's bounds on it go.
-inline void face_changed(FaceIndex &faces, Follower *follower, FH f) {
+// Face f's swallowed nodes change: the follower's bounds on it go.
+inline void face_changed(Follower *follower, FH f) {
     if (follower)
         follower->face_changed(f);
-    if (faces.face_blocked[f.idx()]) {
-        faces.face_blocked[f.idx()] = 0;
-        faces.face_blocks.erase(f.idx());
-        faces.face_tiles.erase(f.idx());
-    }
 }
 
 // Marks live node x dirty (its key predates a change of its fan).

@@ -8,7 +8,7 @@ void unlink_swallowed(FaceIndex &faces, Follower *follower, std::int32_t f, std:
     while (*link != std::int32_t(u))
         link = &faces.next_swallowed[std::size_t(*link)];
     *link = faces.next_swallowed[u];
-    face_changed(faces, follower, FH(f)); // its blocks are runs of the list
+    face_changed(follower, FH(f)); // the follower's blocks are runs of the list
 }
 
 } // namespace tinlod::erase

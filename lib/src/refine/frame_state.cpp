@@ -1,6 +1,7 @@
 // The refiner's state as the erase's edits keep it up (frame_state.hpp, erase::Follower).
 #include "refine/frame_state.hpp"
 
+#include "erase/lattice_scan.hpp"
 #include "erase/state.hpp"
 #include "refine/update_grid.hpp"
 
@@ -12,10 +13,28 @@ namespace tinlod::refine {
 
 using namespace erase;
 
+std::size_t FaceBlocks::bytes() const {
+    std::size_t bytes = face_blocked.capacity() + tile_z.capacity() * sizeof(float) +
+                        block_scratch.capacity() * 4 + block_cell_scratch.capacity() +
+                        block_order_scratch.capacity() * 4;
+    for (const auto &[face, tiles] : face_tiles)
+        bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
+    for (const auto &[face, list] : face_blocks)
+        bytes += sizeof(face) + sizeof(list) + list.capacity() * sizeof(Block) + 16;
+    for (const auto &[node, kept] : kept_fans) {
+        bytes += sizeof(node) + sizeof(kept) + 16 + kept.head.capacity() * 4 +
+                 kept.maxdev.capacity() * 4 + kept.tiles.capacity() * sizeof(kept.tiles[0]);
+        for (const std::vector<float> &tiles : kept.tiles)
+            bytes += tiles.capacity() * sizeof(float);
+    }
+    return bytes;
+}
+
 void FrameState::started(const EraserState &s) {
     const std::size_t faces = s.input.mesh->n_faces();
     seen.face_seen_dev.assign(faces, -1.0f);
     seen.face_seen.assign(faces, 0);
+    blocks.face_blocked.assign(faces, 0);
     grid.grid_lo = s.input.lo;
     grid.grid_hi = s.input.hi;
     fans.reserve(std::size_t(s.live.count));
@@ -59,6 +78,7 @@ void FrameState::evaluated(std::uint32_t slot, float star_dev) {
 void FrameState::face_added() {
     seen.face_seen_dev.push_back(-1.0f);
     seen.face_seen.push_back(0);
+    blocks.face_blocked.push_back(0);
 }
 
 void FrameState::faces_compacted(std::size_t faces) {
@@ -66,6 +86,52 @@ void FrameState::faces_compacted(std::size_t faces) {
     seen.face_seen_dev.shrink_to_fit();
     seen.face_seen.assign(faces, 0);
     seen.face_seen.shrink_to_fit();
+    // The blocks and tiles name faces by index: they go (the next scans build them again).
+    blocks.face_blocked.assign(faces, 0);
+    blocks.face_blocked.shrink_to_fit();
+    blocks.face_blocks.clear();
+    blocks.face_tiles.clear();
+}
+
+// A shallow history's erase whose fan covers many samples of a grid TIN keeps what its faces knew
+// (KeptFan), which its re-insert gives back unscanned (k_kept_fan_samples, erase/tuning.hpp).
+void FrameState::fan_erasing(const EraserState &s, std::uint32_t x, const Hole &h, const FH *face,
+                             int fans) {
+    if (s.input.grid_w == 0 || !s.input.history.shallow_history ||
+        lattice_inside(s, h) <= k_kept_fan_samples)
+        return;
+    KeptFan &kept = blocks.kept_fans[x];
+    kept.head.resize(std::size_t(fans));
+    kept.maxdev.resize(std::size_t(fans));
+    kept.tiles.resize(std::size_t(fans));
+    for (int t = 0; t < fans; ++t) {
+        const std::int32_t f = face[t].idx();
+        kept.head[std::size_t(t)] = s.faces.face_head[std::size_t(f)];
+        kept.maxdev[std::size_t(t)] = s.faces.face_maxdev[std::size_t(f)];
+        const auto tiles = blocks.face_tiles.find(f);
+        if (tiles != blocks.face_tiles.end())
+            kept.tiles[std::size_t(t)] = std::move(tiles->second);
+        else
+            kept.tiles[std::size_t(t)].clear();
+    }
+}
+
+bool FrameState::fan_restoring(FaceIndex &faces, std::uint32_t x, const FH *face, int fans) {
+    const auto kept = blocks.kept_fans.find(x);
+    if (kept == blocks.kept_fans.end())
+        return false;
+    // The fan's faces are the triangles they were at the erase, holding the same samples.
+    for (int i = 0; i < fans; ++i) {
+        const std::int32_t f = face[i].idx();
+        faces.face_head[std::size_t(f)] = kept->second.head[std::size_t(i)];
+        faces.face_maxdev[std::size_t(f)] = kept->second.maxdev[std::size_t(i)];
+        if (!kept->second.tiles[std::size_t(i)].empty()) {
+            blocks.face_tiles[f] = std::move(kept->second.tiles[std::size_t(i)]);
+            blocks.face_blocked[std::size_t(f)] = 1;
+        }
+    }
+    blocks.kept_fans.erase(kept);
+    return true;
 }
 
 // Widens each corner's bounds to cover its own new triangles, as fan_extent would from them (their

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace tinlod::refine {
@@ -55,6 +56,56 @@ struct FanBounds {
     std::uint32_t low_at = 0;
     bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
     bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
+};
+
+// What the faces of an erased node's fan knew of the samples they held, for the re-insert that
+// brings the same triangles back (see reinsert): per fan face, in ring order, its worst sample,
+// their largest deviation and its tile bounds (empty when it had none, see lattice_tiles).
+struct KeptFan {
+    std::vector<std::int32_t> head;
+    std::vector<float> maxdev;
+    std::vector<std::vector<float>> tiles;
+};
+
+// A run of a long swallowed list (see build_blocks).
+struct Block {
+    std::int32_t head;   // its first node
+    std::uint32_t count; // its length
+    double dev;          // >= the deviation of each of its nodes from the face
+    glm::dvec3 lo, hi;   // the box of its nodes
+};
+
+// What the refiner keeps on large faces, so that a face check weighs few of their nodes
+// (face_check.hpp): a long list's blocks, a grid TIN's tile bounds, and what the faces of an erased
+// fan knew.
+// Invariants: face_blocked has an entry per face (deleted ones included), 1 exactly when
+// face_blocks or face_tiles holds the face; a face's blocks are runs of its list, and its tiles
+// bound its samples' deviation; both go when its swallowed nodes change (face_changed).
+struct FaceBlocks {
+    std::vector<std::uint8_t> face_blocked;
+    std::unordered_map<std::int32_t, std::vector<Block>> face_blocks; // see build_blocks
+    std::unordered_map<std::int32_t, std::vector<float>> face_tiles;  // see lattice_tiles
+    // A grid TIN's lattice tiles (see erase::build_tile_z): the least and largest height of each,
+    // made by rebind() or when a face is first tiled.
+    std::vector<float> tile_z;
+    // A shallow history's erased nodes whose fan covered more than k_kept_fan_samples samples of a
+    // grid TIN: per fan face, what it knew of its samples (see KeptFan), by node.
+    std::unordered_map<std::uint32_t, KeptFan> kept_fans;
+    // build_blocks' scratch.
+    std::vector<std::int32_t> block_scratch;
+    std::vector<std::uint8_t> block_cell_scratch;
+    std::vector<std::int32_t> block_order_scratch;
+
+    // Face f's swallowed nodes change: its blocks and tiles go.
+    void drop(std::int32_t f) {
+        if (face_blocked[std::size_t(f)]) {
+            face_blocked[std::size_t(f)] = 0;
+            face_blocks.erase(f);
+            face_tiles.erase(f);
+        }
+    }
+
+    std::size_t bytes() const;
 };
 
 // The update's grid (update_grid.hpp). Invariants: cells has grid_nx * grid_ny entries, cells of
@@ -125,10 +176,11 @@ class FrameState final : public erase::Follower {
     // (all null: never).
     std::array<const void *, 3> advised{};
     ViewBounds seen;
+    FaceBlocks blocks;
     std::vector<std::uint32_t> chain; // the update's last dependency chain (see ready_dependency)
 
     std::size_t bytes() const {
-        return fans.capacity() * sizeof(FanBounds) + grid.bytes() + seen.bytes();
+        return fans.capacity() * sizeof(FanBounds) + grid.bytes() + seen.bytes() + blocks.bytes();
     }
 
     // erase::Follower (frame_state.cpp).
@@ -139,12 +191,19 @@ class FrameState final : public erase::Follower {
     void parked(std::uint32_t slot) override;
     void evaluated(std::uint32_t slot, float star_dev) override;
     float reach(std::uint32_t slot) const override { return fans[slot].reach; }
-    void face_changed(erase::FH f) override { seen.face_seen_dev[f.idx()] = -1.0f; }
+    void face_changed(erase::FH f) override {
+        seen.face_seen_dev[f.idx()] = -1.0f;
+        blocks.drop(f.idx());
+    }
     void face_added() override;
     void faces_compacted(std::size_t faces) override;
     void fans_widened(const erase::EraserState &s, const glm::dvec3 *p, const std::uint32_t *ids,
                       int count, const erase::RingTriangle *tri, const float *dev,
                       int ntri) override;
+    void fan_erasing(const erase::EraserState &s, std::uint32_t x, const erase::Hole &h,
+                     const erase::FH *face, int fans) override;
+    bool fan_restoring(erase::FaceIndex &faces, std::uint32_t x, const erase::FH *face,
+                       int fans) override;
     void erasing() override { fans_stale = true; }
     void erased(bool shrunk) override;
     void view_changed() override;

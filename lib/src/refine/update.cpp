@@ -314,8 +314,8 @@ void Engine::rebind(Mesh &mesh) {
     advise_huge(s, frame);
     if (frame.fans_stale)
         rebuild_fans(s, frame); // here, not in the first update (docs/decisions/006-fan-bounds.md)
-    if (s.input.grid_w > 0 && s.faces.tile_z.empty())
-        build_tile_z(s.faces, s.input); // and these (a pass over every sample)
+    if (s.input.grid_w > 0 && frame.blocks.tile_z.empty())
+        build_tile_z(frame.blocks.tile_z, s.input); // and these (a pass over every sample)
 }
 
 UpdateStats Engine::update(const View &view, double recover_above, double erase_below) {
