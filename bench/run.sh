@@ -2,7 +2,8 @@
 # The benchmark suite end to end (`make bench`, `make bench ARGS=--quick`): set-up (gnuplot,
 # /usr/bin/time, the npm peers), the flight benchmark (bench_fly), the side-by-side suite
 # (bench_suite, which puts the flight's claims and section into RESULTS.md), tinlod against hmm as
-# whole processes (bench_heightmap, its section appended to RESULTS.md), the Google Benchmark
+# whole processes (bench_heightmap, its section appended to RESULTS.md), `tinlod tiles` against
+# tin-terrain and cesium-terrain-builder (bench_tiles.mjs, likewise), the Google Benchmark
 # micro-benchmarks (bench_micro), the plots; everything lands in bench/results/.
 #
 # usage: bench/run.sh BIN_DIR [--quick]
@@ -27,7 +28,9 @@ for f in dem/N42E001.hgt dem/N48W125.hgt.zip; do
     }
 done
 
-"$ROOT/scripts/setup.sh" gnuplot-nox time
+# GDAL, Boost and fmt for the tile builders bench_tiles runs beside tinlod (bench/peers).
+"$ROOT/scripts/setup.sh" gnuplot-nox time libgdal-dev gdal-bin libboost-program-options-dev \
+    libboost-filesystem-dev libfmt-dev
 command -v node >/dev/null || "$ROOT/scripts/setup.sh" nodejs npm
 (cd "$ROOT/bench/peers" && npm ci --no-audit --no-fund --loglevel=error) ||
     { [ -d "$ROOT/bench/peers/node_modules/delatin" ] && echo "run.sh: npm ci failed; using the installed peers" >&2; } ||
@@ -45,6 +48,16 @@ COMMAND="make bench${QUICK:+ ARGS=--quick}"
 "$BIN/bench_heightmap" $QUICK --bin "$BIN" --meshes "$ROOT/meshes" --peers "$ROOT/bench/peers" \
     --out "$OUT" --tmp "$TMP" --command "$COMMAND"
 cat "$OUT/hmm.md" >>"$OUT/RESULTS.md"
+
+# tin-terrain and ctb-tile are built only where GDAL is found, so the build folder BIN is in is
+# configured again now that set-up has installed it (not part of `make build`: see bench/CMakeLists.txt).
+BUILD=$(dirname "$BIN")
+cmake -S "$ROOT" -B "$BUILD" >"$BUILD/configure-peers.log" 2>&1 ||
+    { cat "$BUILD/configure-peers.log"; exit 1; }
+cmake --build "$BUILD" -j "$(nproc)" --target tin-terrain ctb-tile
+node "$ROOT/bench/bench_tiles.mjs" $QUICK --bin "$BIN" --meshes "$ROOT/meshes" --out "$OUT" --tmp "$TMP" \
+    --command "$COMMAND"
+cat "$OUT/tiles.md" >>"$OUT/RESULTS.md"
 
 MIN_TIME=0.5
 [ -n "$QUICK" ] && MIN_TIME=0.1

@@ -7,15 +7,18 @@ libtiff-dev libpng-dev libproj-dev libcli11-dev nlohmann-json3-dev libgtest-dev 
 libbenchmark-dev libmeshoptimizer-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
 libosmesa6-dev libgbm-dev libglfw3-dev libimgui-dev xvfb xauth unzip clang-format dpkg-dev file
 binutils zlib1g-dev $*"
+# The CesiumJS test of the tiles (tests/test_tiles_cesium.cpp) draws them in headless Chromium.
+PKGS="$PKGS chromium"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
 done
-# The tile tests read tinlod's tiles with a decoder from npm (tests/tiles), installed here so the
-# tests run offline.
+# The tile tests read tinlod's tiles with a decoder and CesiumJS from npm (tests/tiles), installed
+# here so the tests run offline.
 npm_tiles() {
     tiles="$(dirname "$0")/../tests/tiles"
-    [ -d "$tiles/node_modules/@here/quantized-mesh-decoder" ] && return 0
+    [ -d "$tiles/node_modules/@here/quantized-mesh-decoder" ] && [ -d "$tiles/node_modules/cesium" ] &&
+        [ -d "$tiles/node_modules/puppeteer-core" ] && return 0
     command -v npm >/dev/null || [ "$(id -u)" != 0 ] ||
         { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm; } ||
         true

@@ -1,5 +1,5 @@
 // Checks a quantized-mesh tile set with code tinlod's writer does not share: every tile is read by
-// @here/quantized-mesh-decoder (npm), and the DEM (an SRTM .hgt) by the few lines below.
+// @here/quantized-mesh-decoder (npm), and the DEM (an SRTM .hgt) by srtm.mjs.
 //
 //   node check_tiles.mjs DIR [DEM.hgt...] [--no-error]
 //
@@ -15,6 +15,7 @@ import decoder from '@here/quantized-mesh-decoder'
 import fs from 'node:fs'
 import path from 'node:path'
 import zlib from 'node:zlib'
+import { WGS84_A, WGS84_B, levelError, readHgt, tileRect } from './srtm.mjs'
 
 const decode = decoder.default
 const [dir, ...rest] = process.argv.slice(2)
@@ -23,42 +24,11 @@ const demPaths = rest.filter((a) => !a.startsWith('--'))
 const failures = []
 const fail = (what) => { if (failures.length < 50) failures.push(what) }
 
-// CesiumJS: TerrainProvider.getEstimatedLevelZeroGeometricErrorForAHeightmap(Ellipsoid.WGS84, 65,
-// 2) (heightmapTerrainQuality 0.25), halved per level by CesiumTerrainProvider.
-const WGS84_A = 6378137.0
-const WGS84_B = 6356752.3142451793
-const levelError = (z) => (WGS84_A * 2 * Math.PI * 0.25) / (65 * 2) / 2 ** z
-
-function tileRect (z, x, y) {
-  const size = 180 / 2 ** z
-  return { west: -180 + x * size, south: -90 + y * size, east: -180 + (x + 1) * size, north: -90 + (y + 1) * size }
-}
-
 function ecef (lonDeg, latDeg, h) {
   const l = lonDeg * Math.PI / 180; const p = latDeg * Math.PI / 180
   const e2 = 1 - (WGS84_B * WGS84_B) / (WGS84_A * WGS84_A)
   const n = WGS84_A / Math.sqrt(1 - e2 * Math.sin(p) ** 2)
   return [(n + h) * Math.cos(p) * Math.cos(l), (n + h) * Math.cos(p) * Math.sin(l), (n * (1 - e2) + h) * Math.sin(p)]
-}
-
-// --- the DEM: SRTM .hgt, big-endian int16, square, row 0 north, named by its south-west corner
-function readHgt (file) {
-  const buf = fs.readFileSync(file)
-  const n = Math.round(Math.sqrt(buf.length / 2))
-  const z = new Int16Array(n * n)
-  for (let i = 0; i < n * n; ++i) z[i] = buf.readInt16BE(2 * i)
-  const m = /([NS])(\d\d)([EW])(\d\d\d)/i.exec(path.basename(file))
-  const lat0 = Number(m[2]) * (m[1].toUpperCase() === 'S' ? -1 : 1)
-  const lon0 = Number(m[4]) * (m[3].toUpperCase() === 'W' ? -1 : 1)
-  return {
-    n,
-    lon: (c) => lon0 + c / (n - 1),
-    lat: (r) => lat0 + 1 - r / (n - 1),
-    col: (lon) => (lon - lon0) * (n - 1),
-    row: (lat) => (lat0 + 1 - lat) * (n - 1),
-    height: (c, r) => z[r * n + c], // -32768: a void, no sample
-    covers: (lon, lat) => lon >= lon0 && lon <= lon0 + 1 && lat >= lat0 && lat <= lat0 + 1
-  }
 }
 
 // --- tiles
@@ -102,7 +72,10 @@ const tiles = new Map()
 for (const k of onDisk) tiles.set(k, readTile(path.join(dir, `${k}.terrain`)))
 
 const dems = checkError ? demPaths.map(readHgt) : []
-const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, levels: {} }
+const summary = { tiles: 0, triangles: 0, samples: 0, shared_edges: 0, worst_ratio: 0, worst_chord_ratio: 0, levels: {} }
+// CesiumJS draws a triangle flat between its vertices' Earth-centred positions: that may stray from
+// the tile's surface (heights linear in u/v) by at most this share of the level's error.
+const CHORD_SHARE = 1 / 16
 
 // CesiumJS's EllipsoidalOccluder.computeMagnitude, for the occlusion point's check.
 function occlusionMagnitude (radii, p, dir) {
@@ -161,6 +134,22 @@ for (const [key, t] of tiles) {
   }
   if (Number.isFinite(magnitude) && hopLength < magnitude * (1 - 1e-9)) fail(`${key}: horizon occlusion point nearer than CesiumJS's (${hopLength} < ${magnitude})`)
   if (t.header.minHeight > t.header.maxHeight) fail(`${key}: minimum height over maximum`)
+  // The flat triangle against the surface at its centroid, its edges' midpoints and three points
+  // between (where the gap, nearly a paraboloid over the triangle, peaks).
+  let chord = 0
+  const places = [[1 / 3, 1 / 3, 1 / 3], [0.5, 0.5, 0], [0, 0.5, 0.5], [0.5, 0, 0.5], [2 / 3, 1 / 6, 1 / 6], [1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]]
+  for (let i = 0; i < tri.length; i += 3) {
+    const k = [tri[i], tri[i + 1], tri[i + 2]]
+    const corners = k.map((j) => ecef(lon(t.u[j]), lat(t.v[j]), t.h[j]))
+    for (const w of places) {
+      const at = (a) => w[0] * a[0] + w[1] * a[1] + w[2] * a[2]
+      const flat = [0, 1, 2].map((c) => at(corners.map((p) => p[c])))
+      const surface = ecef(lon(at(k.map((j) => t.u[j]))), lat(at(k.map((j) => t.v[j]))), at(k.map((j) => t.h[j])))
+      chord = Math.max(chord, Math.hypot(flat[0] - surface[0], flat[1] - surface[1], flat[2] - surface[2]))
+    }
+  }
+  if (chord > CHORD_SHARE * levelError(z)) fail(`${key}: a triangle drawn flat strays ${chord.toFixed(1)} m from the tile's surface, over ${CHORD_SHARE} of the level's error`)
+  summary.worst_chord_ratio = Math.max(summary.worst_chord_ratio, chord / levelError(z))
   if (t.extensions?.vertexNormals && t.extensions.vertexNormals.length !== 2 * t.n) fail(`${key}: normals of ${t.extensions.vertexNormals.length / 2} vertices`)
 
   // Neighbours: the east and north ones share the tile's east and north edges.

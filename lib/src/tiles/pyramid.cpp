@@ -56,6 +56,10 @@ LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options)
             if (r.covered && y >= y0 && y <= y1 && dx >= x0 && dx <= x1)
                 lr.written.push_back(id);
         }
+    // CesiumJS draws nothing under a level-0 tile it lacks (no parent to upsample it from): level
+    // 0 is written whole, a tile over no DEM flat at the fill height.
+    if (z == 0)
+        lr.written = {{0, 0, 0}, {0, 1, 0}};
     return lr;
 }
 

@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace tinlod {
 
@@ -37,6 +38,12 @@ constexpr double k_snap_units = 1.0;
 // The interior lattice holds at most this many posts across a tile: coarser levels take every
 // 2^k-th post (the measure covers the posts left out).
 constexpr double k_max_posts_across = 1024.0;
+// CesiumJS draws a tile's triangles flat between their Earth-centred vertices, under the surface
+// the tile's u/v/height describes by up to R theta^2 / 6 (theta the longest edge's arc, R the
+// ellipsoid's largest radius of curvature): no triangle's edge spans more than keeps that within
+// this share of the level's error (on coarse levels, a few triangles across a hemisphere would cut
+// through the Earth).
+constexpr double k_chord_share = 1.0 / 16.0;
 
 double tile_size(int z) { return 180.0 / std::ldexp(1.0, z); }
 
@@ -324,6 +331,81 @@ void zip(const std::vector<std::uint32_t> &outer, const std::vector<std::uint32_
     }
 }
 
+// The longest edge, in u/v units, of a level-z triangle whose chord is within k_chord_share of the
+// level's error.
+double max_edge_units(int z) {
+    const double radius = tiles::k_wgs84_a * tiles::k_wgs84_a / tiles::k_wgs84_b;
+    const double arc = std::sqrt(6.0 * k_chord_share * level_error(z) / radius);
+    return arc / (tile_size(z) * M_PI / 180.0) * double(k_quantized_max);
+}
+
+// Splits every edge longer than `max_len` u/v units at its midpoint (the triangles round it: one,
+// two or three split edges) until none is. A tile edge's segment splits by its own length and
+// ends, so the tiles that share it split it alike; its midpoints take the edge's step, `edge_step`
+// (west, south, east, north), others the tile's `step`. A midpoint of a segment across the tile
+// that rounds onto a tile edge moves one unit inside.
+void split_long_edges(Assembly &a, double max_len, const std::array<double, 4> &edge_step,
+                      double step) {
+    const auto on_edge = [](int u, int v) {
+        return u == 0 ? 0 : v == 0 ? 1 : u == k_quantized_max ? 2 : v == k_quantized_max ? 3 : -1;
+    };
+    const auto along_edge = [](const Vertex &p, const Vertex &q) {
+        return (p.u == q.u && (p.u == 0 || p.u == k_quantized_max)) ||
+               (p.v == q.v && (p.v == 0 || p.v == k_quantized_max));
+    };
+    for (;;) {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mids;
+        const auto mid = [&](std::uint32_t i, std::uint32_t j) -> std::int64_t {
+            const Vertex p = a.vertices[i], q = a.vertices[j];
+            if (std::hypot(double(p.u - q.u), double(p.v - q.v)) <= max_len)
+                return -1;
+            const std::pair<std::uint32_t, std::uint32_t> key{std::min(i, j), std::max(i, j)};
+            if (const auto it = mids.find(key); it != mids.end())
+                return it->second;
+            Vertex m{(p.u + q.u) / 2, (p.v + q.v) / 2, 0.0};
+            if (!along_edge(p, q)) {
+                m.u = std::clamp(m.u, 1, k_quantized_max - 1);
+                m.v = std::clamp(m.v, 1, k_quantized_max - 1);
+            }
+            const int e = on_edge(m.u, m.v);
+            const double s = e < 0 ? step : edge_step[std::size_t(e)];
+            m.h = std::floor((p.h + q.h) / 2.0 / s + 0.5) * s;
+            mids[key] = std::uint32_t(a.vertices.size());
+            a.vertices.push_back(m);
+            return mids[key];
+        };
+        std::vector<std::uint32_t> out;
+        const auto add = [&out](std::uint32_t p, std::uint32_t q, std::uint32_t r) {
+            out.insert(out.end(), {p, q, r});
+        };
+        for (std::size_t t = 0; t < a.triangles.size(); t += 3) {
+            std::array<std::uint32_t, 3> c{a.triangles[t], a.triangles[t + 1], a.triangles[t + 2]};
+            std::array<std::int64_t, 3> m{mid(c[0], c[1]), mid(c[1], c[2]), mid(c[2], c[0])};
+            const int splits = int(m[0] >= 0) + int(m[1] >= 0) + int(m[2] >= 0);
+            // Turn the triangle so that its split edges come first (m[0], then m[1]).
+            for (int turn = 0; turn < 3 && splits < 3; ++turn) {
+                if (m[0] >= 0 && (splits == 1 || m[1] >= 0))
+                    break;
+                std::rotate(c.begin(), c.begin() + 1, c.end());
+                std::rotate(m.begin(), m.begin() + 1, m.end());
+            }
+            const auto m0 = std::uint32_t(m[0]), m1 = std::uint32_t(m[1]), m2 = std::uint32_t(m[2]);
+            if (splits == 0) {
+                add(c[0], c[1], c[2]);
+            } else if (splits == 1) {
+                add(c[0], m0, c[2]), add(m0, c[1], c[2]);
+            } else if (splits == 2) {
+                add(m0, c[1], m1), add(c[0], m0, m1), add(c[0], m1, c[2]);
+            } else {
+                add(c[0], m0, m2), add(m0, c[1], m1), add(m2, m1, c[2]), add(m0, m1, m2);
+            }
+        }
+        a.triangles = std::move(out);
+        if (mids.empty())
+            return;
+    }
+}
+
 // The tile's heights: the header range and each vertex's code.
 struct Quantized {
     double min_h = 0, max_h = 0;
@@ -528,6 +610,7 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
          {true, rect.east, rect.south, rect.north, {1, 0}, {1, -1}, {1, 1}},
          {false, rect.north, rect.west, rect.east, {0, 1}, {-1, 1}, {1, 1}}}};
     std::array<std::vector<EdgeVertex>, 4> edge_vertices;
+    std::array<double, 4> edge_step{};
     for (std::size_t e = 0; e < 4; ++e) {
         const EdgeDef &d = defs[e];
         const auto [ax, ay] = d.across;
@@ -535,8 +618,9 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         const auto corner_step = [&](std::pair<int, int> diag) {
             return coarsest({{0, 0}, {ax, ay}, diag, {diag.first - ax, diag.second - ay}});
         };
+        edge_step[e] = coarsest({{0, 0}, {ax, ay}});
         edge_vertices[e] = simplify_edge(edge_profile(surface, d.vertical, d.at, d.from, d.to, z),
-                                         k_build_share * bound, coarsest({{0, 0}, {ax, ay}}),
+                                         k_build_share * bound, edge_step[e],
                                          corner_step(d.start_corner), corner_step(d.end_corner));
     }
 
@@ -546,33 +630,14 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         stride *= 2;
     double interior_bound = k_build_share * bound - step / 2.0;
 
+    // A tile over no DEM (only level 0 writes one) is flat fill: its square, which the split
+    // into short edges makes a regular grid.
+    const bool bare = !own.covered && std::all_of(edge_vertices.begin(), edge_vertices.end(),
+                                                  [](const auto &ev) { return ev.size() == 2; });
     TileMesh best;
     best.error_ratio = INFINITY;
     std::int64_t best_flipped = std::numeric_limits<std::int64_t>::max();
     for (int attempt = 0; attempt < 8; ++attempt) {
-        AxisLines cols, rows;
-        for (;;) {
-            cols = interior_lines(g.lon0, g.dlon, g.width, rect.west, rect.east, z, stride);
-            rows = interior_lines(g.lat0, g.dlat, g.height, rect.south, rect.north, z, stride);
-            if ((cols.count >= 2 && rows.count >= 2) || stride == 1)
-                break;
-            stride /= 2;
-        }
-        if (cols.count < 2 || rows.count < 2)
-            throw Error(
-                "tile " + std::to_string(z) + "/" + std::to_string(id.x) + "/" +
-                    std::to_string(id.y),
-                "narrower than 2 DEM posts inside: the level is beyond the DEM's resolution");
-        Heightfield win;
-        win.width = int(cols.count), win.height = int(rows.count);
-        win.dx = double(stride) * g.dlon * u_per_lon;
-        win.dy = double(stride) * g.dlat * u_per_lon;
-        win.z.resize(std::size_t(win.width) * std::size_t(win.height));
-        for (int r = 0; r < win.height; ++r)
-            for (int c = 0; c < win.width; ++c)
-                win.at(c, r) = float(surface.at(cols.at(c), rows.at(r)));
-        const InteriorTin inner = interior_tin(win, std::max(interior_bound, 1e-6 * bound));
-
         Assembly a;
         // Corners first (SW, SE, NE, NW), then each edge's inner vertices.
         const std::array<std::array<int, 2>, 4> corner_uv{{{0, 0},
@@ -603,37 +668,65 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             }
             outer[e].push_back(ends[e].second);
         }
-        // The interior's vertices, and its outline as four chains.
-        const std::uint32_t first_inner = std::uint32_t(a.vertices.size());
-        std::array<std::vector<std::pair<int, std::uint32_t>>, 4> sides;
-        for (std::size_t k = 0; k < inner.nodes.size(); ++k) {
-            const auto [c, r] = inner.nodes[k];
-            Vertex v;
-            v.u = int(std::llround(offset_units(g.lon0, g.dlon, cols.at(c), rect.west, z)));
-            v.v = int(std::llround(offset_units(g.lat0, g.dlat, rows.at(r), rect.south, z)));
-            // On the tile's step, within the half step the interior's bound leaves for it.
-            v.h = std::floor(win.at(c, r) / step + 0.5) * step;
-            const std::uint32_t idx = first_inner + std::uint32_t(k);
-            if (c == 0)
-                sides[0].emplace_back(r, idx);
-            if (r == 0)
-                sides[1].emplace_back(c, idx);
-            if (c == win.width - 1)
-                sides[2].emplace_back(r, idx);
-            if (r == win.height - 1)
-                sides[3].emplace_back(c, idx);
-            a.vertices.push_back(v);
-        }
-        for (const std::uint32_t t : inner.triangles)
-            a.triangles.push_back(first_inner + t);
-        for (std::size_t e = 0; e < 4; ++e) {
-            std::sort(sides[e].begin(), sides[e].end());
-            std::vector<std::uint32_t> chain;
-            for (const auto &s : sides[e])
-                chain.push_back(s.second);
-            zip(outer[e], chain, defs[e].vertical, a);
+        if (bare) {
+            a.triangles = {0, 1, 2, 0, 2, 3};
+        } else {
+            AxisLines cols, rows;
+            for (;;) {
+                cols = interior_lines(g.lon0, g.dlon, g.width, rect.west, rect.east, z, stride);
+                rows = interior_lines(g.lat0, g.dlat, g.height, rect.south, rect.north, z, stride);
+                if ((cols.count >= 2 && rows.count >= 2) || stride == 1)
+                    break;
+                stride /= 2;
+            }
+            if (cols.count < 2 || rows.count < 2)
+                throw Error(
+                    "tile " + std::to_string(z) + "/" + std::to_string(id.x) + "/" +
+                        std::to_string(id.y),
+                    "narrower than 2 DEM posts inside: the level is beyond the DEM's resolution");
+            Heightfield win;
+            win.width = int(cols.count), win.height = int(rows.count);
+            win.dx = double(stride) * g.dlon * u_per_lon;
+            win.dy = double(stride) * g.dlat * u_per_lon;
+            win.z.resize(std::size_t(win.width) * std::size_t(win.height));
+            for (int r = 0; r < win.height; ++r)
+                for (int c = 0; c < win.width; ++c)
+                    win.at(c, r) = float(surface.at(cols.at(c), rows.at(r)));
+            const InteriorTin inner = interior_tin(win, std::max(interior_bound, 1e-6 * bound));
+
+            // The interior's vertices, and its outline as four chains.
+            const std::uint32_t first_inner = std::uint32_t(a.vertices.size());
+            std::array<std::vector<std::pair<int, std::uint32_t>>, 4> sides;
+            for (std::size_t k = 0; k < inner.nodes.size(); ++k) {
+                const auto [c, r] = inner.nodes[k];
+                Vertex v;
+                v.u = int(std::llround(offset_units(g.lon0, g.dlon, cols.at(c), rect.west, z)));
+                v.v = int(std::llround(offset_units(g.lat0, g.dlat, rows.at(r), rect.south, z)));
+                // On the tile's step, within the half step the interior's bound leaves for it.
+                v.h = std::floor(win.at(c, r) / step + 0.5) * step;
+                const std::uint32_t idx = first_inner + std::uint32_t(k);
+                if (c == 0)
+                    sides[0].emplace_back(r, idx);
+                if (r == 0)
+                    sides[1].emplace_back(c, idx);
+                if (c == win.width - 1)
+                    sides[2].emplace_back(r, idx);
+                if (r == win.height - 1)
+                    sides[3].emplace_back(c, idx);
+                a.vertices.push_back(v);
+            }
+            for (const std::uint32_t t : inner.triangles)
+                a.triangles.push_back(first_inner + t);
+            for (std::size_t e = 0; e < 4; ++e) {
+                std::sort(sides[e].begin(), sides[e].end());
+                std::vector<std::uint32_t> chain;
+                for (const auto &s : sides[e])
+                    chain.push_back(s.second);
+                zip(outer[e], chain, defs[e].vertical, a);
+            }
         }
 
+        split_long_edges(a, max_edge_units(z), edge_step, step);
         const Quantized q = quantize(a.vertices, own, step);
         const Measure m = measure(g, id, a.vertices, q, a.triangles);
         const double ratio = m.missed > 0 ? INFINITY : m.max_error / bound;

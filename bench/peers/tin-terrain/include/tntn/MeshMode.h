@@ -1,0 +1,12 @@
+#pragma once
+
+namespace tntn {
+
+enum class MeshMode
+{
+    none,
+    decomposed,
+    triangles
+};
+
+} //namespace tntn

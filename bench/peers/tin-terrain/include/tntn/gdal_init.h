@@ -1,0 +1,7 @@
+#pragma once
+
+namespace tntn {
+
+void initialize_gdal_once();
+
+} //namespace tntn
