@@ -52,10 +52,12 @@ struct FanBounds {
     // when it turns dirty; +inf: parked, see park).
     float seen_log = INFINITY;
     float low_log = -INFINITY;
-    std::uint32_t seen_at = 0;
-    std::uint32_t low_at = 0;
-    bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
-    bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
+    // The update numbers in 31 bits, each beside a flag, so that FanBounds, LiveNode and the
+    // keys take no more than LiveNode alone took (after 2^31 updates since() drops every bound).
+    std::uint32_t seen_at : 31 = 0;
+    std::uint32_t seen_cone : 1 = 0; // the fan's swallowed nodes were inside the view cone then
+    std::uint32_t low_at : 31 = 0;
+    std::uint32_t fan_exact : 1 = 0; // reach and fan_dev are fan_extent's for the fan as it stands
 };
 
 // What the faces of an erased node's fan knew of the samples they held, for the re-insert that

@@ -111,7 +111,7 @@ inline bool moved_within(const glm::dvec3 &eye, const glm::dvec3 &p, double r, d
 inline double seen_now(const EraserState &s, const FrameState &frame, const FanBounds &l) {
     if (!(l.seen_log < INFINITY))
         return INFINITY;
-    if (l.seen_at == frame.seen.updates)
+    if (std::uint32_t(l.seen_at) == frame.seen.updates)
         return double(l.seen_log);
     const ViewBounds::Since *d = since(s, frame, l.seen_at);
     if (!d)
