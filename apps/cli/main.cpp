@@ -18,8 +18,11 @@
 #include <ctime>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <string>
 
+#include <malloc.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 namespace tinlod::cli {
@@ -115,9 +118,37 @@ static void apply_threads(int n) {
     ::setenv("LP_NUM_THREADS", std::to_string(n).c_str(), 1);
 }
 
+// The heap, set for one run over large arrays (docs/decisions/024-simplify-speed.md). By default
+// glibc maps each block over 128 KiB on its own, unmaps it when freed and trims the heap's top, so
+// each next array faults its pages in again, 4 KiB at a time: on a VM a few microseconds each, a
+// third of `simplify`'s CPU time on a small DEM. Here blocks up to glibc's largest threshold
+// (32 MiB; larger ones are still mapped apart, and their memory goes back when freed) come from
+// the heap, a freed one stays there for the next, and the heap reserves its first GiB at once,
+// advised for 2 MiB pages (one fault where there were 512). Address space only: a page costs
+// memory once written.
+static void tune_heap() {
+    constexpr int reserve = 1 << 30;
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+    mallopt(M_TOP_PAD, reserve);
+    char *const before = static_cast<char *>(sbrk(0));
+    void *const probe = std::malloc(std::size_t(1) << 20); // more than the heap's top holds
+    mallopt(M_TOP_PAD, 64 << 20);
+    char *const after = static_cast<char *>(sbrk(0));
+    std::free(probe);
+    constexpr std::uintptr_t huge = std::uintptr_t(2) << 20;
+    const std::uintptr_t lo = (reinterpret_cast<std::uintptr_t>(before) + huge - 1) & ~(huge - 1);
+    const std::uintptr_t hi = reinterpret_cast<std::uintptr_t>(after) & ~(huge - 1);
+#ifdef MADV_HUGEPAGE
+    if (probe && before != reinterpret_cast<char *>(-1) && hi > lo)
+        madvise(reinterpret_cast<void *>(lo), hi - lo, MADV_HUGEPAGE);
+#endif
+}
+
 } // namespace tinlod::cli
 
 int main(int argc, char **argv) {
+    tinlod::cli::tune_heap();
     // Past a file-size limit (ulimit -f) a write then fails with EFBIG ("File too large"), reported
     // as any failed write, its temporary removed, instead of SIGXFSZ killing the process silently.
     std::signal(SIGXFSZ, SIG_IGN);

@@ -135,16 +135,10 @@ struct Inserter {
 
     // ---- Scans ----
 
-    // Finds triangle t's farthest sample (corners excluded) and queues t when it lies farther than
-    // the threshold.
-    void scan(std::int32_t t) {
-        const std::int32_t na = corner[3 * t], nb = corner[3 * t + 1], nc = corner[3 * t + 2];
-        const std::uint32_t sa = points[na], sb = points[nb], sc = points[nc];
+    // scan's samples of the triangle with corner samples sa, sb, sc, a row span at a time.
+    void scan_rows(std::uint32_t sa, std::uint32_t sb, std::uint32_t sc,
+                   const TrianglePlane::Rows &plane, double &worst, std::uint32_t &at) const {
         const LatticeTriangle tri(std::uint32_t(w), sa, sb, sc);
-        const TrianglePlane::Rows plane = TrianglePlane::rows(
-            {px[na], py[na], hf.z[sa]}, {px[nb], py[nb], hf.z[sb]}, {px[nc], py[nc], hf.z[sc]});
-        double worst = 0.0;
-        std::uint32_t at = sa;
         for (std::int64_t r = tri.first_row; r <= tri.last_row; ++r) {
             const auto [lo, hi] = tri.span(r);
             const float *row = hf.z.data() + r * w;
@@ -172,6 +166,31 @@ struct Inserter {
                 at = std::uint32_t(r * w + c);
             }
         }
+    }
+
+    // Finds triangle t's farthest sample (corners excluded) and queues t when it lies farther than
+    // the threshold. The samples are those of the closed triangle, in row order; the first of the
+    // farthest is the candidate.
+    void scan(std::int32_t t) {
+        const std::int32_t na = corner[3 * t], nb = corner[3 * t + 1], nc = corner[3 * t + 2];
+        const std::uint32_t sa = points[na], sb = points[nb], sc = points[nc];
+        const TrianglePlane::Rows plane = TrianglePlane::rows(
+            {px[na], py[na], hf.z[sa]}, {px[nb], py[nb], hf.z[sb]}, {px[nc], py[nc], hf.z[sc]});
+        double worst = 0.0;
+        std::uint32_t at = sa;
+        const std::int64_t x[3] = {px[na], px[nb], px[nc]}, y[3] = {py[na], py[nb], py[nc]};
+        if (box_samples(x, y) <= k_small_box)
+            visit_box(x, y, [&](std::int64_t c, std::int64_t r) {
+                const double d = plane.deviation(plane.start(double(r)), double(c),
+                                                 double(hf.z[std::size_t(r * w + c)]));
+                if (d > worst) {
+                    worst = d;
+                    at = std::uint32_t(r * w + c);
+                }
+                return true;
+            });
+        else
+            scan_rows(sa, sb, sc, plane, worst, at);
         candidate[t] = at;
         is_pending[t] = 0;
         if (slope_margin > 0.0)

@@ -57,4 +57,45 @@ class LatticeTriangle {
     std::int64_t x_[3], y_[3], lo_ = 0, hi_ = 0;
 };
 
+// A triangle whose box holds at most this many samples is cheaper to scan over its box with the
+// corners' edge tests (an add per sample and edge) than a row span at a time (two divisions a row):
+// most triangles of a fine TIN hold a few samples (docs/decisions/024-simplify-speed.md).
+inline constexpr std::int64_t k_small_box = 64;
+
+// The samples in the box of the triangle with lattice corners (x[k], y[k]).
+inline std::int64_t box_samples(const std::int64_t (&x)[3], const std::int64_t (&y)[3]) {
+    return (std::max({x[0], x[1], x[2]}) - std::min({x[0], x[1], x[2]}) + 1) *
+           (std::max({y[0], y[1], y[2]}) - std::min({y[0], y[1], y[2]}) + 1);
+}
+
+// The lattice samples in the closed triangle with corners (x[k], y[k]), the set LatticeTriangle
+// gives, in row order over its box: visit(x, y) for each until it returns false. Returns false
+// when a visit stopped the scan.
+template <class Visit>
+inline bool visit_box(const std::int64_t (&x)[3], const std::int64_t (&y)[3], const Visit &visit) {
+    const std::int64_t o = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if (o == 0)
+        return true;                                        // no samples, as LatticeTriangle has it
+    const int order[3] = {0, o > 0 ? 1 : 2, o > 0 ? 2 : 1}; // counter-clockwise
+    const std::int64_t x0 = std::min({x[0], x[1], x[2]}), x1 = std::max({x[0], x[1], x[2]});
+    const std::int64_t y0 = std::min({y[0], y[1], y[2]}), y1 = std::max({y[0], y[1], y[2]});
+    // Edge k's test at (c, r): (x_l - x_k) (r - y_k) - (y_l - y_k) (c - x_k) >= 0 inside.
+    std::int64_t step[3], down[3], start[3];
+    for (int k = 0; k < 3; ++k) {
+        const int a = order[k], b = order[(k + 1) % 3];
+        step[k] = y[a] - y[b];
+        down[k] = x[b] - x[a];
+        start[k] = down[k] * (y0 - y[a]) + step[k] * (x0 - x[a]);
+    }
+    for (std::int64_t r = y0; r <= y1; ++r) {
+        std::int64_t e0 = start[0], e1 = start[1], e2 = start[2];
+        for (std::int64_t c = x0; c <= x1; ++c, e0 += step[0], e1 += step[1], e2 += step[2])
+            if ((e0 | e1 | e2) >= 0 && !visit(c, r))
+                return false;
+        for (int k = 0; k < 3; ++k)
+            start[k] += down[k];
+    }
+    return true;
+}
+
 } // namespace tinlod

@@ -758,11 +758,22 @@ Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
         mesh.set_point(v, grid_point(hf, c, r));
         mesh.property(origin, v) = nodes[k];
     }
-    // Vertices in sample order: the triangles' order by first vertex is to_lattice_mesh's.
+    // Vertices in sample order: the triangles' order by first vertex is to_lattice_mesh's. Each
+    // corner's vertex from a table by sample where it is small beside the nodes (a search of the
+    // sorted nodes per corner took a tenth of a fine simplify's first stage), else by a search.
     std::vector<std::uint32_t> t(retrieval.triangles.size());
-    for (std::size_t i = 0; i < t.size(); ++i)
-        t[i] = std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), retrieval.triangles[i]) -
-                             nodes.begin());
+    if (std::size_t(hf.size()) <= 8 * nodes.size()) {
+        std::vector<std::uint32_t> vertex(std::size_t(hf.size()));
+        for (std::size_t k = 0; k < nodes.size(); ++k)
+            vertex[nodes[k]] = std::uint32_t(k);
+        for (std::size_t i = 0; i < t.size(); ++i)
+            t[i] = vertex[retrieval.triangles[i]];
+    } else {
+        for (std::size_t i = 0; i < t.size(); ++i)
+            t[i] =
+                std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), retrieval.triangles[i]) -
+                              nodes.begin());
+    }
     add_in_row_order(mesh, t, nodes.size());
     return mesh;
 }

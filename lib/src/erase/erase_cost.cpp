@@ -152,11 +152,86 @@ static bool data_dependent(const EraserState &s) {
            s.input.options.max_nodes <= 0 && !s.input.history.shallow_history;
 }
 
+// Whether a sample deviates more than `limit` (vertically) from every triangle over three ring
+// nodes (counter-clockwise, its closed lattice triangle holding the sample); a lower bound of the
+// least of those deviations in `least` (infinite when none holds the sample). Every triangle a
+// triangulation of the hole may use is among these, and a hair over the limit still counts as
+// within: the heights here, from the sample's exact lattice areas, round otherwise than the erase's
+// planes, and the rounding never rules a triangulation out. When
+// the erased node or the ears' worst sample is over the limit under all of them, no triangulation
+// holds the bound: most failing evaluations end here, before the ears' samples are scanned or the
+// min-max hole's triangles (docs/decisions/024-simplify-speed.md).
+static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32_t sample,
+                                double limit, double &least) {
+    const std::int64_t w = s.input.grid_w, xs = sample % w, ys = sample / w;
+    const glm::dvec3 p = to_glm(node_point(s, sample));
+    // The hair: far under the erase's own (its limit sits 1e-6 under the bound, where quantised
+    // heights put many deviations exactly at the bound), far over the heights' rounding.
+    const double stop = limit * (1.0 + 1e-9) + 1e-12 * std::abs(p.z);
+    least = INFINITY;
+    // side[a][b]: twice the signed area of (ring node a, ring node b, the sample), lattice units.
+    std::array<std::int64_t, k_max_ring> rx, ry;
+    std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> side;
+    for (int i = 0; i < h.n; ++i) {
+        const std::int64_t u = node_of(s, h.r[i]);
+        rx[std::size_t(i)] = u % w - xs;
+        ry[std::size_t(i)] = u / w - ys;
+    }
+    for (int a = 0; a < h.n; ++a)
+        for (int b = a + 1; b < h.n; ++b) {
+            side[std::size_t(a)][std::size_t(b)] = rx[a] * ry[b] - ry[a] * rx[b];
+            side[std::size_t(b)][std::size_t(a)] = -side[std::size_t(a)][std::size_t(b)];
+        }
+    for (int a = 0; a < h.n; ++a)
+        for (int b = a + 1; b < h.n; ++b)
+            for (int c = b + 1; c < h.n; ++c) {
+                const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)],
+                                   s1 = side[std::size_t(b)][std::size_t(c)],
+                                   s2 = side[std::size_t(c)][std::size_t(a)];
+                if (!((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)))
+                    continue;
+                if (!(orient(h.q[a], h.q[b], h.q[c]) > 0.0))
+                    continue;
+                // The plane at the sample lies between the corners' heights.
+                const double below = p.z - std::max({h.p[a].z, h.p[b].z, h.p[c].z}),
+                             above = std::min({h.p[a].z, h.p[b].z, h.p[c].z}) - p.z;
+                if (below > stop || above > stop) {
+                    least = std::min(least, std::max(below, above));
+                    continue;
+                }
+                // The plane's height at the sample from its exact barycentric weights (lattice
+                // areas): within a few ulp of the plane the erase computes.
+                const double z =
+                    (h.p[a].z * double(s1) + h.p[b].z * double(s2) + h.p[c].z * double(s0)) /
+                    double(s0 + s1 + s2);
+                least = std::min(least, std::abs(p.z - z));
+                if (least <= stop)
+                    return false;
+            }
+    return true;
+}
+
+// Whether the erase of the node in h cannot hold `limit` under any triangulation of its hole, on a
+// grid TIN at a vertical bound (data_dependent): the node deviates more under every ring triangle
+// that covers it (over_every_triangle). Then h's SP is a lower bound of the erase's cost, found
+// before the ears are clipped (a ring the ears cannot clip is not erased either way).
+static bool beyond_any_triangulation(const EraserState &s, Hole &h, double limit) {
+    double least = 0.0;
+    if (!data_dependent(s) || !over_every_triangle(s, h, node_of(s, h.v), limit, least))
+        return false;
+    h.sp = h.delta = h.star_dev = least;
+    h.star = node_of(s, h.v);
+    return true;
+}
+
 // The hole's triangulation whose largest sample deviation is least (min_max_triangulation, each
 // triangle's samples scanned from the lattice), into h.tri when it keeps within `limit`; false
 // when none does. The samples that put a triangle over its stop (the ears' worst first) are tried
 // first on the next ones: the triangles overlap, and most fail on the same few samples.
 static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
+    double least = 0.0;
+    if (h.star_dev > limit && over_every_triangle(s, h, h.star, limit, least))
+        return false;
     std::array<RingTriangle, k_max_ring> tri;
     std::array<glm::dvec3, 8> witness;
     int witnesses = 0, next = 0;
@@ -167,6 +242,13 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
     };
     if (h.star_dev > limit)
         add_witness(h.star);
+    const std::int64_t w = s.input.grid_w;
+    const Samples lattice = samples(s.input);
+    std::array<std::int64_t, k_max_ring> rx, ry; // the ring's lattice columns and rows
+    for (int i = 0; i < h.n; ++i) {
+        rx[std::size_t(i)] = std::int64_t(node_of(s, h.r[i])) % w;
+        ry[std::size_t(i)] = std::int64_t(node_of(s, h.r[i])) / w;
+    }
     const auto cost = [&](int a, int b, int c, double stop) {
         const TrianglePlane plane =
             triangle_frame(h.q[a], h.q[b], h.q[c], true, h.p[a].z, h.p[b].z, h.p[c].z).plane;
@@ -185,6 +267,20 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
             }
         }
         double most = 0.0;
+        const std::int64_t x[3] = {rx[a], rx[b], rx[c]}, y[3] = {ry[a], ry[b], ry[c]};
+        if (box_samples(x, y) <= k_small_box) {
+            visit_box(x, y, [&](std::int64_t col, std::int64_t row) {
+                if ((col == x[0] && row == y[0]) || (col == x[1] && row == y[1]) ||
+                    (col == x[2] && row == y[2]))
+                    return true; // a corner
+                most = std::max(most, deviation(lattice.at(col, row)));
+                if (!(most > stop))
+                    return true;
+                add_witness(std::uint32_t(row * w + col));
+                return false;
+            });
+            return most;
+        }
         scan_lattice(
             s, node_of(s, h.r[a]), node_of(s, h.r[b]), node_of(s, h.r[c]),
             [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
@@ -248,6 +344,8 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
             if (orient(glm::dvec2(0.0), h.q[i], h.q[(i + 1) % n]) <= 0.0)
                 return false; // the fan is not star-shaped in its mean plane
     }
+    if (beyond_any_triangulation(s, h, limit))
+        return true;
     h.ntri = clip_ears(h.q.data(), n, h.tri.data());
     if (h.ntri != n - 2)
         return false;
