@@ -1,19 +1,26 @@
 // Unit tests of the erase core's internals (lib/src/erase), each against a brute-force computation
 // written here: the lattice scans and tile bounds (lattice_scan.hpp), and the batched raise of a
 // band's pending samples (erase_cost.hpp); and the ear clipping of hand-built rings
-// (ring_triangulation.hpp).
+// (ring_triangulation.hpp). The samples a retrieval's TIN left out, with the history options only
+// the refiner sets (HistoryOptions): their rings, replayed or taken from the lattice.
+#include "erase_fixtures.hpp"
+
 #include "erase/erase_cost.hpp"
 #include "erase/lattice_scan.hpp"
 #include "erase/ring_triangulation.hpp"
 #include "erase/state.hpp"
+#include "lattice_rings.hpp"
+#include "tinlod/quadtree.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 using namespace tinlod;
@@ -38,7 +45,6 @@ struct Lattice {
         s.input.mesh = &mesh;
         s.input.grid_w = w;
         s.input.nodes = w * h;
-        s.faces.face_blocked.assign(1, 0);
     }
 };
 
@@ -148,7 +154,7 @@ TEST(LatticeScan, StopsWhenAVisitSaysSo) {
     EXPECT_EQ(visits, 7);
 }
 
-// Each tile's bound from lattice_tiles, made from the tiles' height ranges alone, is at least the
+// Each tile's bound from tile_bounds, made from the tiles' height ranges alone, is at least the
 // largest vertical distance of the face's samples in that tile to the face's plane, computed here
 // from the three corners (through its normal, not TrianglePlane).
 TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
@@ -157,6 +163,8 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
     for (int lattice = 0; lattice < 6; ++lattice) {
         const std::uint32_t w = 300 + 37 * std::uint32_t(lattice), h = 260;
         Lattice g(rng, w, h);
+        std::vector<float> tile_z;
+        build_tile_z(tile_z, g.s.input);
         for (int face = 0; face < 12; ++face) {
             std::array<std::uint32_t, 3> n = random_corners(rng, w, h);
             const auto point = [&](std::uint32_t u) { return to_glm(g.mesh.point(VH(int(u)))); };
@@ -167,14 +175,12 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
             const auto plane = [&](double x, double y) {
                 return pa.z - (normal.x * (x - pa.x) + normal.y * (y - pa.y)) / normal.z;
             };
-            g.s.faces.face_blocked[0] = 0;
-            g.s.faces.face_tiles.clear();
-            const std::vector<float> *tiles =
-                lattice_tiles(g.s, FH(0), n[0], n[1], n[2], TrianglePlane(pa, pb, pc));
-            if (!tiles)
-                continue; // too few samples to be tiled
-            ++tiled;
             const Tiling tl = tiling(g.s, n[0], n[1], n[2]);
+            if (!worth_tiles(tl))
+                continue; // too few samples to be tiled
+            const std::vector<float> tiles =
+                tile_bounds(g.s, tile_z, tl, n[0], n[1], n[2], TrianglePlane(pa, pb, pc));
+            ++tiled;
             const std::array<std::int64_t, 6> t = {n[0] % w, n[0] / w, n[1] % w,
                                                    n[1] / w, n[2] % w, n[2] / w};
             for (std::uint32_t u = 0; u < w * h; ++u) {
@@ -183,9 +189,9 @@ TEST(LatticeTiles, BoundEverySampleDeviationInTheirTile) {
                     continue;
                 const std::size_t tile = std::size_t(((y - tl.row0) / k_band_rows) * tl.columns +
                                                      (x - tl.x0) / k_tile_cols);
-                ASSERT_LT(tile, tiles->size());
+                ASSERT_LT(tile, tiles.size());
                 const glm::dvec3 q = point(u);
-                EXPECT_LE(std::abs(q.z - plane(q.x, q.y)), double((*tiles)[tile]))
+                EXPECT_LE(std::abs(q.z - plane(q.x, q.y)), double(tiles[tile]))
                     << "sample " << u << " of face " << n[0] << ", " << n[1] << ", " << n[2];
             }
         }
@@ -307,5 +313,171 @@ TEST(Ring, PrefersDelaunayDiagonal) {
     for (const auto &t : tris) {
         const bool has1 = t.a == 1 || t.b == 1 || t.c == 1, has3 = t.a == 3 || t.b == 3 || t.c == 3;
         EXPECT_TRUE(has1 && has3);
+    }
+}
+
+namespace {
+
+using test::corner_view;
+using test::DemAsset;
+using test::invariants;
+using test::Invariants;
+using test::load_cropped;
+
+} // namespace
+
+// The samples a retrieval left out keep their insertion's ring (absent_sample_rings, replayed here
+// over the whole lattice), but only the irregular ones as records: on a 2^k + 1 grid every ring is
+// RegularRings' and the history holds none of them; on other sizes each ring is still the replay's.
+TEST(EraseHistory, AbsentSamplesKeepOnlyTheRingsTheLatticeCannotTell) {
+    for (const DemAsset &a :
+         {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201}}) {
+        const Heightfield hf = load_cropped(a);
+        SCOPED_TRACE(std::to_string(hf.width) + "x" + std::to_string(hf.height));
+        const View view = corner_view(hf);
+        const Mesh lattice = to_lattice_mesh(retrieve(QuadTree(hf), view, {1.0, false}), hf);
+        const RegularRings regular(std::uint32_t(hf.width), std::uint32_t(hf.height));
+        std::map<std::uint32_t, ErasedNodeRing> replay;
+        std::int64_t regular_ones = 0;
+        absent_sample_rings(lattice, std::uint32_t(hf.width), std::uint32_t(hf.height), {},
+                            [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                                replay[x] = {{ring, ring + n}, boundary};
+                                std::array<std::uint32_t, 4> guess;
+                                bool chain = false;
+                                const int m = regular.ring(x, guess.data(), chain);
+                                regular_ones += m == n && chain == boundary &&
+                                                std::equal(ring, ring + n, guess.data());
+                            });
+        ASSERT_GT(replay.size(), std::size_t(hf.size()) / 4);
+        const auto history = [&](bool absent) {
+            Mesh work = lattice;
+            HistoryOptions history;
+            history.absent_history = absent;
+            NodeEraser eraser =
+                EraserAccess::make(work, Significance::screen(view), {}, history, nullptr);
+            if (absent)
+                for (const auto &[x, ring] : replay) {
+                    const ErasedNodeRing kept = eraser.ring(Mesh::VertexHandle(int(x)));
+                    EXPECT_EQ(kept.nodes, ring.nodes) << x;
+                    EXPECT_EQ(kept.boundary, ring.boundary) << x;
+                }
+            return double(eraser.history_bytes());
+        };
+        const double per_sample = (history(true) - history(false)) / double(replay.size());
+        if (hf.width == 257) {
+            EXPECT_EQ(regular_ones, std::int64_t(replay.size()));
+            EXPECT_LT(per_sample, 2.0);
+        } else {
+            EXPECT_GT(regular_ones, 0);
+            EXPECT_LT(regular_ones, std::int64_t(replay.size()));
+        }
+    }
+}
+
+// A refiner's TIN is a retrieval's (HistoryOptions::retrieval_tin): on a square 2^k + 1 grid the
+// eraser takes the rings of the samples it left out from the lattice, without replaying their
+// insertions. Each such ring must be the replay's, for every sample left out, whatever the view and
+// the tolerance made the retrieval keep; on 201² the option must change nothing.
+TEST(EraseHistory, RetrievalTinsOnPowerOfTwoGridsNeedNoReplay) {
+    for (const int side : {129, 257, 513, 201}) {
+        const Heightfield hf = load_cropped({"N42E001.hgt", false, side});
+        const double w = (hf.width - 1) * hf.dx, h = (hf.height - 1) * hf.dy;
+        View above; // high over the middle, looking almost straight down
+        above.eye = {0.5 * w, 0.45 * h, hf.max_z() + 0.5 * w};
+        above.at = {0.5 * w, 0.5 * h, hf.min_z()};
+        View low; // low over the west third, looking east along the terrain
+        low.eye = {0.3 * w, 0.5 * h, hf.max_z() + 0.02 * w};
+        low.at = {w, 0.55 * h, hf.min_z()};
+        const QuadTree tree(hf);
+        for (const View &view : {corner_view(hf), above, low})
+            for (const double tol : {0.25, 1.0, 4.0}) {
+                SCOPED_TRACE(std::to_string(side) + "² at " + std::to_string(tol) + " px");
+                const Mesh lattice = to_lattice_mesh(retrieve(tree, view, {tol, false}), hf);
+                std::map<std::uint32_t, ErasedNodeRing> replay;
+                absent_sample_rings(
+                    lattice, std::uint32_t(hf.width), std::uint32_t(hf.height), {},
+                    [&](std::uint32_t x, const std::uint32_t *ring, int n, bool boundary) {
+                        replay[x] = {{ring, ring + n}, boundary};
+                    });
+                ASSERT_GT(replay.size(), 0u);
+                Mesh work = lattice;
+                HistoryOptions history;
+                history.absent_history = true;
+                history.retrieval_tin = true;
+                const NodeEraser eraser =
+                    EraserAccess::make(work, Significance::screen(view), {}, history, nullptr);
+                EXPECT_EQ(eraser.live_nodes(), hf.size() - std::int64_t(replay.size()));
+                std::int64_t differ = 0;
+                for (const auto &[x, ring] : replay) {
+                    const Mesh::VertexHandle v{int(x)};
+                    ASSERT_TRUE(eraser.is_erased(v)) << x;
+                    const ErasedNodeRing kept = eraser.ring(v);
+                    differ += kept.nodes != ring.nodes || kept.boundary != ring.boundary;
+                }
+                EXPECT_EQ(differ, 0);
+            }
+    }
+}
+
+// With absent_history the samples a retrieval left out are erased nodes like any other: they enter
+// by recover() in any order through a valid TIN, and recovering everything gives the whole lattice,
+// whatever the grid's size (2^k + 1, odd, even).
+TEST(EraseHistory, AbsentSamplesEnterInAnyOrderUntilTheLatticeIsWhole) {
+    for (const DemAsset &a :
+         {DemAsset{"N42E001.hgt", false, 257}, DemAsset{"N42E001.hgt", false, 201},
+          DemAsset{"dem_srtm30.tif", false, 0}}) {
+        const Heightfield hf = load_cropped(a);
+        SCOPED_TRACE(std::to_string(hf.width) + "x" + std::to_string(hf.height));
+        const View view = corner_view(hf);
+        const Retrieval retrieval = retrieve(QuadTree(hf), view, {2.0, false});
+        ASSERT_LT(retrieval.nodes.size(), std::size_t(hf.size()) / 2);
+        Mesh work = to_lattice_mesh(retrieval, hf);
+        EraseOptions options;
+        options.tolerance = 4.0;
+        HistoryOptions history;
+        history.absent_history = true;
+        NodeEraser eraser =
+            EraserAccess::make(work, Significance::screen(view), options, history, nullptr);
+        // Each sample's record is its insertion's ring: 3 nodes (inside a triangle), 4 (on an
+        // edge) or a chain of 3 (on the outline); on a 2^k + 1 grid every centre and midpoint lies
+        // on an edge of the restricted quad-tree's fans.
+        std::int64_t inside = 0;
+        for (auto v : work.all_vertices()) {
+            if (!eraser.is_erased(v))
+                continue;
+            const ErasedNodeRing r = eraser.ring(v);
+            EXPECT_TRUE(r.nodes.size() == 3 || (r.nodes.size() == 4 && !r.boundary)) << v.idx();
+            inside += !r.boundary && r.nodes.size() == 3;
+        }
+        if (hf.width == 257) {
+            EXPECT_EQ(inside, 0);
+        }
+        const EraseStats stats = eraser.erase();
+        EXPECT_LE(stats.max_screen_px, options.tolerance);
+        std::vector<int> out;
+        for (auto v : work.all_vertices())
+            if (eraser.is_erased(v))
+                out.push_back(v.idx());
+        EXPECT_EQ(std::int64_t(out.size()), hf.size() - eraser.live_nodes());
+        std::mt19937 rng(11);
+        std::shuffle(out.begin(), out.end(), rng);
+        const double perimeter = 2.0 * ((hf.width - 1) * hf.dx + (hf.height - 1) * hf.dy);
+        const auto check = [&](const char *stage) {
+            Mesh m = eraser.mesh();
+            m.garbage_collection();
+            const Invariants inv = invariants(m);
+            EXPECT_EQ(inv.euler, 1) << stage;
+            EXPECT_EQ(inv.non_manifold, 0) << stage;
+            EXPECT_NEAR(inv.boundary_length, perimeter, 1e-6 * perimeter) << stage;
+            EXPECT_EQ(test::count_folded_faces(m), 0) << stage;
+            EXPECT_EQ(std::int64_t(m.n_vertices()), eraser.live_nodes()) << stage;
+        };
+        for (std::size_t k = 0; k < out.size() / 4; ++k)
+            eraser.recover(Mesh::VertexHandle(out[k]));
+        check("a quarter recovered");
+        eraser.recover_all();
+        check("all recovered");
+        EXPECT_EQ(eraser.live_nodes(), hf.size());
+        EXPECT_EQ(eraser.live_triangles(), 2 * std::int64_t(hf.width - 1) * (hf.height - 1));
     }
 }

@@ -1,9 +1,14 @@
 // Unit tests of the refiner's internals (lib/src/refine), each against an exact computation
 // written here: the motion bounds (motion_bounds.hpp) against screen_weight at both views, and
-// ready_dependency (update.hpp) against a walk of the dependency graph of an erase's records.
+// ready_dependency (update.hpp) against a walk of the dependency graph of an erase's records. And
+// the refiner's engine (refine::Engine) driven directly: compaction, and updates that keep the
+// bound and leave no node they could erase.
+#include "erase_fixtures.hpp"
+
 #include "refine/motion_bounds.hpp"
 #include "refine/update.hpp"
 #include "tinlod/decimate.hpp"
+#include "tinlod/quadtree.hpp"
 #include "tinlod/significance.hpp"
 #include "tinlod/tin.hpp"
 
@@ -148,19 +153,22 @@ Heightfield rough(std::uint32_t side, std::uint32_t seed) {
 // On a TIN erased with a shallow history, with its records copied into an EraserState from
 // ring(): for every erased node v, re-inserting what ready_dependency returns until v is back
 // always re-inserts an erased node whose ring is all live, reached from v along erased ring nodes
-// (a breadth-first walk of the records' graph), and the walk resumed from s.frame.chain returns
+// (a breadth-first walk of the records' graph), and the walk resumed from FrameState::chain returns
 // what a walk from v alone returns.
 TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
     const Heightfield hf = rough(33, 3);
     Mesh mesh = grid_tin(hf);
     EraseOptions options;
     options.tolerance = 12.0;
-    options.shallow_history = true;
-    NodeEraser eraser(mesh, Significance::vertical(), options);
+    HistoryOptions history;
+    history.shallow_history = true;
+    NodeEraser eraser =
+        EraserAccess::make(mesh, Significance::vertical(), options, history, nullptr);
     eraser.erase();
 
     const std::uint32_t nodes = std::uint32_t(mesh.n_vertices());
     EraserState s;
+    FrameState frame;
     s.input.mesh = &mesh;
     s.input.nodes = nodes;
     s.input.xy = true;
@@ -186,7 +194,7 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
     std::int64_t steps = 0, deep = 0;
     for (const std::uint32_t v : erased) {
         s.history.record_of = erased_record;
-        s.frame.chain.clear();
+        frame.chain.clear();
         for (std::int64_t k = 0;; ++k) {
             ASSERT_LT(k, std::int64_t(erased.size()));
             // The nodes reachable from v along erased ring nodes, as they stand.
@@ -205,9 +213,10 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
             fresh.history.record_of = s.history.record_of;
             fresh.history.records = s.history.records;
             fresh.history.ring_pool = s.history.ring_pool;
-            const std::uint32_t from_scratch = ready_dependency(fresh, v);
+            FrameState fresh_frame;
+            const std::uint32_t from_scratch = ready_dependency(fresh, fresh_frame, v);
 
-            const std::uint32_t x = ready_dependency(s, v);
+            const std::uint32_t x = ready_dependency(s, frame, v);
             ASSERT_GE(s.history.record_of[x], 0) << "node " << x << " for " << v << " is live";
             EXPECT_TRUE(reach.count(x)) << "node " << x << " is not reached from " << v;
             for (const std::uint32_t r : rings[x])
@@ -223,4 +232,176 @@ TEST(ReadyDependency, ReturnsAReachableNodeWhoseRingIsLive) {
     }
     EXPECT_GT(deep, 10); // some recoveries waited on others
     EXPECT_GE(steps, std::int64_t(erased.size()));
+}
+
+namespace {
+
+using test::corner_view;
+using test::CornerCrop;
+using test::invariants;
+using test::load_cropped;
+using test::triangle_set;
+
+} // namespace
+
+// Without HistoryOptions::absent_history the samples a retrieval's TIN left out cannot enter:
+// following a view is refused.
+TEST(Engine, UpdateRefusesSamplesThatCannotEnter) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 257});
+    const View view = corner_view(hf);
+    const Retrieval retrieval = retrieve(QuadTree(hf), view, {0.5, false});
+    ASSERT_LT(retrieval.nodes.size(), std::size_t(hf.size()));
+    Mesh work = to_lattice_mesh(retrieval, hf);
+    Engine engine(work, Significance::screen(view), EraseOptions{}, {});
+    EXPECT_GT(engine.eraser.erase().erased, 0);
+    EXPECT_THROW(engine.update(view, 1.0, 0.75), std::logic_error);
+}
+
+// Engine::compact() drops the erased edges and faces; the history still recovers every node
+// exactly, on a copy of the compacted mesh (rebind), with edges and faces created as the re-inserts
+// need them.
+TEST(Engine, CompactedHistoryRecoversExactly) {
+    CornerCrop crop;
+    const View &view = crop.view;
+    Mesh &input = crop.input;
+    const auto &input_triangles = crop.triangles;
+    EraseOptions options;
+    options.tolerance = 1.0;
+    Mesh work = input;
+    Engine engine(work, Significance::screen(view), options, {});
+    NodeEraser &eraser = engine.eraser;
+    const EraseStats stats = eraser.erase();
+    ASSERT_GT(stats.erased, 1000);
+    const auto erased_triangles = triangle_set(work);
+
+    engine.compact();
+    Mesh copy = work;
+    engine.rebind(copy);
+    EXPECT_EQ(std::int64_t(copy.n_faces()), eraser.live_triangles());
+    EXPECT_EQ(copy.n_edges(), copy.n_faces() + copy.n_vertices() - std::size_t(stats.erased) - 1);
+    EXPECT_EQ(copy.n_vertices(), input.n_vertices());
+    EXPECT_EQ(triangle_set(copy), erased_triangles);
+    EXPECT_LE(eraser.measure().max_weighted, options.tolerance);
+
+    std::vector<int> nodes;
+    for (auto v : input.vertices())
+        if (eraser.is_erased(v))
+            nodes.push_back(v.idx());
+    std::mt19937 rng(11);
+    std::shuffle(nodes.begin(), nodes.end(), rng);
+    std::int64_t recovered = 0;
+    for (std::size_t k = 0; k < nodes.size() / 4; ++k)
+        recovered += eraser.recover(Mesh::VertexHandle(nodes[k]));
+    Mesh partial = eraser.mesh();
+    partial.garbage_collection();
+    EXPECT_EQ(test::count_folded_faces(partial), 0);
+    EXPECT_EQ(invariants(partial).non_manifold, 0);
+    EXPECT_EQ(invariants(partial).euler, invariants(input).euler);
+
+    EXPECT_EQ(recovered + eraser.recover_all(), stats.erased);
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(back.n_faces(), input.n_faces());
+    EXPECT_EQ(triangle_set(back), input_triangles);
+}
+
+// After Engine::compact() an update keeps the live nodes' keys and sweep stamps with them; an
+// erase() after that goes back to per-vertex ones. Both keep their bound, and every node still
+// recovers.
+TEST(Engine, UpdatesAfterCompactThenAnotherEraseKeepTheirBounds) {
+    CornerCrop crop;
+    const View &view = crop.view;
+    View nearer = view;
+    nearer.eye += 0.5 * (view.at - view.eye);
+    EraseOptions options;
+    options.tolerance = 0.75;
+    Mesh work = crop.input;
+    Engine engine(work, Significance::screen(view), options, {});
+    NodeEraser &eraser = engine.eraser;
+    eraser.erase();
+    engine.compact();
+    Mesh copy = work;
+    engine.rebind(copy);
+    for (const View &v : {nearer, view, nearer}) {
+        const UpdateStats u = engine.update(v, 1.0, 0.75);
+        EXPECT_GT(u.recovered + u.erased, 0);
+        EXPECT_LE(eraser.measure().max_weighted, 1.0);
+    }
+    // From the last update's view (from another, what the TIN left coarse for that one may show
+    // more than the bound: an erase cannot lower it).
+    EraseOptions looser = options;
+    looser.tolerance = 2.0;
+    eraser.set_view(Significance::screen(nearer), looser);
+    const EraseStats again = eraser.erase();
+    EXPECT_GT(again.erased, 0);
+    EXPECT_LE(again.max_weighted, 2.0);
+    const UpdateStats u = engine.update(view, 2.0, 1.5);
+    EXPECT_GT(u.recovered, 0);
+    EXPECT_LE(eraser.measure().max_weighted, 2.0);
+    eraser.recover_all();
+    Mesh back = eraser.mesh();
+    back.garbage_collection();
+    EXPECT_EQ(triangle_set(back), crop.triangles);
+}
+
+// An update evaluates only the nodes whose cost may have fallen to its erase bound: the rest are
+// left by bounds (their last cost carried to the new view, their worst node's deviation times its
+// weight now, the grid's cells). If any of those bounds overstated a cost, a node the update should
+// have erased would stay. After the updates of an approach, a retreat and a turn over a real DEM,
+// every live node costs more than the erase bound, measured over all the nodes its hole would
+// swallow, unless its fan covers more than an update takes on (k_update_cap). Overstating by 20-30
+// % the motion shortcut's bound (moved_within), the worst node's or a cell's fails it.
+TEST(Engine, UpdateLeavesNoNodeItCouldErase) {
+    const Heightfield hf = load_cropped({"N42E001.hgt", false, 401});
+    const View start = corner_view(hf);
+    Mesh input = grid_tin(hf);
+    EraseOptions options;
+    options.tolerance = 1.0;
+    Engine engine(input, Significance::screen(start), options, {});
+    NodeEraser &eraser = engine.eraser;
+    eraser.erase();
+    engine.compact(); // as the refiner runs its updates
+    Mesh work = input;
+    engine.rebind(work);
+    // Small steps, as a flight makes them: the bounds carried from frame to frame by the eye's move
+    // have a shortcut for moves small against the distance.
+    std::vector<View> views;
+    for (int i = 1; i <= 40; ++i) {
+        View v = start;
+        v.eye += 0.025 * (i <= 20 ? i : 40 - i) * (start.at - start.eye);
+        views.push_back(v);
+    }
+    for (int i = 1; i <= 8; ++i) {
+        View v = start;
+        v.at.x -= 0.05 * i * (hf.width - 1) * hf.dx;
+        views.push_back(v);
+    }
+    constexpr double k_erase_below = 0.75;
+    std::int64_t changed = 0, checked = 0, over_cap = 0;
+    double least = INFINITY;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const View &view = views[i];
+        const UpdateStats u = engine.update(view, 1.0, k_erase_below);
+        changed += u.erased + u.recovered;
+        if (i % 4 != 3)
+            continue; // every 4th update is checked (each check evaluates every live node)
+        int erasable = 0;
+        for (const auto v : eraser.mesh().vertices()) {
+            if (eraser.is_erased(v))
+                continue;
+            const NodeEraser::Cost c = eraser.erase_cost(v);
+            if (c.covered > double(k_update_cap)) {
+                ++over_cap;
+                continue;
+            }
+            ++checked;
+            least = std::min(least, c.cost);
+            erasable += !(c.cost > k_erase_below);
+        }
+        EXPECT_EQ(erasable, 0) << "eye " << view.eye.x << ", " << view.eye.y << ", " << view.eye.z;
+    }
+    // Not vacuous: the updates changed the TIN, and the nodes checked come close to the bound.
+    EXPECT_GT(changed, 1000);
+    EXPECT_GT(checked, 20 * over_cap);
+    EXPECT_LT(least, 1.05 * k_erase_below);
 }

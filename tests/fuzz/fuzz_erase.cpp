@@ -1,9 +1,11 @@
-// Fuzz target: the node-erase decimater (lib/decimate) on small TINs and views. The input decodes
-// into a grid of at most 16x16 heights, a view, an SP model, a tolerance and a node budget. After
-// erase(), after update() to a second view and after a budget run, the TIN must be free of
-// fold-overs, manifold, a disk with the input's outline, with counts that match the mesh and an
-// error (measured over every sample) within the bound; recover_all() must give back the input's
-// node coordinates and triangles exactly. A broken invariant aborts with a line naming it.
+// Fuzz target: the node-erase decimater (lib/src/erase) and the refiner's engine (lib/src/refine)
+// on small TINs and views. The input decodes into a grid of at most 16x16 heights, a view, an SP
+// model, a tolerance and a node budget. After erase(), after an update to a second view and after
+// a budget run, the TIN must be free of fold-overs, manifold, a disk with the input's outline,
+// with counts that match the mesh and an error (measured over every sample) within the bound;
+// recover_all() must give back the input's node coordinates and triangles exactly. A broken
+// invariant aborts with a line naming it.
+#include "refine/update.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/metrics.hpp"
@@ -167,7 +169,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
         in.PickValueInArray(k_tolerance) * (model == SpModel::vertical ? zscale : 1.0);
     options.projection = in.ConsumeBool() ? Projection::automatic : Projection::xy;
     options.erase_boundary = in.ConsumeBool();
-    options.shallow_history = in.ConsumeBool();
+    erase::HistoryOptions history;
+    history.shallow_history = in.ConsumeBool();
     const bool compact = in.ConsumeBool(); // drop the erased edges and faces before the update
     options.max_valence = in.ConsumeIntegralInRange(3, k_max_ring);
     const std::int64_t budget = in.ConsumeIntegralInRange(1, hf.width * hf.height);
@@ -192,7 +195,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
 
     {
         Mesh work = input;
-        NodeEraser eraser(work, sp, options);
+        refine::Engine engine(work, sp, options, history);
+        NodeEraser &eraser = engine.eraser;
         const EraseStats stats = eraser.erase();
         check(stats.input_nodes == std::int64_t(input.n_vertices()), "stats.input_nodes");
         check(stats.output_nodes == eraser.live_nodes(), "stats.output_nodes");
@@ -202,15 +206,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
         check_bound(hf, eraser, view, model, options.tolerance, slack);
         Mesh compacted;
         if (compact) {
-            eraser.compact();
+            engine.compact();
             compacted = work;
-            eraser.rebind(compacted);
+            engine.rebind(compacted);
             check(compacted.n_faces() == std::size_t(eraser.live_triangles()),
                   "compact kept erased faces");
             check_tin(eraser, input_area);
         }
         if (model != SpModel::vertical && std::isfinite(options.tolerance)) {
-            eraser.update(next, options.tolerance, 0.75 * options.tolerance);
+            engine.update(next, options.tolerance, 0.75 * options.tolerance);
             check_tin(eraser, input_area);
             check_bound(hf, eraser, next, model, options.tolerance, next_slack);
         }
@@ -220,7 +224,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
         Mesh work = input;
         EraseOptions by_budget = options;
         by_budget.max_nodes = budget;
-        NodeEraser eraser(work, sp, by_budget);
+        NodeEraser eraser = erase::EraserAccess::make(work, sp, by_budget, history, nullptr);
         eraser.erase();
         check(eraser.live_nodes() >= budget, "the budget run erased below max_nodes");
         check_tin(eraser, input_area);

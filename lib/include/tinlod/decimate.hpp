@@ -43,8 +43,11 @@ namespace tinlod {
 class QuadTree;
 
 namespace erase {
-struct EraserState; // the eraser's state (lib/src/erase/state.hpp)
-}
+struct EraserState;    // the eraser's state (lib/src/erase/state.hpp)
+struct HistoryOptions; // what only the refiner sets
+class Follower;        // the refiner's state that follows the erase's edits
+struct EraserAccess;   // the refiner's and the internal tests' way in
+} // namespace erase
 
 // The largest ring a hole may have (EraseOptions::max_valence's upper limit).
 inline constexpr int k_max_ring = 48;
@@ -61,30 +64,11 @@ struct EraseOptions {
     Projection projection = Projection::automatic; // automatic: xy when every face is CCW in xy
     bool erase_boundary = true; // TINs: erase boundary nodes lying exactly on the outline's line
     int max_valence = 24;       // nodes with more neighbours stay (bounds the hole size)
-    // Erase in passes of independent nodes (no two erased in one pass share a triangle), so every
-    // chain of recover dependencies is at most as long as the passes: for a history that will be
-    // recovered from (the refiner). Otherwise a pass may erase a node right after its neighbour,
-    // which gives fewer nodes, faster, but chains along a row that a recover must undo whole.
-    bool shallow_history = false;
-    // A grid TIN holding only some of its lattice's samples (to_lattice_mesh): give the samples
-    // it left out erase records, as if the erases had taken them from the whole grid in the
-    // quad-tree's order (absent_sample_rings), so recover() and update() bring them in by local
-    // edits like any erased node. A record is kept only where the ring is not the lattice's
-    // regular one (RegularRings: none on a 2^k + 1 grid, about half of 1201 x 1201), 20-24
-    // bytes each. Otherwise they never enter.
-    bool absent_history = false;
-    // With absent_history: the TIN is a quad-tree retrieval's (to_lattice_mesh of retrieve). On a
-    // square 2^k + 1 grid every ring of a sample it left out is then the regular one (each leaf's
-    // fan holds its centre, and each sample enters on the edge RegularRings names), so the
-    // constructor takes them from the lattice without replaying the insertions, which took a third
-    // of the refiner's first frame and 32 bytes per sample while they ran
-    // (docs/decisions/019-erase-dem-first-stage.md). Other sizes replay as without it.
-    bool retrieval_tin = false;
     // A sparse grid TIN: the mesh's vertices are some of this lattice's samples (the origin
     // property names each, its point as grid_vertices has it), triangulated over the lattice's
-    // whole rectangle; the samples it left out have no vertex (as with to_lattice_mesh, see
-    // absent_history) until they enter. An erase frees its node's vertex, and a sample that enters
-    // or comes back takes a freed one (or a new one when none is free), so the mesh's memory
+    // whole rectangle; the samples it left out have no vertex (as with to_lattice_mesh) and stay
+    // erased (only a refiner brings them in). An erase frees its node's vertex, and a sample that
+    // comes back takes a freed one (or a new one when none is free), so the mesh's memory
     // follows the live nodes, not the lattice. A vertex handle given to recover, is_erased or ring
     // names the sample its origin property names (a deleted vertex: the last sample it held).
     // Must outlive the eraser.
@@ -122,11 +106,11 @@ struct ErasedNodeRing {
     bool boundary = false;
 };
 
-// What one NodeEraser::update did.
+// What one of the refiner's updates did (FrameStats::update, refine.hpp).
 struct UpdateStats {
     std::int64_t recovered = 0;   // nodes re-inserted (dependency closures included)
     std::int64_t entered = 0;     // of those, samples the input TIN left out, there for the first
-                                  // time (EraseOptions::absent_history)
+                                  // time (a retrieval's TIN left them out)
     std::int64_t fans_kept = 0;   // of those, nodes whose fan held many grid samples: its faces
                                   // took back what they knew of them at the erase, unscanned
     std::int64_t erased = 0;      // nodes erased
@@ -141,7 +125,7 @@ struct UpdateStats {
     double erase_ms = 0.0;          // the erase pass
 };
 
-// An update (NodeEraser::update) does not erase a node whose fan covers more input nodes than
+// A refiner's update (Refiner::update) does not erase a node whose fan covers more input nodes than
 // this: such an erase visits thousands of nodes to save one (on 4097² a face over a flat holds
 // millions).
 inline constexpr std::size_t k_update_cap = 4096;
@@ -149,8 +133,8 @@ inline constexpr std::size_t k_update_cap = 4096;
 // The history of the erases made on a TIN (or surface mesh): erase by significance, recover any
 // erased node exactly. The eraser edits the caller's mesh in place (OpenMesh meshes cannot be
 // moved, only copied); the mesh must outlive it. Vertex handles stay valid for the eraser's whole
-// life: erased vertices, edges and faces are marked deleted and re-used on recover (compact()
-// drops the erased edges and faces). Call mesh.garbage_collection() only once the eraser is gone.
+// life: erased vertices, edges and faces are marked deleted and re-used on recover. Call
+// mesh.garbage_collection() only once the eraser is gone.
 class NodeEraser {
   public:
     // `mesh`: triangles only, no deleted elements, status attributes (tinlod::Mesh has them).
@@ -181,37 +165,6 @@ class NodeEraser {
     // they are needed.
     void set_view(const Significance &model, const EraseOptions &options);
 
-    // Follows the observer to `view` in both directions (the refiner's frame step):
-    //  1. recover: every face whose swallowed nodes exceed `recover_above` (weighted, the units of
-    //     the tolerance) under the new weights gets nodes back top down, until every face is
-    //     within `recover_above`: the erase its worst node's recovery waits on (the first erased
-    //     ring node down the chain of dependencies, or the node itself) is undone, and the face is
-    //     checked again. Faces are found from the live nodes' bounds on their fans (reach and
-    //     largest deviation), so only the fans those bounds cannot clear are walked;
-    //  2. erase: the nodes just recovered, the nodes whose ring changed, and the live nodes whose
-    //     last evaluation's worst node (its deviation times its weight now: a lower bound of the
-    //     cost) no longer keeps them above `erase_below` are swept (passes over those nodes and
-    //     the rings their erases change) and erased while their cost stays <= `erase_below`.
-    // Its cost follows the live nodes (a few operations each) and the nodes that change, not the
-    // input's size.
-    // With erase_below < recover_above a node between the two keeps its state (hysteresis). After
-    // the call the whole-output bound holds at `recover_above`: every swallowed node's weighted
-    // deviation is <= recover_above. Needs a view (not SpModel::vertical). Throws std::logic_error
-    // for a TIN with samples left out but no EraseOptions::absent_history: they could not enter.
-    UpdateStats update(const View &view, double recover_above, double erase_below);
-
-    // Drops the erased edges and faces from the mesh's arrays (an erase from a grid keeps a few
-    // percent of them): edge and face handles change, vertex handles stay (erased vertices remain,
-    // marked deleted: they name the history), except with EraseOptions::lattice, where the erased
-    // vertices go too and the live ones move down in order. Re-inserts then add what they need.
-    // OpenMesh keeps the arrays' capacity; to give the memory back, copy the mesh and rebind.
-    void compact();
-    // Continues on `mesh`, a copy of the eraser's current mesh, for a long run of updates: the
-    // large arrays (the mesh's and the eraser's) are moved to huge pages where the kernel allows,
-    // and the bounds the updates keep on the live nodes' fans are built now (else the first update
-    // after an erase() builds them).
-    void rebind(Mesh &mesh);
-
     bool is_erased(Mesh::VertexHandle v) const;
     // The ring of erased node v's last erase.
     ErasedNodeRing ring(Mesh::VertexHandle v) const;
@@ -237,6 +190,12 @@ class NodeEraser {
     std::size_t history_bytes() const;
 
   private:
+    friend struct erase::EraserAccess;
+    // The refiner's: with the options only it sets, and its state that follows the edits (null:
+    // none).
+    NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions &options,
+               const erase::HistoryOptions &history, erase::Follower *follower);
+
     std::unique_ptr<erase::EraserState> state_;
 };
 

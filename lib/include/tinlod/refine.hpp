@@ -55,7 +55,7 @@ struct RefineOptions {
     // From a Heightfield with the screen model: the first frame retrieves the quad-tree's TIN at
     // retrieve_share times the erase tolerance, (1 - hysteresis) tau, and erases from there. The
     // samples the retrieval left out enter later by local edits, where the observer comes close
-    // (EraseOptions::absent_history). 0: the first frame erases from the full grid.
+    // (each has an erase record from the start). 0: the first frame erases from the full grid.
     double retrieve_share = 0.5;
 };
 

@@ -89,26 +89,11 @@ void retriangulate(EraserState &s) {
         s.history.free_edges.push_back(e);
     }
     const std::uint32_t x = node_of(s, h.v);
-    if (s.input.grid_w > 0 && s.input.options.shallow_history &&
-        lattice_inside(s, h) > k_kept_fan_samples) {
-        KeptFan &kept = s.history.kept_fans[x];
-        kept.head.resize(std::size_t(fans));
-        kept.maxdev.resize(std::size_t(fans));
-        kept.tiles.resize(std::size_t(fans));
-        for (int t = 0; t < fans; ++t) {
-            const std::int32_t f = face[t].idx();
-            kept.head[std::size_t(t)] = s.faces.face_head[f];
-            kept.maxdev[std::size_t(t)] = s.faces.face_maxdev[f];
-            const auto tiles = s.faces.face_tiles.find(f);
-            if (tiles != s.faces.face_tiles.end())
-                kept.tiles[std::size_t(t)] = std::move(tiles->second);
-            else
-                kept.tiles[std::size_t(t)].clear();
-        }
-    }
+    if (s.follower)
+        s.follower->fan_erasing(s, x, h, face.data(), fans);
     for (int t = 0; t < fans; ++t) {
         s.faces.face_head[face[t].idx()] = -1;
-        face_changed(s.faces, s.frame.seen, face[t]);
+        face_changed(s.follower, face[t]);
         s.faces.face_maxdev[face[t].idx()] = 0.0f;
     }
     for (int t = h.ntri; t < fans; ++t) {
@@ -143,7 +128,7 @@ void retriangulate(EraserState &s) {
     std::array<std::uint32_t, k_max_ring> ids;
     for (int i = 0; i < n; ++i)
         ids[i] = s.history.ring_pool[record.ring_begin + std::size_t(i)] = node_of(s, h.r[i]);
-    remove_live(s.live, s.history, x, k);
+    remove_live(s.live, s.history, s.follower, x, k);
     widen_fans(s, h.p.data(), ids.data(), n, h.tri.data(), tri_dev.data(), h.ntri);
     --s.live.count;
     s.live.faces -= fans - h.ntri;
@@ -163,10 +148,9 @@ static EH take_edge(EraserState &s) {
 static FH take_face(EraserState &s) {
     if (s.history.free_faces.empty()) {
         s.faces.face_head.push_back(-1);
-        s.faces.face_blocked.push_back(0);
         s.faces.face_maxdev.push_back(0.0f);
-        s.frame.seen.face_seen_dev.push_back(-1.0f);
-        s.frame.seen.face_seen.push_back(0);
+        if (s.follower)
+            s.follower->face_added();
         return s.input.mesh->new_face();
     }
     const FH f = s.history.free_faces.back();
@@ -249,7 +233,7 @@ void reinsert(EraserState &s, std::uint32_t x) {
     if (s.input.grid_w == 0) {
         const std::int32_t by = s.faces.swallowed_by[x];
         if (std::none_of(face.begin(), face.begin() + n_faces, [&](FH f) { return f.idx() == by; }))
-            unlink_swallowed(s.faces, s.frame.seen, by, x);
+            unlink_swallowed(s.faces, s.follower, by, x);
     }
 
     std::vector<std::uint32_t> &swallowed = s.scratch.swallowed_scratch;
@@ -261,7 +245,7 @@ void reinsert(EraserState &s, std::uint32_t x) {
                 if (std::uint32_t(u) != x)
                     swallowed.push_back(std::uint32_t(u));
         s.faces.face_head[face[k].idx()] = -1;
-        face_changed(s.faces, s.frame.seen, face[k]);
+        face_changed(s.follower, face[k]);
         s.faces.face_maxdev[face[k].idx()] = 0.0f;
     }
 
@@ -358,19 +342,8 @@ void reinsert(EraserState &s, std::uint32_t x) {
     for (int i = 0; i < fans; ++i)
         h.tri[i] = {std::uint8_t(n), std::uint8_t(i), std::uint8_t((i + 1) % n)};
     frame_triangles(h, s.input.xy);
-    if (const auto kept = s.history.kept_fans.find(x); kept != s.history.kept_fans.end()) {
-        // The fan's faces are the triangles they were at the erase, holding the same samples.
-        for (int i = 0; i < fans; ++i) {
-            const std::int32_t f = face[i].idx();
-            s.faces.face_head[f] = kept->second.head[std::size_t(i)];
-            s.faces.face_maxdev[f] = kept->second.maxdev[std::size_t(i)];
-            if (!kept->second.tiles[std::size_t(i)].empty()) {
-                s.faces.face_tiles[f] = std::move(kept->second.tiles[std::size_t(i)]);
-                s.faces.face_blocked[f] = 1;
-            }
-        }
-        s.history.kept_fans.erase(kept);
-        ++s.counters.fans_kept;
+    if (s.follower && s.follower->fan_restoring(s.faces, x, face.data(), fans)) {
+        ++s.counters.fans_kept; // the fan's faces are the triangles they were at the erase
     } else if (s.input.grid_w > 0) {
         for (int i = 0; i < fans; ++i) {
             const std::uint32_t a = ring[i], b = ring[(i + 1) % n];

@@ -25,8 +25,7 @@ void classify_nodes(EraserState &s) {
     for (std::uint8_t &f : s.live.flags)
         f &= k_unread;
     if (s.live.node_keys)
-        for (LiveNode &l : s.live.list)
-            l.stamp = 0;
+        std::fill(s.live.slot_stamp.begin(), s.live.slot_stamp.end(), std::uint8_t(0));
     else
         s.live.stamp.assign(s.input.nodes, 0);
     s.live.pass = 0;
@@ -150,7 +149,7 @@ static void scan_hole(const EraserState &s, Hole &h, const glm::dvec3 &pv, doubl
 // (docs/decisions/023-fine-bounds.md). Others keep the ears alone.
 static bool data_dependent(const EraserState &s) {
     return s.input.xy && s.input.grid_w > 0 && s.weights.unit_weights &&
-           s.input.options.max_nodes <= 0 && !s.input.options.shallow_history;
+           s.input.options.max_nodes <= 0 && !s.input.history.shallow_history;
 }
 
 // Whether a sample deviates more than `limit` (vertically) from every triangle over three ring
@@ -395,13 +394,13 @@ static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limi
             h.star_dev = d;
         }
     };
-    // The SP so far is a lower bound of the erase's SP under any view: remembered for update().
+    // The SP so far is a lower bound of the erase's SP under any view: remembered for the next
+    // evaluation and for the refiner's updates.
     auto remember = [&] {
-        LiveNode &l = live_node(s, x);
-        l.star = h.star;
-        l.star_dev = float_down(h.star_dev);
-        Cell &cell = s.frame.grid.cells[l.cell];
-        cell.star_dev = std::min(cell.star_dev, l.star_dev);
+        const std::uint32_t slot = live_slot(s, x);
+        s.live.list[slot].star = h.star;
+        if (s.follower)
+            s.follower->evaluated(slot, float_down(h.star_dev));
     };
     if (s.input.xy) {
         // A live corner's sample sits within a rounding of the float corner: a steep (sliver)

@@ -65,13 +65,6 @@ void swallow_absent(EraserState &s) {
     }
 }
 
-void forget_nodes(LiveSet &live) {
-    for (LiveNode &l : live.list) {
-        l.seen_log = INFINITY;
-        l.low_log = -INFINITY;
-    }
-}
-
 namespace {
 
 // Recovers x and the erases it depends on; appends every node re-inserted to `done`.
@@ -144,8 +137,11 @@ ErasedNodeRing NodeEraser::ring(Mesh::VertexHandle v) const {
     return {{ring.nodes, ring.nodes + ring.size}, ring.boundary};
 }
 
-void NodeEraser::compact() {
-    EraserState &s = *state_;
+} // namespace tinlod
+
+namespace tinlod::erase {
+
+void compact(EraserState &s) {
     Mesh &m = *s.input.mesh;
     // The per-face state rides along as face properties while the collection moves the faces.
     OpenMesh::FPropHandleT<float> maxdev;
@@ -177,18 +173,16 @@ void NodeEraser::compact() {
     m.remove_property(head);
     s.faces.face_maxdev.shrink_to_fit();
     s.faces.face_head.shrink_to_fit();
-    // The blocks name faces by index: they go (the next scans build them again).
-    s.faces.face_blocked.assign(s.faces.face_head.size(), 0);
-    s.faces.face_blocked.shrink_to_fit();
-    s.frame.seen.face_seen_dev.assign(s.faces.face_head.size(), -1.0f);
-    s.frame.seen.face_seen_dev.shrink_to_fit();
-    s.frame.seen.face_seen.assign(s.faces.face_head.size(), 0);
-    s.frame.seen.face_seen.shrink_to_fit();
-    s.faces.face_blocks.clear();
-    s.faces.face_tiles.clear();
-    for (LiveNode &l : s.live.list) {
-        l.key = s.live.heap.key(l.node);
-        l.stamp = s.live.stamp[l.node];
+    if (s.follower)
+        s.follower->faces_compacted(s.faces.face_head.size());
+    // With the list's room, so that they grow with it.
+    s.live.slot_key.reserve(s.live.list.capacity());
+    s.live.slot_stamp.reserve(s.live.list.capacity());
+    s.live.slot_key.resize(s.live.list.size());
+    s.live.slot_stamp.resize(s.live.list.size());
+    for (std::size_t i = 0; i < s.live.list.size(); ++i) {
+        s.live.slot_key[i] = s.live.heap.key(s.live.list[i].node);
+        s.live.slot_stamp[i] = s.live.stamp[s.live.list[i].node];
     }
     s.live.heap.release();
     std::vector<std::uint8_t>().swap(s.live.stamp);
@@ -199,6 +193,10 @@ void NodeEraser::compact() {
     s.history.records.shrink_to_fit();
     s.history.ring_pool.shrink_to_fit();
 }
+
+} // namespace tinlod::erase
+
+namespace tinlod {
 
 std::size_t NodeEraser::history_bytes() const { return state_->bytes(); }
 

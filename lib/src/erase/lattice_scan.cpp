@@ -29,13 +29,13 @@ std::uint32_t grid_width(const Mesh &m) {
     return std::uint32_t(w);
 }
 
-void build_tile_z(FaceIndex &faces, const Input &input) {
+void build_tile_z(std::vector<float> &tile_z, const Input &input) {
     const std::int64_t w = input.grid_w, rows = std::int64_t(input.nodes) / w;
     const std::int64_t columns = tile_columns(input);
-    faces.tile_z.assign(std::size_t(2 * columns * ((rows - 1) / k_band_rows + 1)), 0.0f);
+    tile_z.assign(std::size_t(2 * columns * ((rows - 1) / k_band_rows + 1)), 0.0f);
     const Samples g = samples(input);
     for (std::int64_t r = 0; r < rows; ++r) {
-        float *band = faces.tile_z.data() + 2 * (r / k_band_rows) * columns;
+        float *band = tile_z.data() + 2 * (r / k_band_rows) * columns;
         for (std::int64_t c0 = 0; c0 < w; c0 += k_tile_cols) {
             float lo = INFINITY, hi = -INFINITY;
             for (std::int64_t c = c0; c < std::min(w, c0 + k_tile_cols); ++c) {

@@ -81,8 +81,9 @@ inline std::int64_t tile_columns(const Input &input) {
     return (std::int64_t(input.grid_w) - 1) / k_tile_cols + 1;
 }
 
-// The least and largest height of each tile of a grid TIN's lattice (one pass over the samples).
-void build_tile_z(FaceIndex &faces, const Input &input);
+// The least and largest height of each tile of a grid TIN's lattice (one pass over the samples),
+// into tile_z: per band of tiles, per tile, the two.
+void build_tile_z(std::vector<float> &tile_z, const Input &input);
 
 // The tiling of face (a, b, c): its rows, and the lattice tiles over its box, bands from row0 and
 // columns from x0 (multiples of the tile's sides).
@@ -154,23 +155,20 @@ inline void scan_tiles(const EraserState &s, std::uint32_t a, std::uint32_t b, s
     }
 }
 
-// Face f's tiles (corners a, b, c): kept ones, made now when the face holds more than
-// k_tiled_samples samples, else null. A tile's bound is the largest distance from the height
-// range of its lattice tile to the face's plane over its box, widened like a deviation (the
-// plane's margin at its farthest corner, and a hair for the rounding of these sums); no sample is
-// read.
-inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, std::uint32_t b,
-                                         std::uint32_t c, const TrianglePlane &plane) {
-    if (s.faces.face_blocked[f.idx()]) {
-        const auto kept = s.faces.face_tiles.find(f.idx());
-        return kept == s.faces.face_tiles.end() ? nullptr : &kept->second;
-    }
-    const Tiling g = tiling(s, a, b, c);
+// Whether the face of tiling g is worth tiles: it holds more than about k_tiled_samples samples
+// (half its box).
+inline bool worth_tiles(const Tiling &g) {
     const std::int64_t rows = g.t.last_row - g.t.first_row + 1;
-    if (rows * g.columns * k_tile_cols / 2 <= k_tiled_samples)
-        return nullptr; // half its box: at most about k_tiled_samples samples
-    if (s.faces.tile_z.empty())
-        build_tile_z(s.faces, s.input);
+    return rows * g.columns * k_tile_cols / 2 > k_tiled_samples;
+}
+
+// The tile bounds of the face of tiling g (corners a, b, c, its plane), per band and tile column:
+// a tile's bound is the largest distance from the height range of its lattice tile (tile_z, see
+// build_tile_z) to the face's plane over its box, widened like a deviation (the plane's margin at
+// its farthest corner, and a hair for the rounding of these sums); no sample is read.
+inline std::vector<float> tile_bounds(const EraserState &s, const std::vector<float> &tile_z,
+                                      const Tiling &g, std::uint32_t a, std::uint32_t b,
+                                      std::uint32_t c, const TrianglePlane &plane) {
     const std::int64_t w = s.input.grid_w, columns = tile_columns(s.input);
     const std::int64_t x_lo = std::min({a % w, b % w, c % w}),
                        x_hi = std::max({a % w, b % w, c % w});
@@ -185,7 +183,7 @@ inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, 
             const std::int64_t c0 = std::max(g.x0 + k * k_tile_cols, x_lo),
                                c1 = std::min(g.x0 + (k + 1) * k_tile_cols - 1, x_hi);
             const double x0 = lattice.x(c0), x1 = lattice.x(c1);
-            const float *z = s.faces.tile_z.data() +
+            const float *z = tile_z.data() +
                              2 * ((g.row0 / k_band_rows + j) * columns + (g.x0 / k_tile_cols + k));
             const double p[4] = {plane.height(x0, y0), plane.height(x1, y0), plane.height(x0, y1),
                                  plane.height(x1, y1)};
@@ -199,8 +197,7 @@ inline std::vector<float> *lattice_tiles(EraserState &s, FH f, std::uint32_t a, 
                                  std::abs(double(z[1])) + 1.0));
         }
     }
-    s.faces.face_blocked[f.idx()] = 1;
-    return &(s.faces.face_tiles[f.idx()] = std::move(dev));
+    return dev;
 }
 
 // The samples strictly inside a grid TIN's hole (the node itself among them), by Pick's theorem:

@@ -9,7 +9,6 @@
 #include "erase/state.hpp"
 #include "erase/swallowed.hpp"
 #include "erase/sweep.hpp"
-#include "refine/update_grid.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/focal.hpp"
 #include "tinlod/util.hpp"
@@ -22,7 +21,6 @@
 namespace tinlod {
 
 using namespace erase;
-using refine::regrid;
 
 namespace {
 
@@ -112,16 +110,13 @@ void allocate(EraserState &s) {
         s.faces.swallowed_by.assign(s.input.nodes, -1);
     }
     s.faces.face_head.assign(s.input.mesh->n_faces(), -1);
-    s.faces.face_blocked.assign(s.input.mesh->n_faces(), 0);
     s.faces.face_maxdev.assign(s.input.mesh->n_faces(), 0.0f);
-    s.frame.seen.face_seen_dev.assign(s.input.mesh->n_faces(), -1.0f);
-    s.frame.seen.face_seen.assign(s.input.mesh->n_faces(), 0);
     s.history.record_of.resize(s.input.nodes);
     s.live.list.reserve(std::size_t(s.live.count));
 }
 
-// The update's grid, over the input's extent, sized for its live nodes.
-void place_grid(EraserState &s) {
+// The input's extent in xy and its area per node.
+void measure_extent(EraserState &s) {
     glm::dvec2 lo(INFINITY), hi(-INFINITY);
     for (auto v : s.input.mesh->vertices()) {
         const glm::dvec3 p = to_glm(s.input.mesh->point(v));
@@ -131,10 +126,9 @@ void place_grid(EraserState &s) {
     if (s.input.nodes > 0) {
         const glm::dvec2 extent = hi - lo;
         s.input.area_per_node = extent.x * extent.y / double(s.input.nodes);
-        s.frame.grid.grid_lo = lo;
-        s.frame.grid.grid_hi = hi;
+        s.input.lo = lo;
+        s.input.hi = hi;
     }
-    regrid(s.frame.grid, s.live);
 }
 
 // Every node with a live vertex enters the live set; the others are absent (k_absent). Takes
@@ -167,10 +161,16 @@ void check_options(const EraseOptions &options) {
 } // namespace
 
 NodeEraser::NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions &options)
+    : NodeEraser(mesh, model, options, HistoryOptions{}, nullptr) {}
+
+NodeEraser::NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions &options,
+                       const erase::HistoryOptions &history, erase::Follower *follower)
     : state_(std::make_unique<erase::EraserState>()) {
     check_options(options);
     EraserState &s = *state_;
     s.input.mesh = &mesh;
+    s.input.history = history;
+    s.follower = follower;
     assert(s.input.mesh->is_trimesh());
     std::int64_t absent = deleted_vertices(*s.input.mesh);
     std::vector<std::int32_t> vertex_of = bind_nodes(s, options.lattice, absent);
@@ -178,11 +178,13 @@ NodeEraser::NodeEraser(Mesh &mesh, const Significance &model, const EraseOptions
     s.live.faces = std::int64_t(s.input.mesh->n_faces());
     choose_projection(s, options.projection, absent);
     allocate(s);
-    place_grid(s);
+    measure_extent(s);
+    if (s.follower)
+        s.follower->started(s);
     build_live_set(s, std::move(vertex_of));
-    s.history.absent_for_good = absent > 0 && !options.absent_history;
-    if (absent > 0 && options.absent_history)
-        record_absent_samples(s.input, s.live, s.history, options.retrieval_tin);
+    s.history.absent_for_good = absent > 0 && !history.absent_history;
+    if (absent > 0 && history.absent_history)
+        record_absent_samples(s.input, s.live, s.history, history.retrieval_tin);
     if (absent > 0)
         swallow_absent(s);
     set_view(model, options);
@@ -198,9 +200,9 @@ void NodeEraser::set_view(const Significance &model, const EraseOptions &options
     s.input.options = options;
     s.weights.model = model.model();
     s.weights.significance = model.options();
-    std::fill(s.frame.seen.face_seen_dev.begin(), s.frame.seen.face_seen_dev.end(),
-              -1.0f); // the model may change
-    forget_nodes(s.live);
+    if (s.follower)
+        s.follower->view_changed(); // its bounds were made under the old model
+
     if (const std::optional<View> &view = model.view()) {
         s.weights.view = *view;
         if (s.weights.model == SpModel::paper)
@@ -217,8 +219,10 @@ void per_vertex_keys(EraserState &s) {
     if (!s.live.node_keys)
         return;
     s.live.stamp.assign(s.input.nodes, 0);
-    for (const LiveNode &l : s.live.list)
-        s.live.stamp[l.node] = l.stamp;
+    for (std::size_t i = 0; i < s.live.list.size(); ++i)
+        s.live.stamp[s.live.list[i].node] = s.live.slot_stamp[i];
+    std::vector<float>().swap(s.live.slot_key);
+    std::vector<std::uint8_t>().swap(s.live.slot_stamp);
     s.live.node_keys = false;
 }
 
@@ -236,7 +240,8 @@ std::int64_t erase_by_model(EraserState &s) {
 
 EraseStats NodeEraser::erase() {
     EraserState &s = *state_;
-    s.frame.fans_stale = true;
+    if (s.follower)
+        s.follower->erasing();
     Stopwatch clock;
     EraseStats stats;
     stats.input_nodes = s.live.count;
@@ -244,9 +249,11 @@ EraseStats NodeEraser::erase() {
     const std::int64_t evaluations = s.counters.evaluations;
     per_vertex_keys(s);
     stats.erased = erase_by_model(s);
-    if (s.live.list.capacity() > 2 * s.live.list.size())
+    const bool shrink = s.live.list.capacity() > 2 * s.live.list.size();
+    if (shrink)
         s.live.list.shrink_to_fit(); // an update keeps the live nodes only
-    forget_nodes(s.live);
+    if (s.follower)
+        s.follower->erased(shrink);
     const EraseStats now = measure();
     stats.output_nodes = s.live.count;
     stats.output_triangles = s.live.faces;

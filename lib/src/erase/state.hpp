@@ -3,10 +3,10 @@
 #pragma once
 
 #include "erase/containers.hpp"
+#include "erase/follower.hpp"
 #include "erase/hole_geometry.hpp"
 #include "erase/tuning.hpp"
 #include "lattice_rings.hpp"
-#include "refine/frame_state.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/screen_weight.hpp"
@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 namespace tinlod::erase {
@@ -38,57 +37,17 @@ struct EraseRecord {
     bool boundary = false;
 };
 
-// What an update needs to know of a live node without walking its fan (see NodeEraser::update).
+// A live node. The bounds only the refiner's updates read are not here but in its parallel array
+// (refine::FanBounds, kept up through EraserState::follower), so a one-off erase neither carries
+// nor maintains them.
 struct LiveNode {
     std::uint32_t node;
     std::int32_t vertex; // its vertex (the node id itself unless Input::lattice)
-    Mesh::Point p;       // its point (an update reads it for every node it visits)
-    // The node whose deviation gave the last evaluated cost, and that deviation: the cost under
-    // any later view is at least star_dev times the star's weight there while the fan stands.
+    // The node whose deviation gave the last evaluated cost: here, not in FanBounds, as every
+    // evaluation (a one-off erase's too) tries it first (see measure_hole).
     std::uint32_t star;
-    float star_dev;
-    // Bounds on the fan's swallowed nodes: each lies within `reach` of the node (3-D) and deviates
-    // at most `fan_dev` from its face. Raised as the fan changes, tightened when an update walks
-    // the fan.
-    float reach;
-    float fan_dev;
     std::int32_t last_record; // the node's record from an earlier erase, -1 if none
-    std::uint32_t cell;       // its cell of the update's grid (UpdateGrid)
-    // For the screen model's updates, as logarithms (see ViewBounds::face_seen_dev for the motion
-    // factor that carries them to a later view): under the view of update seen_at, every node the
-    // faces it seeds (see seed_fan) swallowed had a weighted deviation <= exp(seen_log) (+inf:
-    // none known, dropped when the fan changes but by an update's erase, see carry_seen); under
-    // the view of update low_at, its erase cost was >= exp(low_log) (-inf: none known, dropped
-    // when it turns dirty; +inf: parked, see park).
-    float seen_log = INFINITY;
-    float low_log = -INFINITY;
-    std::uint32_t seen_at = 0;
-    std::uint32_t low_at = 0;
-    bool seen_cone = false; // the fan's swallowed nodes were inside the view cone at seen_at
-    bool fan_exact = false; // reach and fan_dev are fan_extent's for the fan as it stands
-    // Once compact() ran (LiveSet::node_keys): the node's key and sweep stamp (see node_key).
-    std::uint8_t stamp = 0;
-    float key = 0.0f;
 };
-
-// What the faces of an erased node's fan knew of the samples they held, for the re-insert that
-// brings the same triangles back (see reinsert): per fan face, in ring order, its worst sample,
-// their largest deviation and its tile bounds (empty when it had none, see lattice_tiles).
-struct KeptFan {
-    std::vector<std::int32_t> head;
-    std::vector<float> maxdev;
-    std::vector<std::vector<float>> tiles;
-};
-
-// A run of a long swallowed list (see build_blocks).
-struct Block {
-    std::int32_t head;   // its first node
-    std::uint32_t count; // its length
-    double dev;          // >= the deviation of each of its nodes from the face
-    glm::dvec3 lo, hi;   // the box of its nodes
-};
-
-using refine::Cell;
 
 constexpr std::uint8_t k_locked = 1;    // never erased (corner, general-mesh boundary, isolated)
 constexpr std::uint8_t k_dirty = 2;     // its key predates a change of its neighbourhood
@@ -98,6 +57,29 @@ constexpr std::uint8_t k_unread = 8;    // a sample the input TIN left out, neve
 constexpr std::int32_t k_absent = -1; // record_of of a sample the input TIN never held
 // record_of of a sample left out whose ring is its lattice's regular one (RegularRings): no record.
 constexpr std::int32_t k_regular_ring = std::numeric_limits<std::int32_t>::max();
+
+// What only the refiner sets on an eraser (see EraserAccess::make): the public EraseOptions keeps
+// what a one-off erase's user sets.
+struct HistoryOptions {
+    // Erase in passes of independent nodes (no two erased in one pass share a triangle), so every
+    // chain of recover dependencies is at most as long as the passes: for a history that will be
+    // recovered from (the refiner). Otherwise a pass may erase a node right after its neighbour,
+    // which gives fewer nodes, faster, but chains along a row that a recover must undo whole.
+    bool shallow_history = false;
+    // A grid TIN holding only some of its lattice's samples (to_lattice_mesh): give the samples
+    // it left out erase records, as if the erases had taken them from the whole grid in the
+    // quad-tree's order (absent_sample_rings), so recover() and the refiner's updates bring them
+    // in by local edits like any erased node. A record is kept only where the ring is not the
+    // lattice's regular one (RegularRings: none on a 2^k + 1 grid, about half of 1201 x 1201),
+    // 20-24 bytes each. Otherwise they never enter.
+    bool absent_history = false;
+    // With absent_history: the TIN is a quad-tree retrieval's (to_lattice_mesh of retrieve). On a
+    // square 2^k + 1 grid every ring of a sample it left out is then the regular one (each leaf's
+    // fan holds its centre, and each sample enters on the edge RegularRings names), so the
+    // constructor takes them from the lattice without replaying the insertions
+    // (docs/decisions/019-erase-dem-first-stage.md). Other sizes replay as without it.
+    bool retrieval_tin = false;
+};
 
 // The eraser's parts. Each states its invariants and counts its heap memory (bytes(): capacities,
 // as NodeEraser::history_bytes reports them). A stage takes the parts it reads and writes; the hot
@@ -113,6 +95,7 @@ constexpr std::int32_t k_regular_ring = std::numeric_limits<std::int32_t>::max()
 struct Input {
     Mesh *mesh = nullptr; // borrowed from the caller
     EraseOptions options;
+    HistoryOptions history;
     bool xy = true;
     std::uint32_t nodes = 0; // node ids: the lattice's samples, else the mesh's vertices
     // A grid TIN (see grid_width): the lattice's width. Its faces' swallowed nodes are the samples
@@ -131,6 +114,7 @@ struct Input {
     std::vector<std::uint32_t> sample_of;
     OpenMesh::VPropHandleT<std::int64_t> origin; // a sparse lattice's: its vertices' samples
     double area_per_node = 0.0;                  // xy: the input's bounding-box area over its nodes
+    glm::dvec2 lo{0.0}, hi{0.0};                 // the input's extent in xy
 
     std::size_t bytes() const {
         return sample_of.capacity() * sizeof(std::uint32_t) +
@@ -160,20 +144,23 @@ struct ViewWeights {
 };
 
 // The live set: the live nodes, their keys and flags.
-// Invariants: list holds each live node once (History::record_of[x] = -2 - its place), count is
-// its size (a sparse lattice's or a grid TIN's absent samples are not counted) and faces the live
-// faces; flags has an entry per node. With node_keys the live nodes' keys and stamps are in their
-// LiveNode and heap and stamp are empty; without it heap's keys and stamp have an entry per node.
+// Invariants: list holds each live node once (History::record_of[x] = -2 - its place, its slot),
+// count is its size (a sparse lattice's or a grid TIN's absent samples are not counted) and faces
+// the live faces; flags has an entry per node. With node_keys the live nodes' keys and stamps are
+// in slot_key and slot_stamp, by slot, and heap and stamp are empty; without it heap's keys and
+// stamp have an entry per node, and slot_key and slot_stamp are empty.
 struct LiveSet {
     std::vector<LiveNode> list;      // the live nodes, in no order
     std::vector<std::uint8_t> flags; // per node: k_locked, k_dirty, k_recovered, k_unread
     // Per node: the sweep pass (mod 256) that last changed its ring.
     std::vector<std::uint8_t> stamp;
-    // Set by compact(): the live nodes' keys and stamps are in their LiveNode, and the per-node
-    // ones (heap, stamp) are freed, as only an update's sweeps, over live nodes, read them; 5
-    // bytes per input node, and a stamp reset that visits the live nodes, not the terrain. The
-    // next erase() goes back to the per-node arrays.
+    // Set by compact(): the live nodes' keys and stamps are in slot_key and slot_stamp, and the
+    // per-node ones (heap, stamp) are freed, as only an update's sweeps, over live nodes, read
+    // them; 5 bytes per input node, and a stamp reset that visits the live nodes, not the terrain.
+    // The next erase() goes back to the per-node arrays.
     bool node_keys = false;
+    std::vector<float> slot_key;
+    std::vector<std::uint8_t> slot_stamp;
     std::uint8_t pass = 0;
     std::size_t chain_cap = 0; // see sweep_node
     NodeHeap heap;
@@ -181,7 +168,7 @@ struct LiveSet {
 
     std::size_t bytes() const {
         return list.capacity() * sizeof(LiveNode) + flags.capacity() + stamp.capacity() +
-               heap.bytes();
+               slot_key.capacity() * sizeof(float) + slot_stamp.capacity() + heap.bytes();
     }
 };
 
@@ -198,37 +185,25 @@ struct History {
     ChunkedPool<EraseRecord> records;
     ChunkedPool<std::uint32_t> ring_pool;
     // The samples a grid TIN left out take their rings from here where those are regular (all of
-    // them on a 2^k + 1 grid), and keep a record only where not (EraseOptions::absent_history).
+    // them on a 2^k + 1 grid), and keep a record only where not (HistoryOptions::absent_history).
     std::unique_ptr<RegularRings> regular;
     bool absent_for_good = false; // some samples are k_absent: they can never enter
-    // A shallow history's erased nodes whose fan covered more than k_kept_fan_samples samples of a
-    // grid TIN: per fan face, what it knew of its samples (see KeptFan), by node.
-    std::unordered_map<std::uint32_t, KeptFan> kept_fans;
     std::vector<EH> free_edges;
     std::vector<FH> free_faces;
     std::vector<VH> free_vertices; // a sparse lattice's: the vertices its erases freed
 
     std::size_t bytes() const {
-        std::size_t bytes = record_of.capacity() * 4 + records.bytes() + ring_pool.bytes() +
-                            (regular ? regular->bytes() : 0) + free_edges.capacity() * sizeof(EH) +
-                            free_faces.capacity() * sizeof(FH) +
-                            free_vertices.capacity() * sizeof(VH);
-        for (const auto &[node, kept] : kept_fans) {
-            bytes += sizeof(node) + sizeof(kept) + 16 + kept.head.capacity() * 4 +
-                     kept.maxdev.capacity() * 4 + kept.tiles.capacity() * sizeof(kept.tiles[0]);
-            for (const std::vector<float> &tiles : kept.tiles)
-                bytes += tiles.capacity() * sizeof(float);
-        }
-        return bytes;
+        return record_of.capacity() * 4 + records.bytes() + ring_pool.bytes() +
+               (regular ? regular->bytes() : 0) + free_edges.capacity() * sizeof(EH) +
+               free_faces.capacity() * sizeof(FH) + free_vertices.capacity() * sizeof(VH);
     }
 };
 
 // The face index: each face's swallowed nodes.
-// Invariants: face_maxdev, face_head and face_blocked have an entry per face (deleted ones
-// included); a live face's swallowed nodes (its list from face_head through next_swallowed, or a
-// grid TIN's samples inside it) each deviate at most face_maxdev from it; next_swallowed and
-// swallowed_by have an entry per node without a grid (empty with one); face_blocked[f] is 1
-// exactly when face_blocks or face_tiles holds f.
+// Invariants: face_maxdev and face_head have an entry per face (deleted ones included); a live
+// face's swallowed nodes (its list from face_head through next_swallowed, or a grid TIN's samples
+// inside it) each deviate at most face_maxdev from it; next_swallowed and swallowed_by have an
+// entry per node without a grid (empty with one).
 struct FaceIndex {
     std::vector<float> face_maxdev;           // per face: bound on its swallowed nodes' deviation
     std::vector<std::int32_t> next_swallowed; // per node: next node in its face's list
@@ -238,51 +213,27 @@ struct FaceIndex {
     // projection on the recovered node's mean plane, which may put it under a face outside its own
     // ring (see reinsert).
     std::vector<std::int32_t> swallowed_by;
-    // Per face: 1 when its list has blocks (face_blocks, see build_blocks), dropped when the list
-    // is rebuilt.
-    std::vector<std::uint8_t> face_blocked;
-    std::unordered_map<std::int32_t, std::vector<Block>> face_blocks;
-    // A grid TIN's large faces: a bound on their samples' deviation per tile (face_blocked is 1
-    // for them too, see lattice_tiles).
-    std::unordered_map<std::int32_t, std::vector<float>> face_tiles;
-    // A grid TIN's lattice tiles (see lattice_tiles): the least and largest height of each, made
-    // by rebind() or when a face is first tiled.
-    std::vector<float> tile_z;
 
     std::size_t bytes() const {
-        std::size_t bytes = face_maxdev.capacity() * 4 + next_swallowed.capacity() * 4 +
-                            face_head.capacity() * 4 + face_blocked.capacity() +
-                            tile_z.capacity() * sizeof(float) + swallowed_by.capacity() * 4;
-        for (const auto &[face, tiles] : face_tiles)
-            bytes += sizeof(face) + sizeof(tiles) + tiles.capacity() * sizeof(float) + 16;
-        for (const auto &[face, blocks] : face_blocks)
-            bytes += sizeof(face) + sizeof(blocks) + blocks.capacity() * sizeof(Block) + 16;
-        return bytes;
+        return face_maxdev.capacity() * 4 + next_swallowed.capacity() * 4 +
+               face_head.capacity() * 4 + swallowed_by.capacity() * 4;
     }
 };
 
-// Scratch: what one evaluation, edit or face scan leaves for the next to re-use (no invariant
-// across calls; hole holds the last evaluation's, which retriangulate reads).
+// Scratch: what one evaluation or edit leaves for the next to re-use (no invariant across calls;
+// hole holds the last evaluation's, which retriangulate reads). Not counted in bytes(): it holds
+// one hole's worth.
 struct Scratch {
     Hole hole;
     std::vector<Assignment> assign; // swallowed node -> new triangle
     std::vector<std::uint32_t> swallowed_scratch;
-    std::vector<std::int32_t> block_scratch; // build_blocks' scratch
-    std::vector<std::uint8_t> block_cell_scratch;
-    std::vector<std::int32_t> block_order_scratch;
-
-    // The blocks' (the others hold one hole's worth).
-    std::size_t bytes() const {
-        return block_scratch.capacity() * 4 + block_cell_scratch.capacity() +
-               block_order_scratch.capacity() * 4;
-    }
 };
 
 // Counters over the eraser's life (no heap memory).
 struct Counters {
     std::int64_t evaluations = 0;
     std::int64_t entered = 0;   // k_unread samples re-inserted so far
-    std::int64_t fans_kept = 0; // re-inserts whose fan faces took back a KeptFan so far
+    std::int64_t fans_kept = 0; // re-inserts whose fan faces the follower restored so far
 };
 
 // The eraser's state: its parts. NodeEraser holds one.
@@ -292,13 +243,13 @@ struct EraserState {
     LiveSet live;
     History history;
     FaceIndex faces;
-    refine::FrameState frame; // the refiner's (refine/frame_state.hpp)
     Counters counters;
     Scratch scratch;
+    // The refiner's state, which the edits keep up (follower.hpp); null in a one-off erase.
+    Follower *follower = nullptr;
 
     std::size_t bytes() const {
-        return input.bytes() + weights.bytes() + live.bytes() + history.bytes() + faces.bytes() +
-               frame.bytes() + scratch.bytes();
+        return input.bytes() + weights.bytes() + live.bytes() + history.bytes() + faces.bytes();
     }
 };
 
@@ -375,84 +326,84 @@ inline Samples samples(const Input &input) {
 // Makes x (vertex v) live; `record` is its record from an earlier erase (-1 if none), kept for
 // re-use.
 inline void add_live(EraserState &s, std::uint32_t x, std::int32_t record, VH v) {
-    const Mesh::Point point = node_point(s, x);
-    const glm::dvec3 p = to_glm(point);
-    const std::uint32_t c = refine::cell_of(s.frame.grid, p);
-    Cell &cell = s.frame.grid.cells[c];
-    cell.zlo = std::min(cell.zlo, float_down(p.z));
-    cell.zhi = std::max(cell.zhi, float_up(p.z));
-    cell.star_dev = 0.0f;
-    cell.dirty = true;
-    s.history.record_of[x] = -2 - std::int32_t(s.live.list.size());
-    LiveNode l{};
-    l.node = x;
-    l.vertex = v.idx();
-    l.p = point;
-    l.star = x;
-    l.last_record = record;
-    l.cell = c;
-    s.live.list.push_back(l);
+    const auto slot = std::uint32_t(s.live.list.size());
+    s.history.record_of[x] = -2 - std::int32_t(slot);
+    s.live.list.push_back({x, v.idx(), x, record});
+    if (s.live.node_keys) {
+        s.live.slot_key.push_back(0.0f);
+        s.live.slot_stamp.push_back(0);
+    }
+    if (s.follower)
+        s.follower->live_added(slot, node_point(s, x));
 }
 
-inline LiveNode &live_node(EraserState &s, std::uint32_t x) {
-    assert(s.history.record_of[x] < 0);
-    return s.live.list[std::size_t(-2 - s.history.record_of[x])];
+// Live node x's place in LiveSet::list.
+inline std::uint32_t live_slot(const EraserState &s, std::uint32_t x) {
+    assert(s.history.record_of[x] < -1);
+    return std::uint32_t(-2 - s.history.record_of[x]);
 }
+
+inline LiveNode &live_node(EraserState &s, std::uint32_t x) { return s.live.list[live_slot(s, x)]; }
 
 // Live node x's key (a lower bound of its cost under the current view; +inf: parked, or no erase
 // possible until its ring changes) and its sweep stamp, wherever LiveSet::node_keys keeps them.
 inline float node_key(EraserState &s, std::uint32_t x) {
-    return s.live.node_keys ? live_node(s, x).key : s.live.heap.key(x);
+    return s.live.node_keys ? s.live.slot_key[live_slot(s, x)] : s.live.heap.key(x);
 }
 
-// The same for live node l at hand: without the look-up of its place in the live list (a cache
-// miss per node of an update's walks over them).
-inline float node_key(const LiveSet &live, const LiveNode &l) {
-    return live.node_keys ? l.key : live.heap.key(l.node);
+// The same for the live node in `slot`: without the look-up of its place in the live list (a
+// cache miss per node of an update's walks over them).
+inline float node_key(const LiveSet &live, std::uint32_t slot) {
+    return live.node_keys ? live.slot_key[slot] : live.heap.key(live.list[slot].node);
 }
 
 inline void store_node_key(EraserState &s, std::uint32_t x, float key) {
     if (s.live.node_keys)
-        live_node(s, x).key = key;
+        s.live.slot_key[live_slot(s, x)] = key;
     else
         s.live.heap.store_key(x, key);
 }
 
-inline void store_node_key(LiveSet &live, LiveNode &l, float key) {
+inline void store_node_key(LiveSet &live, std::uint32_t slot, float key) {
     if (live.node_keys)
-        l.key = key;
+        live.slot_key[slot] = key;
     else
-        live.heap.store_key(l.node, key);
+        live.heap.store_key(live.list[slot].node, key);
 }
 
 inline std::uint8_t &node_stamp(EraserState &s, std::uint32_t x) {
-    return s.live.node_keys ? live_node(s, x).stamp : s.live.stamp[x];
+    return s.live.node_keys ? s.live.slot_stamp[live_slot(s, x)] : s.live.stamp[x];
 }
 
-// Face f's swallowed nodes change: its blocks and its seen bound go.
-inline void face_changed(FaceIndex &faces, refine::ViewBounds &seen, FH f) {
-    seen.face_seen_dev[f.idx()] = -1.0f;
-    if (faces.face_blocked[f.idx()]) {
-        faces.face_blocked[f.idx()] = 0;
-        faces.face_blocks.erase(f.idx());
-        faces.face_tiles.erase(f.idx());
-    }
+// Face f's swallowed nodes change: the follower's bounds on it go.
+inline void face_changed(Follower *follower, FH f) {
+    if (follower)
+        follower->face_changed(f);
 }
 
 // Marks live node x dirty (its key predates a change of its fan).
 inline void mark_dirty(EraserState &s, std::uint32_t x) {
     s.live.flags[x] |= k_dirty;
-    LiveNode &l = live_node(s, x);
-    l.low_log = -INFINITY;
-    s.frame.grid.cells[l.cell].dirty = true;
+    if (s.follower)
+        s.follower->dirtied(live_slot(s, x));
 }
 
-inline void remove_live(LiveSet &live, History &history, std::uint32_t x, std::int32_t record) {
+// Takes x out of the live set (the last live node takes its slot), `record` its record now.
+inline void remove_live(LiveSet &live, History &history, Follower *follower, std::uint32_t x,
+                        std::int32_t record) {
     const std::int32_t place = -2 - history.record_of[x];
     const LiveNode last = live.list.back();
     live.list[std::size_t(place)] = last;
     history.record_of[last.node] = -2 - place;
     live.list.pop_back();
+    if (live.node_keys) {
+        live.slot_key[std::size_t(place)] = live.slot_key.back();
+        live.slot_key.pop_back();
+        live.slot_stamp[std::size_t(place)] = live.slot_stamp.back();
+        live.slot_stamp.pop_back();
+    }
+    if (follower)
+        follower->live_removed(std::uint32_t(place));
     history.record_of[x] = record;
 }
 
@@ -474,5 +425,20 @@ inline ErasedRing erased_ring(const History &history, std::uint32_t x,
     const EraseRecord &record = history.records[std::size_t(history.record_of[x])];
     return {history.ring_pool.run(record.ring_begin), record.ring_size, record.boundary};
 }
+
+} // namespace tinlod::erase
+
+namespace tinlod::erase {
+
+// The refiner's and the internal tests' way into a NodeEraser: one made with the options only the
+// refiner sets and its follower, and its state.
+struct EraserAccess {
+    static NodeEraser make(Mesh &mesh, const Significance &model, const EraseOptions &options,
+                           const HistoryOptions &history, Follower *follower) {
+        return NodeEraser(mesh, model, options, history, follower);
+    }
+    static EraserState &state(NodeEraser &eraser) { return *eraser.state_; }
+    static const EraserState &state(const NodeEraser &eraser) { return *eraser.state_; }
+};
 
 } // namespace tinlod::erase

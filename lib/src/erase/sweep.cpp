@@ -96,11 +96,11 @@ std::int64_t erase_loop(EraserState &s) {
 namespace {
 
 static double tau_rung_ratio(const EraserState &s) {
-    return s.input.options.shallow_history ? k_history_rung_ratio : k_tau_rung_ratio;
+    return s.input.history.shallow_history ? k_history_rung_ratio : k_tau_rung_ratio;
 }
 
 static int tau_rungs(const EraserState &s) {
-    if (s.input.options.shallow_history)
+    if (s.input.history.shallow_history)
         return int(std::ceil(std::log(k_history_rung_floor) / std::log(k_history_rung_ratio)));
     return s.input.grid_w > 0 ? 0 : 1;
 }
@@ -109,8 +109,7 @@ static int tau_rungs(const EraserState &s) {
 static void next_pass(EraserState &s) {
     if (++s.live.pass == 0) {
         if (s.live.node_keys)
-            for (LiveNode &l : s.live.list)
-                l.stamp = 0;
+            std::fill(s.live.slot_stamp.begin(), s.live.slot_stamp.end(), std::uint8_t(0));
         else
             std::fill(s.live.stamp.begin(), s.live.stamp.end(), std::uint8_t(0));
         s.live.pass = 1;
@@ -141,7 +140,8 @@ namespace {
 static void park(EraserState &s, std::uint32_t x) {
     s.live.flags[x] &= std::uint8_t(~k_dirty);
     store_node_key(s, x, INFINITY);
-    live_node(s, x).low_log = INFINITY;
+    if (s.follower)
+        s.follower->parked(live_slot(s, x));
 }
 
 // One step of a sweep at `limit` on live, unlocked node x: evaluates it and erases it when its
@@ -157,13 +157,13 @@ static bool sweep_node(EraserState &s, std::uint32_t x, double limit,
     // cost is 0, drags one growing face's nodes from erase to erase, quadratic in the run's
     // length), and always with a shallow history.
     const bool fresh = node_stamp(s, x) == s.live.pass;
-    if (fresh && s.input.options.shallow_history)
+    if (fresh && s.input.history.shallow_history)
         return false;
     // Over the cap by its area: left as it is without locating the first `cap` nodes
     // (docs/decisions/015-chain-and-update-caps.md). The fan lies in the disc of its reach (an
-    // update keeps the live nodes' fan bounds), so most fans need no walk to pass.
+    // follower keeps the live nodes' fan bounds), so most fans need no walk to pass.
     const auto over_cap = [&] {
-        const double reach = double(live_node(s, x).reach);
+        const double reach = double(s.follower->reach(live_slot(s, x)));
         return M_PI * reach * reach > double(cap) * s.input.area_per_node &&
                covered_estimate(s, x) > double(cap);
     };
@@ -185,7 +185,7 @@ static bool sweep_node(EraserState &s, std::uint32_t x, double limit,
     if (!(s.scratch.hole.sp <= limit)) {
         store_node_key(s, x, float(s.scratch.hole.sp));
         if (observer)
-            observer->too_costly(live_node(s, x), s.scratch.hole.sp);
+            observer->too_costly(live_slot(s, x), s.scratch.hole.sp);
         return false;
     }
     if (observer)
@@ -274,18 +274,20 @@ static std::int64_t fine_rungs(EraserState &s, double limit, double tau, std::in
         if (report)
             report();
         std::vector<std::uint32_t> list;
-        for (const LiveNode &l : s.live.list)
-            if (!(s.live.flags[l.node] & k_locked) &&
-                ((s.live.flags[l.node] & k_dirty) || double(node_key(s.live, l)) <= limit))
-                list.push_back(l.node);
+        for (std::uint32_t i = 0; i < std::uint32_t(s.live.list.size()); ++i) {
+            const std::uint32_t x = s.live.list[i].node;
+            if (!(s.live.flags[x] & k_locked) &&
+                ((s.live.flags[x] & k_dirty) || double(node_key(s.live, i)) <= limit))
+                list.push_back(x);
+        }
         erased +=
             sweep_dirty(s, limit, std::move(list), std::numeric_limits<std::size_t>::max(), budget);
         if (limit >= tau)
             break;
         double least = INFINITY;
-        for (const LiveNode &l : s.live.list)
-            if (!(s.live.flags[l.node] & k_locked))
-                least = std::min(least, double(node_key(s.live, l)));
+        for (std::uint32_t i = 0; i < std::uint32_t(s.live.list.size()); ++i)
+            if (!(s.live.flags[s.live.list[i].node] & k_locked))
+                least = std::min(least, double(node_key(s.live, i)));
         if (!(least < INFINITY))
             break; // no live node can be erased
         limit = std::min(tau, std::max(limit * k_fine_rung_ratio, least));

@@ -47,13 +47,13 @@ std::int64_t erase_loop(EraserState &s);
 double covered_estimate(const EraserState &s, std::uint32_t x);
 
 // What a sweep tells a caller that keeps bounds on the live nodes from sweep to sweep (the
-// refiner's update, refine/update.cpp). A one-off erase has none: forget_nodes drops those bounds
-// once it is done, and nothing in it reads them.
+// refiner's update, refine/update.cpp). A one-off erase has none.
 class SweepObserver {
   public:
     virtual ~SweepObserver() = default;
-    // Live node l's erase cost under the current view is `cost`, over the sweep's limit.
-    virtual void too_costly(LiveNode &l, double cost) = 0;
+    // The erase cost of the live node in `slot` under the current view is `cost`, over the
+    // sweep's limit.
+    virtual void too_costly(std::uint32_t slot, double cost) = 0;
     // The erase of live node x, whose hole is h (s.scratch.hole), is about to be made.
     virtual void erasing(std::uint32_t x, const Hole &h) = 0;
     // That erase is made (h is its hole still).
@@ -63,9 +63,9 @@ class SweepObserver {
 // The sweep over the nodes of `list` only, then over the rings their erases changed, at `limit`
 // alone, until `stop_at` live nodes remain: its cost follows the nodes that changed (an update's
 // rungs below the limit cost time for no fewer nodes: docs/decisions/013-sweep.md). Fans over
-// `cap` swallowed nodes are left as they are (see sweep_node; with a cap, the live nodes' fan
-// bounds must be kept). `observer` (may be null) hears of the costs and erases. Returns the erases
-// made.
+// `cap` swallowed nodes are left as they are (see sweep_node; a cap needs the follower's bounds on
+// the fans, EraserState::follower). `observer` (may be null) hears of the costs and erases. Returns
+// the erases made.
 std::int64_t sweep_dirty(EraserState &s, double limit, std::vector<std::uint32_t> list,
                          std::size_t cap, std::int64_t stop_at = 0,
                          SweepObserver *observer = nullptr);

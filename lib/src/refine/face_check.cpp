@@ -21,15 +21,15 @@ namespace {
 // times the largest weight in its box cannot matter: a face of ~10^5 nodes on a flat, in sight of
 // a low eye, was weighed node by node every frame (docs/decisions/010-large-faces.md).
 template <class Deviation>
-static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::dvec2 &hi,
-                         const Deviation &deviation) {
-    std::vector<std::int32_t> &nodes = s.scratch.block_scratch;
+static void build_blocks(EraserState &s, FaceBlocks &fb, FH f, const glm::dvec2 &lo,
+                         const glm::dvec2 &hi, const Deviation &deviation) {
+    std::vector<std::int32_t> &nodes = fb.block_scratch;
     nodes.clear();
     for (std::int32_t u = s.faces.face_head[f.idx()]; u >= 0; u = s.faces.next_swallowed[u])
         nodes.push_back(u);
     constexpr int cells = k_block_side * k_block_side;
     std::array<std::uint32_t, cells + 1> start{};
-    std::vector<std::uint8_t> &cell_of_node = s.scratch.block_cell_scratch;
+    std::vector<std::uint8_t> &cell_of_node = fb.block_cell_scratch;
     cell_of_node.resize(nodes.size());
     const glm::dvec2 scale = double(k_block_side) / glm::max(hi - lo, glm::dvec2(1e-300));
     for (std::size_t k = 0; k < nodes.size(); ++k) {
@@ -41,7 +41,7 @@ static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::
     }
     for (int c = 0; c < cells; ++c)
         start[c + 1] += start[c];
-    std::vector<std::int32_t> &order = s.scratch.block_order_scratch;
+    std::vector<std::int32_t> &order = fb.block_order_scratch;
     order.resize(nodes.size());
     std::array<std::uint32_t, cells> fill;
     std::copy(start.begin(), start.end() - 1, fill.begin());
@@ -73,19 +73,37 @@ static void build_blocks(EraserState &s, FH f, const glm::dvec2 &lo, const glm::
     for (std::size_t k = 0; k + 1 < order.size(); ++k)
         s.faces.next_swallowed[nodes[std::size_t(order[k])]] = nodes[std::size_t(order[k + 1])];
     s.faces.next_swallowed[nodes[std::size_t(order.back())]] = -1;
-    s.faces.face_blocks[f.idx()] = std::move(blocks);
-    s.faces.face_blocked[f.idx()] = 1;
+    fb.face_blocks[f.idx()] = std::move(blocks);
+    fb.face_blocked[f.idx()] = 1;
     if (nodes.capacity() > k_kept_scratch) {
         // A face over a whole flat (10^5 nodes and more) is blocked once: its scratch goes.
         std::vector<std::int32_t>().swap(nodes);
-        std::vector<std::uint8_t>().swap(s.scratch.block_cell_scratch);
-        std::vector<std::int32_t>().swap(s.scratch.block_order_scratch);
+        std::vector<std::uint8_t>().swap(fb.block_cell_scratch);
+        std::vector<std::int32_t>().swap(fb.block_order_scratch);
     }
+}
+
+// Face f's tiles (corners a, b, c): kept ones, made now (tile_bounds) when the face is worth tiles,
+// else null.
+std::vector<float> *lattice_tiles(const EraserState &s, FaceBlocks &fb, FH f, std::uint32_t a,
+                                  std::uint32_t b, std::uint32_t c, const TrianglePlane &plane) {
+    if (fb.face_blocked[f.idx()]) {
+        const auto kept = fb.face_tiles.find(f.idx());
+        return kept == fb.face_tiles.end() ? nullptr : &kept->second;
+    }
+    const Tiling g = tiling(s, a, b, c);
+    if (!worth_tiles(g))
+        return nullptr;
+    if (fb.tile_z.empty())
+        build_tile_z(fb.tile_z, s.input);
+    fb.face_blocked[f.idx()] = 1;
+    return &(fb.face_tiles[f.idx()] = tile_bounds(s, fb.tile_z, g, a, b, c, plane));
 }
 
 } // namespace
 
-std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double above) {
+std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FrameState &frame, FH f,
+                                                double above) {
     const Mesh &m = *s.input.mesh;
     std::int32_t u = s.faces.face_head[f.idx()];
     if (u < 0)
@@ -106,9 +124,9 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
         if (!(1.001 * double(s.faces.face_maxdev[f.idx()]) * weight_bound > above))
             return worst;
     }
-    const bool screen = keeps_bounds(s);
+    const bool screen = keeps_bounds(s, frame);
     const auto [box_lo, box_hi] = swallowed_box(s.faces, s.input.xy, f, a, b, c);
-    if (screen && !(seen_bound(s, f, box_lo, box_hi) > above))
+    if (screen && !(seen_bound(s, frame, f, box_lo, box_hi) > above))
         return worst;
     auto deviation_at = [&](const glm::dvec3 &p) {
         return node_deviation(s.input.xy, plane, p, a, b, c);
@@ -131,7 +149,7 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
         const std::uint32_t ia = node_of(s, m.from_vertex_handle(he)),
                             ib = node_of(s, m.to_vertex_handle(he)),
                             ic = node_of(s, m.to_vertex_handle(m.next_halfedge_handle(he)));
-        std::vector<float> *tiles = lattice_tiles(s, f, ia, ib, ic, plane);
+        std::vector<float> *tiles = lattice_tiles(s, frame.blocks, f, ia, ib, ic, plane);
         // Visits sample(u, q, dev, bound) for each sample (point q, deviation dev) of a tile or
         // band whose largest deviation times its largest weight (`bound`) may exceed `above`.
         const auto scan = [&](const double &above, const auto &sample) {
@@ -174,12 +192,12 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
                 if (dev * bound > seen)
                     seen = std::max(seen, dev * s.weights.weigher(q));
             });
-            remember_seen(s.frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
+            remember_seen(frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
         }
         return worst;
     }
-    if (s.faces.face_blocked[f.idx()]) {
-        for (const Block &block : s.faces.face_blocks.find(f.idx())->second) {
+    if (frame.blocks.face_blocked[f.idx()]) {
+        for (const Block &block : frame.blocks.face_blocks.find(f.idx())->second) {
             const double bound = s.weights.weigher.bound(block.lo, block.hi) * k_rounded_weight;
             if (!(block.dev * bound > worst.second))
                 continue;
@@ -199,10 +217,10 @@ std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double abo
             seen = std::max(seen, dev * s.weights.weigher(q));
     }
     if (screen && worst.first < 0)
-        remember_seen(s.frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
+        remember_seen(frame.seen, s.weights.weigher, f, seen, box_lo, box_hi);
     // A long list scanned whole gets blocks (when a weight bound can use them).
     if (std::isfinite(weight_bound) && length >= k_block_list)
-        build_blocks(s, f, glm::dvec2(glm::min(glm::min(a, b), c)),
+        build_blocks(s, frame.blocks, f, glm::dvec2(glm::min(glm::min(a, b), c)),
                      glm::dvec2(glm::max(glm::max(a, b), c)), deviation);
     return worst;
 }

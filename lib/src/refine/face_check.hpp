@@ -3,6 +3,7 @@
 #pragma once
 
 #include "erase/state.hpp"
+#include "refine/frame_state.hpp"
 
 #include <cstdint>
 #include <utility>
@@ -14,6 +15,7 @@ using erase::FH;
 
 // The worst swallowed node of face f whose weighted deviation exceeds `above`, and that weighted
 // deviation (-1 when none does).
-std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FH f, double above);
+std::pair<std::int32_t, double> worst_swallowed(EraserState &s, FrameState &frame, FH f,
+                                                double above);
 
 } // namespace tinlod::refine

@@ -5,15 +5,16 @@ namespace tinlod::refine {
 
 using namespace erase;
 
-double seen_bound(const EraserState &s, FH f, const glm::dvec3 &lo, const glm::dvec3 &hi) {
-    if (s.frame.seen.face_seen_dev[f.idx()] < 0.0f)
+double seen_bound(const EraserState &s, const FrameState &frame, FH f, const glm::dvec3 &lo,
+                  const glm::dvec3 &hi) {
+    if (frame.seen.face_seen_dev[f.idx()] < 0.0f)
         return INFINITY;
-    const ViewBounds::Since *d = since(s, s.frame.seen.face_seen[f.idx()] >> 1);
+    const ViewBounds::Since *d = since(s, frame, frame.seen.face_seen[f.idx()] >> 1);
     if (!d)
         return INFINITY;
     const double nearest = glm::length(glm::clamp(s.weights.view.eye, lo, hi) - s.weights.view.eye);
-    return double(s.frame.seen.face_seen_dev[f.idx()]) *
-           weight_growth(s.weights.weigher, *d, nearest, s.frame.seen.face_seen[f.idx()] & 1) *
+    return double(frame.seen.face_seen_dev[f.idx()]) *
+           weight_growth(s.weights.weigher, *d, nearest, frame.seen.face_seen[f.idx()] & 1) *
            k_rounded_weight * (1.0 + 1e-9);
 }
 

@@ -6,6 +6,7 @@
 
 #include "erase/erase_cost.hpp"
 #include "erase/state.hpp"
+#include "refine/frame_state.hpp"
 
 #include <array>
 #include <cmath>
@@ -21,30 +22,30 @@ using erase::float_up;
 using erase::Hole;
 using erase::k_rounded_weight;
 using erase::k_seen_views;
-using erase::LiveNode;
 using erase::to_glm;
 
 // Whether the bounds an update makes carry over to the updates that follow (the screen model's, see
-// ViewBounds::face_seen_dev and LiveNode::seen_log).
-inline bool keeps_bounds(const EraserState &s) {
-    return s.weights.model == SpModel::screen && s.frame.seen.updates > 0;
+// ViewBounds::face_seen_dev and FanBounds::seen_log).
+inline bool keeps_bounds(const EraserState &s, const FrameState &frame) {
+    return s.weights.model == SpModel::screen && frame.seen.updates > 0;
 }
 
-// Live node l's erase cost under the current view is at least `cost` (see LiveNode::low_log).
-inline void remember_low(const EraserState &s, LiveNode &l, double cost) {
+// Live node l's erase cost under the current view is at least `cost` (see FanBounds::low_log).
+inline void remember_low(const EraserState &s, const FrameState &frame, FanBounds &l, double cost) {
     l.low_log = -INFINITY;
-    if (keeps_bounds(s)) {
+    if (keeps_bounds(s, frame)) {
         l.low_log = float_down(std::log(cost) - 1e-6);
-        l.low_at = s.frame.seen.updates;
+        l.low_at = frame.seen.updates;
     }
 }
 
 // The eye's move and the axis's turn since the view of update `at`, or null when a bound made under
 // that view does not carry over to the current one.
-inline const ViewBounds::Since *since(const EraserState &s, std::uint32_t at) {
-    if (!keeps_bounds(s) || at == 0 || s.frame.seen.updates - at >= k_seen_views)
+inline const ViewBounds::Since *since(const EraserState &s, const FrameState &frame,
+                                      std::uint32_t at) {
+    if (!keeps_bounds(s, frame) || at == 0 || frame.seen.updates - at >= k_seen_views)
         return nullptr;
-    const ViewBounds::Since &d = s.frame.seen.since[at % k_seen_views];
+    const ViewBounds::Since &d = frame.seen.since[at % k_seen_views];
     return d.ok ? &d : nullptr;
 }
 
@@ -105,14 +106,14 @@ inline bool moved_within(const glm::dvec3 &eye, const glm::dvec3 &p, double r, d
     return slack * slack * d2 > rhs * rhs * (1.0 + 1e-9);
 }
 
-// Live node l's seen bound (LiveNode::seen_log) carried to the current view, as a logarithm
+// Live node l's seen bound (FanBounds::seen_log) carried to the current view, as a logarithm
 // (+inf: none that carries over).
-inline double seen_now(const EraserState &s, const LiveNode &l) {
+inline double seen_now(const EraserState &s, const FrameState &frame, const FanBounds &l) {
     if (!(l.seen_log < INFINITY))
         return INFINITY;
-    if (l.seen_at == s.frame.seen.updates)
+    if (std::uint32_t(l.seen_at) == frame.seen.updates)
         return double(l.seen_log);
-    const ViewBounds::Since *d = since(s, l.seen_at);
+    const ViewBounds::Since *d = since(s, frame, l.seen_at);
     if (!d)
         return INFINITY;
     const double nearest = glm::length(to_glm(l.p) - s.weights.view.eye) - double(l.reach);
@@ -121,32 +122,36 @@ inline double seen_now(const EraserState &s, const LiveNode &l) {
 
 // Before an update's erase of h.v: its ring nodes' seen bounds carried to this view (+inf: none),
 // for carry_seen.
-inline void seen_before(EraserState &s, const Hole &h, std::array<double, k_max_ring> &old) {
-    const bool kept = !s.frame.fans_stale && keeps_bounds(s);
+inline void seen_before(const EraserState &s, const FrameState &frame, const Hole &h,
+                        std::array<double, k_max_ring> &old) {
+    const bool kept = !frame.fans_stale && keeps_bounds(s, frame);
     for (int i = 0; i < h.n; ++i)
-        old[std::size_t(i)] = kept ? seen_now(s, live_node(s, node_of(s, h.r[i]))) : INFINITY;
+        old[std::size_t(i)] =
+            kept ? seen_now(s, frame, frame.fans[live_slot(s, node_of(s, h.r[i]))]) : INFINITY;
 }
 
 // After it: each ring node gets back a seen bound, which widen_fans dropped, made under this view:
 // its faces the erase left as they were are within their old bound (`old`), and the new ones
 // within the erase's cost, the exact largest weighted deviation of the samples in the hole. Else
 // the next update walked their fans again (docs/decisions/007-seen-bounds.md).
-inline void carry_seen(EraserState &s, const Hole &h, const std::array<double, k_max_ring> &old) {
+inline void carry_seen(const EraserState &s, FrameState &frame, const Hole &h,
+                       const std::array<double, k_max_ring> &old) {
     const double cost = h.sp > 0.0 ? std::log(h.sp * (1.0 + 1e-6)) : -INFINITY;
     for (int i = 0; i < h.n; ++i) {
         if (!(old[std::size_t(i)] < INFINITY))
             continue;
-        LiveNode &l = live_node(s, node_of(s, h.r[i]));
+        FanBounds &l = frame.fans[live_slot(s, node_of(s, h.r[i]))];
         const glm::dvec3 p = to_glm(l.p), r(double(l.reach));
         l.seen_log = float_up(std::max(old[std::size_t(i)], cost) + 1e-6);
-        l.seen_at = s.frame.seen.updates;
+        l.seen_at = frame.seen.updates;
         l.seen_cone = s.weights.weigher.in_cone(p - r, p + r);
     }
 }
 
 // The bound face f's seen bound gives under the current view for nodes in the box [lo, hi] (its
 // swallowed nodes' box), or infinity when it has none that carries over.
-double seen_bound(const EraserState &s, FH f, const glm::dvec3 &lo, const glm::dvec3 &hi);
+double seen_bound(const EraserState &s, const FrameState &frame, FH f, const glm::dvec3 &lo,
+                  const glm::dvec3 &hi);
 
 // Face f's swallowed nodes, in the box [lo, hi], have weighted deviations <= seen under the
 // current view: kept for the updates that follow (see ViewBounds::face_seen_dev).

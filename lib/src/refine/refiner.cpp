@@ -1,6 +1,8 @@
-// The refiner (refine.hpp): a NodeEraser kept alive between frames, moved view to view.
+// The refiner (refine.hpp): an eraser kept alive between frames with the refiner's state beside
+// it (refine::Engine), moved view to view.
 #include "tinlod/refine.hpp"
 
+#include "refine/update.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/util.hpp"
@@ -14,26 +16,31 @@ namespace refine {
 struct RefinerState {
     std::unique_ptr<Mesh> mesh;
     RefineOptions options;
-    std::unique_ptr<NodeEraser> eraser;
+    std::unique_ptr<Engine> engine;
     const Heightfield *lattice = nullptr; // the grid a heightfield's TIN holds samples of
     FrameStats first;
 };
 
 } // namespace refine
 
+using refine::Engine;
 using refine::RefinerState;
 
-// `retrieval`: the mesh is the quad-tree retrieval's TIN (EraseOptions::retrieval_tin).
-static EraseOptions erase_options(const RefineOptions &options, bool retrieval,
-                                  const Heightfield *lattice) {
+static EraseOptions erase_options(const RefineOptions &options, const Heightfield *lattice) {
     EraseOptions eo;
     eo.lattice = lattice;
-    eo.absent_history = true;
-    eo.retrieval_tin = retrieval;
     eo.tolerance = options.tolerance * (1.0 - options.hysteresis);
     eo.max_valence = options.max_valence;
-    eo.shallow_history = true; // a recover must not undo a whole row of erases
     return eo;
+}
+
+// `retrieval`: the mesh is the quad-tree retrieval's TIN (HistoryOptions::retrieval_tin).
+static erase::HistoryOptions history_options(bool retrieval) {
+    erase::HistoryOptions ho;
+    ho.shallow_history = true; // a recover must not undo a whole row of erases
+    ho.absent_history = true;
+    ho.retrieval_tin = retrieval;
+    return ho;
 }
 
 static void start(RefinerState &s, const View &first, bool retrieval) {
@@ -41,26 +48,27 @@ static void start(RefinerState &s, const View &first, bool retrieval) {
     if (s.options.model == SpModel::vertical)
         throw Error("RefineOptions::model", "must be screen or paper: the refiner follows a view");
     Stopwatch clock;
-    s.eraser = std::make_unique<NodeEraser>(
+    s.engine = std::make_unique<Engine>(
         *s.mesh, Significance::of(s.options.model, first, s.options.significance),
-        erase_options(s.options, retrieval, s.lattice));
+        erase_options(s.options, s.lattice), history_options(retrieval));
+    NodeEraser &eraser = s.engine->eraser;
     const double weights_ms = clock.ms();
     clock.reset();
-    const EraseStats e = s.eraser->erase();
+    const EraseStats e = eraser.erase();
     // The grid's erased edges and faces leave memory (a copy gets arrays of the compacted size),
     // with room for the TIN to grow by half before its arrays reallocate (and, from a heightfield,
     // for as many samples again as it has live nodes to enter).
-    s.eraser->compact();
+    s.engine->compact();
     auto compacted = std::make_unique<Mesh>(*s.mesh);
     compacted->reserve(compacted->n_vertices() +
-                           (s.lattice ? std::size_t(s.eraser->live_nodes()) : std::size_t(0)),
+                           (s.lattice ? std::size_t(eraser.live_nodes()) : std::size_t(0)),
                        compacted->n_edges() * 3 / 2, compacted->n_faces() * 3 / 2);
-    s.eraser->rebind(*compacted);
+    s.engine->rebind(*compacted);
     s.mesh = std::move(compacted);
     // An update from the same view makes the bounds that later updates carry over (each fan's and
     // face's weighted deviation, each node's least cost), so the first move does not pay for
     // them all at once.
-    const UpdateStats warm = s.eraser->update(first, s.options.tolerance,
+    const UpdateStats warm = s.engine->update(first, s.options.tolerance,
                                               s.options.tolerance * (1.0 - s.options.hysteresis));
     UpdateStats &first_update = s.first.update;
     first_update.weights_ms = weights_ms;
@@ -68,8 +76,8 @@ static void start(RefinerState &s, const View &first, bool retrieval) {
     first_update.erased = e.erased + warm.erased;
     first_update.recovered = warm.recovered;
     first_update.candidates = e.evaluations;
-    s.first.nodes = s.eraser->live_nodes();
-    s.first.triangles = s.eraser->live_triangles();
+    s.first.nodes = eraser.live_nodes();
+    s.first.triangles = eraser.live_triangles();
     s.first.bound_px = e.max_weighted;
     s.first.total_ms = s.first.retrieve_ms + weights_ms + first_update.erase_ms;
 }
@@ -130,19 +138,19 @@ const FrameStats &Refiner::first_frame() const { return state_->first; }
 FrameStats Refiner::update(const View &view) {
     RefinerState &s = *state_;
     Stopwatch clock;
-    const UpdateStats u = s.eraser->update(view, s.options.tolerance,
+    const UpdateStats u = s.engine->update(view, s.options.tolerance,
                                            s.options.tolerance * (1.0 - s.options.hysteresis));
     FrameStats f;
     f.update = u;
-    f.nodes = s.eraser->live_nodes();
-    f.triangles = s.eraser->live_triangles();
+    f.nodes = s.engine->eraser.live_nodes();
+    f.triangles = s.engine->eraser.live_triangles();
     f.total_ms = clock.ms();
     return f;
 }
 
 const Mesh &Refiner::mesh() const { return *state_->mesh; }
 
-bool Refiner::is_erased(Mesh::VertexHandle v) const { return state_->eraser->is_erased(v); }
+bool Refiner::is_erased(Mesh::VertexHandle v) const { return state_->engine->eraser.is_erased(v); }
 
 std::size_t Refiner::bytes() const {
     const Mesh &m = *state_->mesh;
@@ -166,7 +174,7 @@ std::size_t Refiner::bytes() const {
         m.property(m.vertex_status_pph()).data_vector().capacity() * per_vertex +
         m.property(m.edge_status_pph()).data_vector().capacity() * per_edge +
         m.property(m.face_status_pph()).data_vector().capacity() * per_face;
-    return mesh_bytes + state_->eraser->history_bytes();
+    return mesh_bytes + state_->engine->bytes();
 }
 
 } // namespace tinlod

@@ -3,6 +3,7 @@
 
 #include "erase/edits.hpp"
 #include "erase/erase_cost.hpp"
+#include "erase/history.hpp"
 #include "erase/lattice_scan.hpp"
 #include "erase/sweep.hpp"
 #include "refine/face_check.hpp"
@@ -20,8 +21,8 @@ namespace tinlod::refine {
 
 using namespace erase;
 
-std::uint32_t ready_dependency(EraserState &s, std::uint32_t v) {
-    std::vector<std::uint32_t> &chain = s.frame.chain;
+std::uint32_t ready_dependency(const EraserState &s, FrameState &frame, std::uint32_t v) {
+    std::vector<std::uint32_t> &chain = frame.chain;
     if (chain.empty() || chain.front() != v) {
         chain.assign(1, v);
     } else {
@@ -54,47 +55,29 @@ std::uint32_t ready_dependency(EraserState &s, std::uint32_t v) {
     }
 }
 
-} // namespace tinlod::refine
-
-namespace tinlod {
-
-using namespace erase;
-using namespace refine;
-
-void NodeEraser::rebind(Mesh &mesh) {
-    assert(mesh.n_vertices() == state_->input.mesh->n_vertices() &&
-           mesh.n_faces() == state_->faces.face_head.size());
-    state_->input.mesh = &mesh;
-    advise_huge(*state_);
-    if (state_->frame.fans_stale)
-        rebuild_fans(*state_); // here, not in the first update (docs/decisions/006-fan-bounds.md)
-    if (state_->input.grid_w > 0 && state_->faces.tile_z.empty())
-        build_tile_z(state_->faces, state_->input); // and these (a pass over every sample)
-}
-
 namespace {
 
 // The update's grid sized for the live nodes, and their fan bounds built, if need be.
-void prepare(EraserState &s) {
-    if (s.live.count > k_regrid_ratio * s.frame.grid.grid_live ||
-        k_regrid_ratio * s.live.count < s.frame.grid.grid_live)
-        regrid(s.frame.grid, s.live);
-    if (s.frame.fans_stale)
-        rebuild_fans(s);
+void prepare(const EraserState &s, FrameState &frame) {
+    if (s.live.count > k_regrid_ratio * frame.grid.grid_live ||
+        k_regrid_ratio * s.live.count < frame.grid.grid_live)
+        regrid(frame.grid, frame.fans, s.live.count);
+    if (frame.fans_stale)
+        rebuild_fans(s, frame);
 }
 
 // The new view's weigher, and how far the eye has moved and the axis turned since each kept view
 // (ViewBounds::since), for the bounds carried over.
-void new_view(EraserState &s, const View &view) {
+void new_view(EraserState &s, FrameState &frame, const View &view) {
     s.weights.view = view;
     if (s.weights.model == SpModel::paper)
         s.weights.focal_distance = std::max(focal_point(*s.input.mesh, view).distance, 1e-9);
     s.weights.weigher = Weigher(s.weights.view, s.weights.significance);
     new_weights(s, false);
-    s.frame.seen.seen_views[++s.frame.seen.updates % k_seen_views] = view;
+    frame.seen.seen_views[++frame.seen.updates % k_seen_views] = view;
     for (std::uint32_t i = 0; i < k_seen_views; ++i) {
-        const View &then = s.frame.seen.seen_views[i];
-        ViewBounds::Since &d = s.frame.seen.since[i];
+        const View &then = frame.seen.seen_views[i];
+        ViewBounds::Since &d = frame.seen.since[i];
         d.ok = then.fov_deg == view.fov_deg && then.viewport_w == view.viewport_w &&
                then.viewport_h == view.viewport_h;
         d.moved = glm::length(view.eye - then.eye);
@@ -106,12 +89,12 @@ void new_view(EraserState &s, const View &view) {
 // largest deviation over the distance to the box they lie in says so, without visiting them). The
 // grid skips the cells whose bounds clear every node in them; the walk over the live nodes
 // rebuilds those bounds (widen_fans raises them as the update changes fans).
-std::vector<FH> seed_recover(EraserState &s, double recover_above) {
-    std::vector<std::uint8_t> &visit = s.frame.grid.cell_visit;
-    visit.resize(s.frame.grid.cells.size());
-    for (std::uint32_t c = 0; c < std::uint32_t(s.frame.grid.cells.size()); ++c) {
-        Cell &cell = s.frame.grid.cells[c];
-        const auto [lo, hi] = cell_box(s.frame.grid, c, double(cell.reach));
+std::vector<FH> seed_recover(const EraserState &s, FrameState &frame, double recover_above) {
+    std::vector<std::uint8_t> &visit = frame.grid.cell_visit;
+    visit.resize(frame.grid.cells.size());
+    for (std::uint32_t c = 0; c < std::uint32_t(frame.grid.cells.size()); ++c) {
+        Cell &cell = frame.grid.cells[c];
+        const auto [lo, hi] = cell_box(frame.grid, c, double(cell.reach));
         visit[c] = cell.fan_dev > 0.0f &&
                    double(cell.fan_dev) * s.weights.weigher.bound(lo, hi) * k_rounded_weight >
                        recover_above;
@@ -120,10 +103,11 @@ std::vector<FH> seed_recover(EraserState &s, double recover_above) {
     }
     std::vector<FH> work;
     const double log_recover = std::log(recover_above);
-    for (LiveNode &l : s.live.list) {
-        if (visit[l.cell] && !fan_cleared(s, l, recover_above, log_recover))
-            seed_fan(s, l, recover_above, work);
-        Cell &cell = s.frame.grid.cells[l.cell];
+    for (std::uint32_t i = 0; i < std::uint32_t(frame.fans.size()); ++i) {
+        FanBounds &l = frame.fans[i];
+        if (visit[l.cell] && !fan_cleared(s, frame, l, recover_above, log_recover))
+            seed_fan(s, frame, i, recover_above, work);
+        Cell &cell = frame.grid.cells[l.cell];
         cell.fan_dev = std::max(cell.fan_dev, l.fan_dev);
         cell.reach = std::max(cell.reach, l.reach);
     }
@@ -135,22 +119,22 @@ std::vector<FH> seed_recover(EraserState &s, double recover_above) {
 // checked again with the faces of the node re-inserted. The new fan often brings the worst node
 // within the bound before its whole closure is back (bottom up, most of a closure was erased again
 // by the same update). Returns the nodes recovered.
-std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, double recover_above,
-                                         UpdateStats &stats) {
+std::vector<std::uint32_t> recover_faces(EraserState &s, FrameState &frame, std::vector<FH> work,
+                                         double recover_above, UpdateStats &stats) {
     const Mesh &m = *s.input.mesh;
     const std::int64_t entered = s.counters.entered, fans_kept = s.counters.fans_kept;
     std::vector<std::uint32_t> recovered;
-    s.frame.chain.clear(); // the erases since the last update may have changed any choice
+    frame.chain.clear(); // the erases since the last update may have changed any choice
     while (!work.empty()) {
         const FH f = work.back();
         work.pop_back();
         if (m.status(f).deleted())
             continue;
         ++stats.faces_checked;
-        const std::int32_t u = worst_swallowed(s, f, recover_above).first;
+        const std::int32_t u = worst_swallowed(s, frame, f, recover_above).first;
         if (u < 0)
             continue;
-        const std::uint32_t x = ready_dependency(s, std::uint32_t(u));
+        const std::uint32_t x = ready_dependency(s, frame, std::uint32_t(u));
         reinsert(s, x);
         ++stats.recovered;
         s.live.flags[x] |= k_recovered;
@@ -158,7 +142,7 @@ std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, d
         // Re-evaluated by this update's erase: a node recovered only because a worse one depended
         // on it may cost little, and a key of "significant" would keep it forever. So are its ring
         // nodes: their fans gave x its faces back, so their erase costs changed and the bounds on
-        // them (LiveNode::star_dev, low_log) no longer hold: left as they were, the TIN kept more
+        // them (FanBounds::star_dev, low_log) no longer hold: left as they were, the TIN kept more
         // nodes than its erase bound asks for (docs/decisions/018-recovery-order.md).
         mark_dirty(s, x);
         for (auto r : m.vv_range(vh(s, x)))
@@ -178,19 +162,21 @@ std::vector<std::uint32_t> recover_faces(EraserState &s, std::vector<FH> work, d
 // node is dirty and every node's cost is over the bound (the least star deviation times the least
 // weight in the box the stars lie in says so), and each node's lower bound on its cost, carried
 // from the view it was made under, settles most of the rest without a weight.
-std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
-    std::vector<std::uint8_t> &visit = s.frame.grid.cell_visit;
-    for (std::uint32_t c = 0; c < std::uint32_t(s.frame.grid.cells.size()); ++c) {
-        Cell &cell = s.frame.grid.cells[c];
-        const auto [lo, hi] = cell_box(s.frame.grid, c, double(cell.reach));
+std::vector<std::uint32_t> unsettled_nodes(const EraserState &s, FrameState &frame,
+                                           double erase_below) {
+    std::vector<std::uint8_t> &visit = frame.grid.cell_visit;
+    for (std::uint32_t c = 0; c < std::uint32_t(frame.grid.cells.size()); ++c) {
+        Cell &cell = frame.grid.cells[c];
+        const auto [lo, hi] = cell_box(frame.grid, c, double(cell.reach));
         visit[c] =
             cell.dirty || !(double(cell.star_dev) * s.weights.weigher.lower(lo, hi) > erase_below);
         cell.star_dev = INFINITY;
     }
-    std::vector<LiveNode *> unsettled;
+    std::vector<std::uint32_t> unsettled;
     const double log_below = std::log(erase_below);
-    for (LiveNode &l : s.live.list) {
-        Cell &cell = s.frame.grid.cells[l.cell];
+    for (std::uint32_t i = 0; i < std::uint32_t(frame.fans.size()); ++i) {
+        const FanBounds &l = frame.fans[i];
+        Cell &cell = frame.grid.cells[l.cell];
         cell.star_dev = std::min(cell.star_dev, l.star_dev);
         if (!visit[l.cell])
             continue;
@@ -199,7 +185,7 @@ std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
         if (l.low_log == INFINITY)
             continue; // parked
         if (l.low_log > -INFINITY) {
-            if (const ViewBounds::Since *d = since(s, l.low_at)) {
+            if (const ViewBounds::Since *d = since(s, frame, l.low_at)) {
                 // The shrink outside the view cone bounds the one inside it: the cone test (a
                 // square root and a division per node) only when that bound does not settle the
                 // node (docs/decisions/007-seen-bounds.md).
@@ -218,7 +204,7 @@ std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
                     continue;
             }
         }
-        unsettled.push_back(&l);
+        unsettled.push_back(i);
     }
     return unsettled;
 }
@@ -226,31 +212,34 @@ std::vector<LiveNode *> unsettled_nodes(EraserState &s, double erase_below) {
 // The candidates of the update's erase among the unsettled nodes: those whose star's deviation
 // times its weight now (a lower bound of the cost) does not keep them over `erase_below`, marked
 // dirty; the others keep that bound as their key.
-std::vector<std::uint32_t> pick_candidates(EraserState &s, const std::vector<LiveNode *> &unsettled,
+std::vector<std::uint32_t> pick_candidates(EraserState &s, FrameState &frame,
+                                           const std::vector<std::uint32_t> &unsettled,
                                            double erase_below, UpdateStats &stats) {
     std::vector<std::uint32_t> candidates;
     // Their flags and their star's height are each a cache miss, asked for k_ahead nodes ahead
     // (docs/decisions/009-prefetching.md).
     for (std::size_t i = 0; i < unsettled.size(); ++i) {
         if (i + k_ahead < unsettled.size()) {
-            const LiveNode &ahead = *unsettled[i + k_ahead];
+            const LiveNode &ahead = s.live.list[unsettled[i + k_ahead]];
             __builtin_prefetch(&s.live.flags[ahead.node]);
             if (s.input.lattice)
                 __builtin_prefetch(&s.input.lattice->z[ahead.star]);
         }
-        LiveNode &l = *unsettled[i];
+        const std::uint32_t slot = unsettled[i];
+        const LiveNode &l = s.live.list[slot];
         const std::uint32_t x = l.node;
         if (s.live.flags[x] & k_locked)
             continue;
-        const float key = node_key(s.live, l);
+        const float key = node_key(s.live, slot);
         if (!std::isfinite(key))
             continue; // its hole cannot be re-triangulated: only a change of its ring can help
         if (!(s.live.flags[x] & k_dirty)) {
             // The cost under this view is at least the star's deviation times its weight now.
-            const double least = double(l.star_dev) * weight_of(s, l.star);
+            FanBounds &b = frame.fans[slot];
+            const double least = double(b.star_dev) * weight_of(s, l.star);
             if (least > erase_below) {
-                store_node_key(s.live, l, float_down(least));
-                remember_low(s, l, least);
+                store_node_key(s.live, slot, float_down(least));
+                remember_low(s, frame, b, least);
                 continue;
             }
         }
@@ -266,26 +255,29 @@ std::vector<std::uint32_t> pick_candidates(EraserState &s, const std::vector<Liv
 // (seen_before, carry_seen); and it counts the erases of nodes this update recovered.
 class KeepBounds final : public SweepObserver {
   public:
-    explicit KeepBounds(EraserState &s) : s_(s) {}
-    void too_costly(LiveNode &l, double cost) override { remember_low(s_, l, cost); }
+    KeepBounds(const EraserState &s, FrameState &frame) : s_(s), frame_(frame) {}
+    void too_costly(std::uint32_t slot, double cost) override {
+        remember_low(s_, frame_, frame_.fans[slot], cost);
+    }
     void erasing(std::uint32_t x, const Hole &h) override {
         reerased += (s_.live.flags[x] & k_recovered) != 0;
-        seen_before(s_, h, seen_);
+        seen_before(s_, frame_, h, seen_);
     }
-    void erased(const Hole &h) override { carry_seen(s_, h, seen_); }
+    void erased(const Hole &h) override { carry_seen(s_, frame_, h, seen_); }
 
     std::int64_t reerased = 0;
 
   private:
-    EraserState &s_;
+    const EraserState &s_;
+    FrameState &frame_;
     std::array<double, k_max_ring> seen_; // the ring's seen bounds before the erase under way
 };
 
 // The sweep over the candidates and the rings their erases change, at `erase_below`.
-void erase_candidates(EraserState &s, std::vector<std::uint32_t> candidates, double erase_below,
-                      UpdateStats &stats) {
-    assert(!s.frame.fans_stale); // the cap reads the fans' reach
-    KeepBounds keep(s);
+void erase_candidates(EraserState &s, FrameState &frame, std::vector<std::uint32_t> candidates,
+                      double erase_below, UpdateStats &stats) {
+    assert(!frame.fans_stale && s.follower == &frame); // the cap reads the fans' reach
+    KeepBounds keep(s, frame);
     const std::int64_t evaluations = s.counters.evaluations;
     stats.erased = sweep_dirty(s, erase_below, std::move(candidates), k_update_cap, 0, &keep);
     stats.evaluations = s.counters.evaluations - evaluations;
@@ -294,41 +286,63 @@ void erase_candidates(EraserState &s, std::vector<std::uint32_t> candidates, dou
 
 // The update's flags go (the sweep left no live node dirty), and the mesh's arrays are advised
 // again if one grew out of its room.
-void finish(EraserState &s, const std::vector<std::uint32_t> &recovered) {
+void finish(EraserState &s, FrameState &frame, const std::vector<std::uint32_t> &recovered) {
     const Mesh &m = *s.input.mesh;
     for (const std::uint32_t x : recovered)
         s.live.flags[x] &= std::uint8_t(~k_recovered);
-    for (Cell &cell : s.frame.grid.cells)
+    for (Cell &cell : frame.grid.cells)
         cell.dirty = false;
-    if (s.frame.advised[0] && (s.frame.advised[0] != m.points() ||
-                               (m.n_edges() > 0 && s.frame.advised[1] != &m.edge(EH(0))) ||
-                               (m.n_faces() > 0 && s.frame.advised[2] != &m.face(FH(0)))))
-        advise_huge(s);
+    if (frame.advised[0] && (frame.advised[0] != m.points() ||
+                             (m.n_edges() > 0 && frame.advised[1] != &m.edge(EH(0))) ||
+                             (m.n_faces() > 0 && frame.advised[2] != &m.face(FH(0)))))
+        advise_huge(s, frame);
 }
 
 } // namespace
 
-UpdateStats NodeEraser::update(const View &view, double recover_above, double erase_below) {
-    EraserState &s = *state_;
+Engine::Engine(Mesh &mesh, const Significance &model, const EraseOptions &options,
+               const HistoryOptions &history)
+    : eraser(EraserAccess::make(mesh, model, options, history, &frame)) {}
+
+void Engine::compact() { erase::compact(state()); }
+
+void Engine::rebind(Mesh &mesh) {
+    EraserState &s = state();
+    assert(mesh.n_vertices() == s.input.mesh->n_vertices() &&
+           mesh.n_faces() == s.faces.face_head.size());
+    s.input.mesh = &mesh;
+    advise_huge(s, frame);
+    if (frame.fans_stale)
+        rebuild_fans(s, frame); // here, not in the first update (docs/decisions/006-fan-bounds.md)
+    if (s.input.grid_w > 0 && frame.blocks.tile_z.empty())
+        build_tile_z(frame.blocks.tile_z, s.input); // and these (a pass over every sample)
+}
+
+UpdateStats Engine::update(const View &view, double recover_above, double erase_below) {
+    EraserState &s = state();
     assert(s.weights.model != SpModel::vertical && erase_below <= recover_above);
     if (s.history.absent_for_good)
-        throw std::logic_error("NodeEraser::update: the samples the input TIN left out need "
-                               "EraseOptions::absent_history to follow a view");
+        throw std::logic_error("refine::Engine::update: the samples the input TIN left out need "
+                               "HistoryOptions::absent_history to follow a view");
     UpdateStats stats;
-    prepare(s);
+    prepare(s, frame);
     Stopwatch clock;
-    new_view(s, view);
+    new_view(s, frame, view);
     stats.weights_ms = clock.ms();
     clock.reset();
     const std::vector<std::uint32_t> recovered =
-        recover_faces(s, seed_recover(s, recover_above), recover_above, stats);
+        recover_faces(s, frame, seed_recover(s, frame, recover_above), recover_above, stats);
     stats.recover_ms = clock.ms();
     clock.reset();
-    erase_candidates(s, pick_candidates(s, unsettled_nodes(s, erase_below), erase_below, stats),
-                     erase_below, stats);
-    finish(s, recovered);
+    erase_candidates(
+        s, frame,
+        pick_candidates(s, frame, unsettled_nodes(s, frame, erase_below), erase_below, stats),
+        erase_below, stats);
+    finish(s, frame, recovered);
     stats.erase_ms = clock.ms();
     return stats;
 }
 
-} // namespace tinlod
+std::size_t Engine::bytes() const { return eraser.history_bytes() + frame.bytes(); }
+
+} // namespace tinlod::refine

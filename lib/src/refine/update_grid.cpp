@@ -10,17 +10,17 @@ namespace tinlod::refine {
 
 using namespace erase;
 
-void regrid(UpdateGrid &grid, LiveSet &live) {
+void regrid(UpdateGrid &grid, std::vector<FanBounds> &fans, std::int64_t live) {
     const glm::dvec2 extent = grid.grid_hi - grid.grid_lo;
-    const double cells = std::max(1.0, double(live.count) / k_live_per_cell);
+    const double cells = std::max(1.0, double(live) / k_live_per_cell);
     const double area = extent.x * extent.y;
     grid.cell_side = std::max(
         {area > 0.0 ? std::sqrt(area / cells) : 0.0, std::max(extent.x, extent.y) / 4000.0, 1e-30});
     grid.grid_nx = int(extent.x / grid.cell_side) + 1;
     grid.grid_ny = int(extent.y / grid.cell_side) + 1;
-    grid.grid_live = live.count;
+    grid.grid_live = live;
     grid.cells.assign(std::size_t(grid.grid_nx) * std::size_t(grid.grid_ny), Cell{});
-    for (LiveNode &l : live.list) {
+    for (FanBounds &l : fans) {
         const glm::dvec3 p = to_glm(l.p);
         l.cell = cell_of(grid, p);
         Cell &cell = grid.cells[l.cell];
@@ -31,11 +31,11 @@ void regrid(UpdateGrid &grid, LiveSet &live) {
     }
 }
 
-void advise_huge(EraserState &s) {
+void advise_huge(const EraserState &s, FrameState &frame) {
     const Mesh &m = *s.input.mesh;
-    s.frame.advised = {m.n_vertices() > 0 ? m.points() : nullptr,
-                       m.n_edges() > 0 ? &m.edge(EH(0)) : nullptr,
-                       m.n_faces() > 0 ? &m.face(FH(0)) : nullptr};
+    frame.advised = {m.n_vertices() > 0 ? m.points() : nullptr,
+                     m.n_edges() > 0 ? &m.edge(EH(0)) : nullptr,
+                     m.n_faces() > 0 ? &m.face(FH(0)) : nullptr};
     if (m.n_vertices() > 0) {
         // Over the reserved room: the vertices that enter fill it.
         const std::size_t room = m.property(m.points_pph()).data_vector().capacity();

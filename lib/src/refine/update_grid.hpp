@@ -4,8 +4,10 @@
 #pragma once
 
 #include "erase/state.hpp"
+#include "refine/frame_state.hpp"
 
 #include <utility>
+#include <vector>
 
 namespace tinlod::refine {
 
@@ -22,11 +24,11 @@ inline std::pair<glm::dvec3, glm::dvec3> cell_box(const UpdateGrid &g, std::uint
             {lo.x + g.cell_side + margin, lo.y + g.cell_side + margin, double(cell.zhi) + margin}};
 }
 
-// Sizes the update's grid for the live nodes (live.count) over the input's extent, at most ~4000
+// Sizes the update's grid for `live` live nodes over the input's extent, at most ~4000
 // cells a side however thin the outline, and puts the live nodes in its cells. The cells' fan
 // bounds are their nodes' (rebuild_fans makes them when the nodes' are stale); their star bounds
 // and dirty flags are the conservative ones, so the next update visits every cell once.
-void regrid(UpdateGrid &grid, erase::LiveSet &live);
+void regrid(UpdateGrid &grid, std::vector<FanBounds> &fans, std::int64_t live);
 
 // The arrays an update reads at random, one entry per node (or edge, face), on huge pages: on a
 // 4097² grid they span hundreds of MB, and with 4 KiB pages most reads miss the TLB. Only for a
@@ -35,6 +37,6 @@ void regrid(UpdateGrid &grid, erase::LiveSet &live);
 // The mesh's arrays move when they grow past their reserved room (a sparse lattice's vertices as
 // samples enter, edges and faces as the TIN grows): update() advises them again then (see
 // FrameState::advised). The heightfield of a sparse lattice, which its scans read, is advised too.
-void advise_huge(EraserState &s);
+void advise_huge(const EraserState &s, FrameState &frame);
 
 } // namespace tinlod::refine
