@@ -20,6 +20,7 @@ import zlib from 'node:zlib'
 import { createRequire } from 'node:module'
 import { spawnSync, execFileSync } from 'node:child_process'
 import os from 'node:os'
+import { heightAt, locator } from '../tests/tiles/tin_locator.mjs'
 
 const here = path.dirname(new URL(import.meta.url).pathname)
 const root = path.resolve(here, '..')
@@ -192,7 +193,7 @@ function measure (tiles, scheme, dem) {
         const sample = dem.height(c, r)
         if (su < 0 || su > 32767 || Number.isNaN(sample)) continue
         lv.samples++
-        const h = locate(su, sv)
+        const h = heightAt(t, locate, su, sv)
         if (Number.isNaN(h)) { lv.uncovered++; continue }
         worst = Math.max(worst, Math.abs(h - sample) / bound)
       }
@@ -226,42 +227,6 @@ function gap (a, b) {
     worst = Math.max(worst, Math.abs(h - hb))
   }
   return worst
-}
-
-// The height of the tile's surface at (u, v), or NaN under no triangle: triangles in a grid of buckets.
-function locator (t) {
-  const tri = t.tri
-  const B = Math.max(4, Math.min(128, Math.ceil(Math.sqrt(tri.length / 3)))); const cell = 32768 / B
-  const buckets = Array.from({ length: B * B }, () => [])
-  for (let i = 0; i < tri.length; i += 3) {
-    const us = [t.u[tri[i]], t.u[tri[i + 1]], t.u[tri[i + 2]]]; const vs = [t.v[tri[i]], t.v[tri[i + 1]], t.v[tri[i + 2]]]
-    for (let by = Math.floor(Math.min(...vs) / cell); by <= Math.min(B - 1, Math.floor(Math.max(...vs) / cell)); ++by) {
-      for (let bx = Math.floor(Math.min(...us) / cell); bx <= Math.min(B - 1, Math.floor(Math.max(...us) / cell)); ++bx) buckets[by * B + bx].push(i)
-    }
-  }
-  const inTriangle = (i, pu, pv) => {
-    const a = tri[i]; const b = tri[i + 1]; const c = tri[i + 2]
-    const d = (t.v[b] - t.v[c]) * (t.u[a] - t.u[c]) + (t.u[c] - t.u[b]) * (t.v[a] - t.v[c])
-    if (d === 0) return NaN
-    const l1 = ((t.v[b] - t.v[c]) * (pu - t.u[c]) + (t.u[c] - t.u[b]) * (pv - t.v[c])) / d
-    const l2 = ((t.v[c] - t.v[a]) * (pu - t.u[c]) + (t.u[a] - t.u[c]) * (pv - t.v[c])) / d
-    const l3 = 1 - l1 - l2
-    const eps = -1e-9
-    return l1 >= eps && l2 >= eps && l3 >= eps ? l1 * t.h[a] + l2 * t.h[b] + l3 * t.h[c] : NaN
-  }
-  let last = -1
-  return (pu, pv) => {
-    if (last >= 0) {
-      const h = inTriangle(last, pu, pv)
-      if (!Number.isNaN(h)) return h
-    }
-    const bx = Math.min(B - 1, Math.floor(pu / cell)); const by = Math.min(B - 1, Math.floor(pv / cell))
-    for (const i of buckets[by * B + bx]) {
-      const h = inTriangle(i, pu, pv)
-      if (!Number.isNaN(h)) { last = i; return h }
-    }
-    return NaN
-  }
 }
 
 // --- the runs
