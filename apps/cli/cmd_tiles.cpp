@@ -140,7 +140,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
             }
             std::cout << nlohmann::json({{"min_zoom", po.min_zoom},
                                          {"max_zoom", po.max_zoom},
-                                         {"posts", std::int64_t(lattice.width) * lattice.height},
+                                         {"lattice",
+                                          {{"width", lattice.width},
+                                           {"height", lattice.height},
+                                           {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
                                          {"levels", levels}})
                              .dump()
                       << '\n';
