@@ -8,15 +8,19 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -101,6 +105,93 @@ std::vector<std::string> jobs(int cut) {
     return parts;
 }
 
+// Debian's interpreter, the one python3-distributed installs Dask into (a python3 earlier on PATH,
+// pyenv's, does not see it).
+const char *const k_python = "/usr/bin/python3";
+
+bool dask_installed() {
+    const std::string check = std::string(k_python) + " -c 'import distributed' 2>/dev/null";
+    return std::system(check.c_str()) == 0;
+}
+
+// A process started in a process group of its own, its stdout and stderr to `log`, with
+// PYTHONPATH at the repository's python/. Destroyed, it kills its whole group (SIGKILL) and reaps
+// it: a test that fails midway leaves nothing running (a Dask worker's own processes and the
+// tinlod jobs they run included).
+class Process {
+  public:
+    Process(const std::vector<std::string> &argv, const std::string &log) {
+        const std::string python = (fs::path(TINLOD_MESHES_DIR).parent_path() / "python").string();
+        pid_ = fork();
+        if (pid_ == 0) {
+            setpgid(0, 0);
+            const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            dup2(fd, 1);
+            dup2(fd, 2);
+            setenv("PYTHONPATH", python.c_str(), 1);
+            std::vector<char *> args;
+            for (const std::string &a : argv)
+                args.push_back(const_cast<char *>(a.c_str()));
+            args.push_back(nullptr);
+            execv(args[0], args.data());
+            _exit(127);
+        }
+        setpgid(pid_, pid_); // also here: the group exists before kill() may need it
+    }
+    ~Process() { kill(); }
+    Process(const Process &) = delete;
+    Process &operator=(const Process &) = delete;
+
+    void kill() {
+        if (pid_ <= 0)
+            return;
+        killpg(pid_, SIGKILL);
+        if (!reaped_)
+            waitpid(pid_, nullptr, 0);
+        pid_ = 0;
+    }
+    // The exit status, or -1 when it still runs after `seconds` (or was killed by a signal).
+    int wait(double seconds) {
+        const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+        while (std::chrono::steady_clock::now() < end) {
+            int status = 0;
+            if (waitpid(pid_, &status, WNOHANG) == pid_) {
+                reaped_ = true;
+                return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            }
+            usleep(20000);
+        }
+        return -1;
+    }
+
+  private:
+    pid_t pid_ = 0;
+    bool reaped_ = false;
+};
+
+// Waits up to `seconds` for `path` to hold `text`.
+bool wait_for(const std::string &path, const std::string &text, double seconds) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+        if (slurp(path).find(text) != std::string::npos)
+            return true;
+        usleep(20000);
+    }
+    return false;
+}
+
+// `python3 -m tinlod_dask tiles` of the tests' pyramid into `out`, on `where` (--scheduler ADDRESS
+// or --local N), its stderr to `log`.
+std::vector<std::string> dask_build(const std::string &out, const std::vector<std::string> &where) {
+    std::vector<std::string> argv = {
+        k_python, "-m",         "tinlod_dask", "tiles",     asset("N42E001.hgt"), "-o",
+        out,      "--max-zoom", "10",          "--normals", "--tinlod",           TINLOD_CLI};
+    argv.insert(argv.end(), where.begin(), where.end());
+    return argv;
+}
+
+std::string log_of(const std::string &path) { return path + ":\n" + slurp(path); }
+
 } // namespace
 
 TEST(TilesParts, PartsInAnyOrderAndRunTwiceMakeTheWholeRunsTileSet) {
@@ -167,4 +258,84 @@ TEST(TilesParts, PartOutsideTheLevelsIsAUsageError) {
         EXPECT_NE(r.err.find("--part"), std::string::npos) << r.err;
     }
     EXPECT_FALSE(fs::exists(dir + "/0"));
+}
+
+// A real scheduler and two workers on 127.0.0.1: the build through them, then a second build with
+// one worker killed (SIGKILL, its whole process group: as a machine that goes down) once the first
+// job reports, both equal to the single-process build, every file and layer.json; and a job that
+// fails for good ends the build with the tool's error line, the folder as it was.
+TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProcessBuild) {
+    if (!dask_installed())
+        FAIL() << k_python << " has no Dask: run scripts/setup.sh (python3-distributed)";
+    const std::string dir = temp_dir();
+    const std::string address_file = dir + "/scheduler.json";
+    // Port 0: the scheduler takes a free port and writes its address into the file.
+    Process scheduler({k_python, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                       "--port", "0", "--no-dashboard", "--scheduler-file", address_file},
+                      dir + "/scheduler.log");
+    ASSERT_TRUE(wait_for(address_file, "tcp://", 60)) << log_of(dir + "/scheduler.log");
+    const std::string address = nlohmann::json::parse(slurp(address_file))["address"];
+    std::vector<std::unique_ptr<Process>> workers;
+    for (int k = 0; k < 2; ++k)
+        workers.push_back(std::make_unique<Process>(
+            std::vector<std::string>{k_python, "-m", "distributed.cli.dask_worker", address,
+                                     "--nthreads", "1", "--no-dashboard", "--host", "127.0.0.1",
+                                     "--name", "w" + std::to_string(k)},
+            dir + "/worker" + std::to_string(k) + ".log"));
+    for (int k = 0; k < 2; ++k) {
+        const std::string log = dir + "/worker" + std::to_string(k) + ".log";
+        ASSERT_TRUE(wait_for(log, "Registered to", 60)) << log_of(log);
+    }
+    const auto &whole = whole_run();
+
+    {
+        Process build(dask_build(dir + "/dask", {"--scheduler", address}), dir + "/build.log");
+        ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/build.log");
+        EXPECT_EQ(differences(whole, tree(dir + "/dask")), std::vector<std::string>{});
+    }
+    {
+        Process build(dask_build(dir + "/killed", {"--scheduler", address}), dir + "/killed.log");
+        ASSERT_TRUE(wait_for(dir + "/killed.log", "tinlod_dask: 1/", 60))
+            << log_of(dir + "/killed.log");
+        workers[0]->kill();
+        ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/killed.log");
+        EXPECT_EQ(differences(whole, tree(dir + "/killed")), std::vector<std::string>{});
+        // The scheduler lost the worker with jobs on it, and ran them on the other one.
+        const std::string log = dir + "/scheduler.log";
+        ASSERT_TRUE(wait_for(log, "Remove worker", 10)) << log_of(log);
+        const std::string removed = slurp(log).substr(slurp(log).find("Remove worker"));
+        EXPECT_NE(removed.find("name: w0"), std::string::npos) << removed;
+        EXPECT_EQ(removed.find("processing: 0>"), std::string::npos) << removed;
+    }
+    {
+        // A job that fails on every try (a tinlod that fails one part): one line with the tool's
+        // own error, status 1, and the folder as it was.
+        const std::string failing = dir + "/failing.sh";
+        std::ofstream(failing) << "#!/bin/sh\ncase \"$*\" in *--part*/*/*) echo \"tinlod: error: "
+                                  "x.hgt: cannot read\" >&2; exit 1;; esac\nexec "
+                               << TINLOD_CLI << " \"$@\"\n";
+        fs::permissions(failing, fs::perms::owner_all);
+        fs::create_directories(dir + "/kept");
+        std::ofstream(dir + "/kept/layer.json") << "earlier";
+        std::vector<std::string> argv = dask_build(dir + "/kept", {"--scheduler", address});
+        argv[std::size_t(std::find(argv.begin(), argv.end(), "--tinlod") - argv.begin()) + 1] =
+            failing;
+        Process build(argv, dir + "/failed.log");
+        EXPECT_EQ(build.wait(60), 1) << log_of(dir + "/failed.log");
+        const std::string err = slurp(dir + "/failed.log");
+        EXPECT_NE(err.find("tinlod_dask: error: part "), std::string::npos) << err;
+        EXPECT_NE(err.find(": tinlod: error: x.hgt: cannot read\n"), std::string::npos) << err;
+        EXPECT_EQ(tree(dir + "/kept"),
+                  (std::map<std::string, std::string>{{"layer.json", "earlier"}}));
+    }
+}
+
+// `--local 2`: the same build on a local cluster the driver starts itself.
+TEST(TilesDask, BuildOnALocalClusterEqualsTheSingleProcessBuild) {
+    if (!dask_installed())
+        FAIL() << k_python << " has no Dask: run scripts/setup.sh (python3-distributed)";
+    const std::string dir = temp_dir();
+    Process build(dask_build(dir + "/local", {"--local", "2"}), dir + "/local.log");
+    ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/local.log");
+    EXPECT_EQ(differences(whole_run(), tree(dir + "/local")), std::vector<std::string>{});
 }
