@@ -14,6 +14,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import uuid
 
 from . import job, plan
@@ -89,28 +90,32 @@ def run_tool(command):
     return run.stdout
 
 
-def connect(args):
-    """A client of the scheduler, or of a local cluster; and its worker threads."""
+def connect(args, scratch):
+    """A client of the scheduler, or of a local cluster (its workers' scratch space in
+    ``scratch``); the cluster it started, if any; and the worker threads."""
     from distributed import Client, LocalCluster
     if args.local is not None:
+        # The workers' scratch space in a folder of this run (the default one, shared by every
+        # local cluster, holds the locks of killed ones).
         cluster = LocalCluster(n_workers=args.local, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR)
-        client = Client(cluster)
-    else:
-        try:
-            client = Client(args.scheduler, timeout="20s")
-        except OSError as e:
-            raise Failure(f"--scheduler: {args.scheduler}: {e}") from e
-        try:
-            client.wait_for_workers(1, timeout=60)
-        except TimeoutError as e:
-            raise Failure(f"--scheduler: {args.scheduler}: no worker in 60 s") from e
-    return client, max(1, sum(client.nthreads().values()))
+                               dashboard_address=None, silence_logs=logging.ERROR,
+                               local_directory=scratch)
+        return Client(cluster), cluster, args.local
+    try:
+        client = Client(args.scheduler, timeout="20s")
+    except OSError as e:
+        raise Failure(f"--scheduler: {args.scheduler}: {e}") from e
+    try:
+        client.wait_for_workers(1, timeout=60)
+    except TimeoutError as e:
+        client.close()
+        raise Failure(f"--scheduler: {args.scheduler}: no worker in 60 s") from e
+    return client, None, sum(client.nthreads().values())
 
 
 def run_jobs(client, tinlod, dems, stage, opts, specs, retries):
-    """Submits the jobs and waits for them, showing progress; raises Failure when one fails for
-    good."""
+    """Submits the jobs and waits for them, showing progress; returns the tiles and the jobs'
+    seconds summed. Raises Failure when one fails for good."""
     import cloudpickle
     from distributed import as_completed
     # Workers need not import this package: the job's code travels with it.
@@ -118,13 +123,16 @@ def run_jobs(client, tinlod, dems, stage, opts, specs, retries):
     token = uuid.uuid4().hex[:8]
     commands = [[tinlod, "--threads", "1", "tiles", *dems, "-o", stage, *opts, "--part", spec]
                 for spec, _ in specs]
-    futures = client.map(job.run_part, commands, key=[f"tinlod-part-{spec}-{token}"
-                                                      for spec, _ in specs],
-                         retries=retries, pure=False)
+    # In the order given, the levels above the cut first: that job is the longest (coarse tiles
+    # measure the error at every post they cover), so it starts at once.
+    futures = [client.submit(job.run_part, command, key=f"tinlod-part-{spec}-{token}",
+                             retries=retries, priority=len(specs) - k)
+               for k, (command, (spec, _)) in enumerate(zip(commands, specs))]
     spec_of = {f.key: spec for f, (spec, _) in zip(futures, specs)}
     tiles_of = {f.key: tiles for f, (_, tiles) in zip(futures, specs)}
     total = sum(tiles for _, tiles in specs)
     done_jobs = done_tiles = 0
+    job_seconds = 0.0
     tty = sys.stderr.isatty()
     try:
         for future in as_completed(futures):
@@ -132,6 +140,7 @@ def run_jobs(client, tinlod, dems, stage, opts, specs, retries):
                 error = future.exception()
                 raise Failure(f"part {spec_of[future.key]}: {error}")
             done_jobs += 1
+            job_seconds += future.result()
             done_tiles += tiles_of[future.key]
             line = f"{PROG}: {done_jobs}/{len(futures)} jobs, {done_tiles}/{total} tiles"
             print("\r" + line if tty else line, end="" if tty else "\n", file=sys.stderr,
@@ -141,7 +150,7 @@ def run_jobs(client, tinlod, dems, stage, opts, specs, retries):
     except BaseException:
         client.cancel(futures)
         raise
-    return total
+    return total, job_seconds
 
 
 def commit(stage, output, levels):
@@ -166,7 +175,8 @@ def tiles(args):
     pyramid = json.loads(run_tool([tinlod, "tiles", *dems, "-o", output, "--plan",
                                    *tile_options(args, args.max_zoom)]))
     opts = tile_options(args, pyramid["max_zoom"])
-    client, workers = connect(args)
+    scratch = tempfile.TemporaryDirectory(prefix="tinlod-dask-")
+    client, cluster, workers = connect(args, scratch.name)
     try:
         cut = args.cut_zoom if args.cut_zoom is not None else plan.choose_cut(pyramid, workers)
         if not pyramid["min_zoom"] <= cut <= pyramid["max_zoom"]:
@@ -180,7 +190,10 @@ def tiles(args):
         stage = tempfile.mkdtemp(prefix=".tinlod-dask-", dir=output)
         try:
             os.chmod(stage, 0o755)
-            total = run_jobs(client, tinlod, dems, stage, opts, specs, args.retries)
+            start = time.monotonic()
+            total, job_seconds = run_jobs(client, tinlod, dems, stage, opts, specs,
+                                          args.retries)
+            seconds = time.monotonic() - start
             run_tool([tinlod, "tiles", *dems, "-o", stage, *opts, "--layer-only"])
             commit(stage, output, range(pyramid["min_zoom"], pyramid["max_zoom"] + 1))
         except BaseException:
@@ -192,8 +205,12 @@ def tiles(args):
         shutil.rmtree(stage, ignore_errors=True)
     finally:
         client.close()
-    print(f"{output}: {total} tiles on levels {pyramid['min_zoom']} to {pyramid['max_zoom']}",
-          file=sys.stderr)
+        if cluster:
+            cluster.close()
+        scratch.cleanup()
+    print(f"{output}: {total} tiles on levels {pyramid['min_zoom']} to {pyramid['max_zoom']}, "
+          f"jobs done in {seconds:.1f} s ({total / seconds:.1f} tiles/s; the jobs ran "
+          f"{job_seconds:.1f} s in all)", file=sys.stderr)
 
 
 def main(argv=None):
