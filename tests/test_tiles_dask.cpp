@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <set>
@@ -27,22 +26,18 @@
 
 namespace fs = std::filesystem;
 using tinlod::test::asset;
+using tinlod::test::file_bytes;
 using tinlod::test::run_cli;
 using tinlod::test::temp_dir;
 
 namespace {
-
-std::string slurp(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // Every file under `dir` (hidden ones too), by its path inside it, with its bytes.
 std::map<std::string, std::string> tree(const std::string &dir) {
     std::map<std::string, std::string> files;
     for (const auto &f : fs::recursive_directory_iterator(dir))
         if (f.is_regular_file())
-            files[fs::relative(f.path(), dir).string()] = slurp(f.path().string());
+            files[fs::relative(f.path(), dir).string()] = file_bytes(f.path().string());
     return files;
 }
 
@@ -173,7 +168,7 @@ class Process {
 bool wait_for(const std::string &path, const std::string &text, double seconds) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (std::chrono::steady_clock::now() < end) {
-        if (slurp(path).find(text) != std::string::npos)
+        if (file_bytes(path).find(text) != std::string::npos)
             return true;
         usleep(20000);
     }
@@ -190,7 +185,7 @@ std::vector<std::string> dask_build(const std::string &out, const std::vector<st
     return argv;
 }
 
-std::string log_of(const std::string &path) { return path + ":\n" + slurp(path); }
+std::string log_of(const std::string &path) { return path + ":\n" + file_bytes(path); }
 
 } // namespace
 
@@ -274,7 +269,7 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
                        "--port", "0", "--no-dashboard", "--scheduler-file", address_file},
                       dir + "/scheduler.log");
     ASSERT_TRUE(wait_for(address_file, "tcp://", 60)) << log_of(dir + "/scheduler.log");
-    const std::string address = nlohmann::json::parse(slurp(address_file))["address"];
+    const std::string address = nlohmann::json::parse(file_bytes(address_file))["address"];
     std::vector<std::unique_ptr<Process>> workers;
     for (int k = 0; k < 2; ++k)
         workers.push_back(std::make_unique<Process>(
@@ -303,7 +298,7 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
         // The scheduler lost the worker with jobs on it, and ran them on the other one.
         const std::string log = dir + "/scheduler.log";
         ASSERT_TRUE(wait_for(log, "Remove worker", 10)) << log_of(log);
-        const std::string removed = slurp(log).substr(slurp(log).find("Remove worker"));
+        const std::string removed = file_bytes(log).substr(file_bytes(log).find("Remove worker"));
         EXPECT_NE(removed.find("name: w0"), std::string::npos) << removed;
         EXPECT_EQ(removed.find("processing: 0>"), std::string::npos) << removed;
     }
@@ -322,7 +317,7 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
             failing;
         Process build(argv, dir + "/failed.log");
         EXPECT_EQ(build.wait(60), 1) << log_of(dir + "/failed.log");
-        const std::string err = slurp(dir + "/failed.log");
+        const std::string err = file_bytes(dir + "/failed.log");
         EXPECT_NE(err.find("tinlod_dask: error: part "), std::string::npos) << err;
         EXPECT_NE(err.find(": tinlod: error: x.hgt: cannot read\n"), std::string::npos) << err;
         EXPECT_EQ(tree(dir + "/kept"),
