@@ -39,6 +39,28 @@ static PyramidPart parse_part(const std::string &spec, int first, int last) {
     return part;
 }
 
+// `--plan`'s JSON: the run's levels, each with its tiles (layer.json's rectangles and their count),
+// and the lattice's size and spacing, from which a driver cuts the build into --part jobs.
+static nlohmann::json plan_json(const GeoLattice &lattice, const PyramidOptions &po,
+                                const nlohmann::json &layer) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (int z = po.min_zoom; z <= po.max_zoom; ++z) {
+        const nlohmann::json &rects = layer["available"][std::size_t(z)];
+        std::int64_t tiles = 0;
+        for (const auto &r : rects)
+            tiles += (r["endX"].get<std::int64_t>() - r["startX"].get<std::int64_t>() + 1) *
+                     (r["endY"].get<std::int64_t>() - r["startY"].get<std::int64_t>() + 1);
+        levels.push_back({{"z", z}, {"tiles", tiles}, {"available", rects}});
+    }
+    return {{"min_zoom", po.min_zoom},
+            {"max_zoom", po.max_zoom},
+            {"lattice",
+             {{"width", lattice.width},
+              {"height", lattice.height},
+              {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
+            {"levels", levels}};
+}
+
 static Register tiles("tiles", 75, [](CLI::App &cmd) {
     cmd.description(
         "Write a Cesium quantized-mesh-1.0 terrain tile pyramid (geographic TMS, gzip, "
@@ -129,24 +151,7 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                                  [&](const std::string &path) { write_layer(layer, path); });
                 return;
             }
-            nlohmann::json levels = nlohmann::json::array();
-            for (int z = po.min_zoom; z <= po.max_zoom; ++z) {
-                const nlohmann::json &rects = layer["available"][std::size_t(z)];
-                std::int64_t tiles = 0;
-                for (const auto &r : rects)
-                    tiles += (r["endX"].get<std::int64_t>() - r["startX"].get<std::int64_t>() + 1) *
-                             (r["endY"].get<std::int64_t>() - r["startY"].get<std::int64_t>() + 1);
-                levels.push_back({{"z", z}, {"tiles", tiles}, {"available", rects}});
-            }
-            std::cout << nlohmann::json({{"min_zoom", po.min_zoom},
-                                         {"max_zoom", po.max_zoom},
-                                         {"lattice",
-                                          {{"width", lattice.width},
-                                           {"height", lattice.height},
-                                           {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
-                                         {"levels", levels}})
-                             .dump()
-                      << '\n';
+            std::cout << plan_json(lattice, po, layer).dump() << '\n';
             return;
         }
         std::unique_ptr<Progress> bar;
