@@ -137,7 +137,9 @@ def run_jobs(client, tinlod, dems, stage, opts, specs, retries):
     try:
         for future in as_completed(futures):
             if future.status != "finished":
-                error = future.exception()
+                # "error": the job's last try raised (its tinlod line, or Dask's KilledWorker
+                # after its workers died); otherwise the scheduler cancelled or lost it.
+                error = future.exception() if future.status == "error" else future.status
                 raise Failure(f"part {spec_of[future.key]}: {error}")
             done_jobs += 1
             job_seconds += future.result()
@@ -175,13 +177,14 @@ def tiles(args):
     pyramid = json.loads(run_tool([tinlod, "tiles", *dems, "-o", output, "--plan",
                                    *tile_options(args, args.max_zoom)]))
     opts = tile_options(args, pyramid["max_zoom"])
+    if args.cut_zoom is not None and not \
+            pyramid["min_zoom"] <= args.cut_zoom <= pyramid["max_zoom"]:
+        raise Failure(f"--cut-zoom: a level from {pyramid['min_zoom']} to "
+                      f"{pyramid['max_zoom']}", 2)
     scratch = tempfile.TemporaryDirectory(prefix="tinlod-dask-")
     client, cluster, workers = connect(args, scratch.name)
     try:
         cut = args.cut_zoom if args.cut_zoom is not None else plan.choose_cut(pyramid, workers)
-        if not pyramid["min_zoom"] <= cut <= pyramid["max_zoom"]:
-            raise Failure(f"--cut-zoom: a level from {pyramid['min_zoom']} to "
-                          f"{pyramid['max_zoom']}", 2)
         specs = plan.jobs(pyramid, cut)
         print(f"{PROG}: levels {pyramid['min_zoom']} to {pyramid['max_zoom']} cut at level "
               f"{cut}: {len(specs)} jobs on {workers} worker threads", file=sys.stderr)
