@@ -275,7 +275,10 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
         workers.push_back(std::make_unique<Process>(
             std::vector<std::string>{k_python, "-m", "distributed.cli.dask_worker", address,
                                      "--nthreads", "1", "--no-dashboard", "--host", "127.0.0.1",
-                                     "--name", "w" + std::to_string(k)},
+                                     "--name", "w" + std::to_string(k),
+                                     // Its scratch space in the test's folder: a killed
+                                     // worker's lock is not left in /tmp/dask-worker-space.
+                                     "--local-directory", dir + "/space" + std::to_string(k)},
             dir + "/worker" + std::to_string(k) + ".log"));
     for (int k = 0; k < 2; ++k) {
         const std::string log = dir + "/worker" + std::to_string(k) + ".log";
