@@ -9,6 +9,8 @@ libosmesa6-dev libgbm-dev libglfw3-dev libimgui-dev xvfb xauth unzip clang-forma
 binutils zlib1g-dev $*"
 # The CesiumJS test of the tiles (tests/test_tiles_cesium.cpp) draws them in headless Chromium.
 PKGS="$PKGS chromium"
+# The tile build over a Dask cluster (python/tinlod_dask) runs under Debian's /usr/bin/python3.
+PKGS="$PKGS python3-distributed"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

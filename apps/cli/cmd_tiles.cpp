@@ -1,5 +1,6 @@
 // `tinlod tiles DEM... -o DIR [--min-zoom Z] [--max-zoom Z] [--normals] [--fill-height H]
-// [--stats J]`: a Cesium quantized-mesh-1.0 tile pyramid (lib/src/tiles, docs/tiles.md).
+// [--stats J]`: a Cesium quantized-mesh-1.0 tile pyramid (lib/src/tiles, docs/tiles.md). `--plan`,
+// `--part SPEC` and `--layer-only` cut the same build into jobs (python/tinlod_dask).
 #include "commands.hpp"
 #include "outputs.hpp"
 
@@ -9,9 +10,56 @@
 #include "tinlod/util.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <iostream>
 #include <memory>
 
 namespace tinlod::cli {
+
+// `--part`'s SPEC: Z/X/Y (that tile's subtree down to the last level) or top:Z (the levels from
+// --min-zoom above Z), checked against the run's levels.
+static PyramidPart parse_part(const std::string &spec, int first, int last) {
+    PyramidPart part;
+    char tail = 0;
+    long long z = -1, x = -1, y = -1;
+    if (std::sscanf(spec.c_str(), "top:%lld%c", &z, &tail) == 1) {
+        if (z <= first || z > last + 1)
+            throw UsageError("--part", spec + ": the cut must be a level from " +
+                                           std::to_string(first + 1) + " to " +
+                                           std::to_string(last + 1));
+        part.top = true;
+        part.root.z = int(z);
+        return part;
+    }
+    if (std::sscanf(spec.c_str(), "%lld/%lld/%lld%c", &z, &x, &y, &tail) != 3 || z < first ||
+        z > last || x < 0 || y < 0 || x >= (2LL << z) || y >= (1LL << z))
+        throw UsageError("--part", spec + ": not Z/X/Y (a tile of levels " + std::to_string(first) +
+                                       " to " + std::to_string(last) + ") or top:Z");
+    part.root = {int(z), x, y};
+    return part;
+}
+
+// `--plan`'s JSON: the run's levels, each with its tiles (layer.json's rectangles and their count),
+// and the lattice's size and spacing, from which a driver cuts the build into --part jobs.
+static nlohmann::json plan_json(const GeoLattice &lattice, const PyramidOptions &po,
+                                const nlohmann::json &layer) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (int z = po.min_zoom; z <= po.max_zoom; ++z) {
+        const nlohmann::json &rects = layer["available"][std::size_t(z)];
+        std::int64_t tiles = 0;
+        for (const auto &r : rects)
+            tiles += (r["endX"].get<std::int64_t>() - r["startX"].get<std::int64_t>() + 1) *
+                     (r["endY"].get<std::int64_t>() - r["startY"].get<std::int64_t>() + 1);
+        levels.push_back({{"z", z}, {"tiles", tiles}, {"available", rects}});
+    }
+    return {{"min_zoom", po.min_zoom},
+            {"max_zoom", po.max_zoom},
+            {"lattice",
+             {{"width", lattice.width},
+              {"height", lattice.height},
+              {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
+            {"levels", levels}};
+}
 
 static Register tiles("tiles", 75, [](CLI::App &cmd) {
     cmd.description(
@@ -20,10 +68,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         "sample, and neighbours sharing their edges vertex for vertex");
     struct Args {
         std::vector<std::string> inputs;
-        std::string output, stats;
+        std::string output, stats, part;
         int min_zoom = 0, max_zoom = 0;
         double fill_height = 0.0;
-        bool normals = false;
+        bool normals = false, plan = false, layer_only = false;
         RasterOptions raster;
     };
     auto args = std::make_shared<Args>();
@@ -47,6 +95,20 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         ->capture_default_str();
     cmd.add_flag("--normals", args->normals,
                  "add the oct-encoded vertex normals extension (normals of the DEM)");
+    auto *part =
+        cmd.add_option("--part", args->part,
+                       "build only Z/X/Y's subtree (levels Z to --max-zoom) or top:Z (the levels "
+                       "above Z), writing each tile into DIR in place and no layer.json: the jobs "
+                       "of a build spread over processes (python/tinlod_dask)");
+    auto *layer_only = cmd.add_flag("--layer-only", args->layer_only,
+                                    "write only DIR/layer.json (after the --part jobs)");
+    auto *plan = cmd.add_flag("--plan", args->plan,
+                              "print the levels and their tiles (layer.json's `available`) as "
+                              "JSON and write nothing");
+    part->excludes(layer_only)->excludes(plan);
+    layer_only->excludes(plan);
+    for (auto *o : {layer_only, plan})
+        o->excludes("--stats");
     args->raster.add(cmd);
     declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}},
                     "The tile set is staged inside DIR and its levels moved in at the end: a "
@@ -59,8 +121,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         for (const std::string &path : args->inputs)
             if (is_store_path(path))
                 throw UsageError(path, "is a store: tiles need the DEM file, georeferenced");
-        check_writable_folder(args->output);
-        check_writable({args->stats});
+        if (!args->plan) {
+            check_writable_folder(args->output);
+            check_writable({args->stats});
+        }
         StageTimes times;
         const GeoLattice lattice = load_coverage(args->inputs, args->raster.load_options());
         times.lap("load");
@@ -79,13 +143,28 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         po.tile.fill_height = args->fill_height;
         po.tile.normals = args->normals;
         po.threads = max_threads();
+        if (args->plan || args->layer_only) {
+            const nlohmann::json layer = pyramid_layer(lattice, po);
+            if (args->layer_only) {
+                std::filesystem::create_directories(args->output);
+                write_atomically((std::filesystem::path(args->output) / "layer.json").string(),
+                                 [&](const std::string &path) { write_layer(layer, path); });
+                return;
+            }
+            std::cout << plan_json(lattice, po, layer).dump() << '\n';
+            return;
+        }
         std::unique_ptr<Progress> bar;
         po.progress = [&bar](std::int64_t done, std::int64_t total) {
             if (!bar)
                 bar = std::make_unique<Progress>("tiles", total);
             bar->update(done);
         };
-        const PyramidStats ps = write_pyramid(lattice, args->output, po);
+        const PyramidStats ps =
+            args->part.empty()
+                ? write_pyramid(lattice, args->output, po)
+                : write_pyramid_part(lattice, args->output, po,
+                                     parse_part(args->part, po.min_zoom, po.max_zoom));
         if (bar)
             bar->finish();
         times.lap("tiles");
@@ -136,7 +215,9 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                  {"peak_rss_mb", peak_rss_mb()}});
         std::printf("%s: %lld tiles on levels %d to %d, %lld triangles, %.1f MB in %s; worst "
                     "error %.3g of the level's bound\n",
-                    args->output.c_str(), static_cast<long long>(tiles), args->min_zoom, last,
+                    args->output.c_str(), static_cast<long long>(tiles),
+                    ps.levels.empty() ? po.min_zoom : ps.levels.front().z,
+                    ps.levels.empty() ? last : ps.levels.back().z,
                     static_cast<long long>(triangles), double(bytes) / 1e6, times.summary().c_str(),
                     worst);
     };

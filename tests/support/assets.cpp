@@ -66,6 +66,8 @@ static std::string slurp(const fs::path &p) {
     return s;
 }
 
+std::string file_bytes(const std::string &path) { return slurp(path); }
+
 std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>> &georef,
                           const std::vector<unsigned> &keys, const std::string &nodata) {
     std::string b = "II*";

@@ -21,6 +21,8 @@ std::string asset(const std::string &name);
 Heightfield crop(const Heightfield &hf, int x0, int y0, int w, int h);
 // A fresh empty temporary folder for this test (removed at exit).
 std::string temp_dir();
+// The bytes of the file at `path` (empty when it cannot be read).
+std::string file_bytes(const std::string &path);
 
 // The bytes of a 2 x 2 int16 GeoTIFF (heights 100, 200 in the north row, 300, 400 in the south):
 // `georef` holds TIFF tags with their doubles, in ascending tag order (33550 pixel scale, 33922

@@ -174,4 +174,25 @@ std::vector<TileRange> level_tiles(const GeoLattice &lattice, int z, const TileO
 nlohmann::json layer_json(const GeoLattice &lattice,
                           const std::vector<std::vector<TileRange>> &available, bool normals);
 
+// ---- A share of the pyramid: the build spread over processes (python/tinlod_dask) -------------
+
+// The subtree of tile `root` (its tiles on levels root.z .. max_zoom that write_pyramid writes), or
+// with `top`, every tile of the levels min_zoom .. root.z - 1 (those above a cut at level root.z).
+struct PyramidPart {
+    TileId root;
+    bool top = false;
+};
+
+// Writes the part's tiles into DIR/{z}/{x}/{y}.terrain, each in place at once (a temporary
+// renamed), and no layer.json: the same bytes as write_pyramid's for those tiles (a tile is a pure
+// function of the lattice, its level, its address and the options), so parts run anywhere, in any
+// order, again after a failure, make write_pyramid's tile set.
+PyramidStats write_pyramid_part(const GeoLattice &lattice, const std::string &dir,
+                                const PyramidOptions &options, const PyramidPart &part);
+
+// The layer.json write_pyramid writes with `options`, without building a tile; and its text
+// written to `path`.
+nlohmann::json pyramid_layer(const GeoLattice &lattice, const PyramidOptions &options);
+void write_layer(const nlohmann::json &layer, const std::string &path);
+
 } // namespace tinlod

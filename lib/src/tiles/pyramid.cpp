@@ -41,11 +41,22 @@ void candidate_span(const GeoLattice &g, int z, std::int64_t &x0, std::int64_t &
                                   ny - 1);
 }
 
-LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options) {
+// Narrows a level's span of tiles to `clip`'s (empty, x1 < x0 or y1 < y0, when they miss).
+void clip_span(const TileRange &clip, std::int64_t &x0, std::int64_t &x1, std::int64_t &y0,
+               std::int64_t &y1) {
+    x0 = std::max(x0, clip.x0), x1 = std::min(x1, clip.x1);
+    y0 = std::max(y0, clip.y0), y1 = std::min(y1, clip.y1);
+}
+
+// `clip` (optional) keeps the tiles written to those addresses (a part of the pyramid).
+LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options,
+                         const TileRange *clip = nullptr) {
     LevelRanges lr;
     lr.z = z;
     std::int64_t x0, x1, y0, y1;
     candidate_span(g, z, x0, x1, y0, y1);
+    if (clip)
+        clip_span(*clip, x0, x1, y0, y1);
     const std::int64_t nx = std::int64_t(2) << z, ny = std::int64_t(1) << z;
     for (std::int64_t y = std::max<std::int64_t>(0, y0 - 1); y <= std::min(ny - 1, y1 + 1); ++y)
         for (std::int64_t dx = x0 - 1; dx <= x1 + 1; ++dx) {
@@ -60,6 +71,10 @@ LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options)
     // 0 is written whole, a tile over no DEM flat at the fill height.
     if (z == 0)
         lr.written = {{0, 0, 0}, {0, 1, 0}};
+    if (clip)
+        std::erase_if(lr.written, [clip](const TileId &t) {
+            return t.x < clip->x0 || t.x > clip->x1 || t.y < clip->y0 || t.y > clip->y1;
+        });
     return lr;
 }
 
@@ -109,6 +124,83 @@ void write_bytes(const std::string &path, const std::vector<std::uint8_t> &bytes
     out.close();
     if (!out)
         throw Error(shown, "cannot write the tile");
+}
+
+// Builds a level's tiles on options.threads threads and hands each one's gzip bytes to
+// write(name, bytes), name its place in the tile set (z/x/y.terrain); reports progress from the
+// calling thread (done: tiles finished before this level, total: in the whole run).
+LevelStats
+build_level(const GeoLattice &g, const LevelRanges &lr, const PyramidOptions &options,
+            std::int64_t done, std::int64_t total,
+            const std::function<void(const fs::path &, const std::vector<std::uint8_t> &)> &write) {
+    LevelStats ls;
+    ls.z = lr.z;
+    ls.bound = level_error(lr.z);
+    const RangeOf range_of = [&lr, &g, &options](const TileId &t) {
+        const auto it = lr.ranges.find({t.x, t.y});
+        return it != lr.ranges.end() ? it->second : tile_height_range(g, t, options.tile);
+    };
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::atomic<std::int64_t> finished{0};
+    std::mutex lock;
+    std::exception_ptr failure;
+    const auto work = [&] {
+        while (!stop) {
+            const std::size_t k = next++;
+            if (k >= lr.written.size())
+                return;
+            const TileId &t = lr.written[k];
+            try {
+                const TileMesh m = build_tile(g, t, options.tile, range_of);
+                const std::vector<std::uint8_t> bytes = gzip_bytes(encode_quantized_mesh(m));
+                write(fs::path(std::to_string(t.z)) / std::to_string(t.x) /
+                          (std::to_string(t.y) + ".terrain"),
+                      bytes);
+                const std::lock_guard<std::mutex> guard(lock);
+                ++ls.tiles;
+                ls.triangles += std::int64_t(m.triangles.size() / 3);
+                ls.vertices += std::int64_t(m.u.size());
+                ls.bytes += std::int64_t(bytes.size());
+                ls.rebuilt += m.builds > 1 ? 1 : 0;
+                ls.max_error = std::max(ls.max_error, m.max_error);
+                ls.worst_ratio = std::max(ls.worst_ratio, m.error_ratio);
+            } catch (...) {
+                const std::lock_guard<std::mutex> guard(lock);
+                if (!failure)
+                    failure = std::current_exception();
+                stop = true;
+            }
+            ++finished;
+        }
+    };
+    // Workers build the tiles; the calling thread reports progress, and an interrupt it takes
+    // there stops them before it unwinds.
+    std::vector<std::thread> workers;
+    const int threads = std::max(1, std::min<int>(options.threads, int(lr.written.size())));
+    for (int k = 0; k < threads; ++k)
+        workers.emplace_back(work);
+    std::exception_ptr interrupted;
+    for (;;) {
+        try {
+            if (options.progress)
+                options.progress(done + finished, total);
+            check_interrupt();
+        } catch (...) {
+            interrupted = std::current_exception();
+            stop = true;
+        }
+        if (stop || finished >= std::int64_t(lr.written.size()))
+            break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    for (std::thread &w : workers)
+        w.join();
+    if (interrupted)
+        std::rethrow_exception(interrupted);
+    if (failure)
+        std::rethrow_exception(failure);
+    return ls;
 }
 
 } // namespace
@@ -163,91 +255,21 @@ PyramidStats write_pyramid(const GeoLattice &g, const std::string &dir,
     std::vector<std::vector<TileRange>> available(std::size_t(options.max_zoom + 1));
     std::int64_t done = 0;
     for (const LevelRanges &lr : levels) {
-        LevelStats ls;
-        ls.z = lr.z;
-        ls.bound = level_error(lr.z);
         available[std::size_t(lr.z)] = rectangles(lr.written);
-        const RangeOf range_of = [&lr, &g, &options](const TileId &t) {
-            const auto it = lr.ranges.find({t.x, t.y});
-            return it != lr.ranges.end() ? it->second : tile_height_range(g, t, options.tile);
-        };
         stage.write(std::to_string(lr.z), [&](const std::string &path) {
             for (const TileId &t : lr.written)
                 fs::create_directories(fs::path(path) / std::to_string(t.x));
-            std::atomic<std::size_t> next{0};
-            std::atomic<bool> stop{false};
-            std::atomic<std::int64_t> finished{0};
-            std::mutex lock;
-            std::exception_ptr failure;
-            const auto work = [&] {
-                while (!stop) {
-                    const std::size_t k = next++;
-                    if (k >= lr.written.size())
-                        return;
-                    const TileId &t = lr.written[k];
-                    try {
-                        const TileMesh m = build_tile(g, t, options.tile, range_of);
-                        const std::vector<std::uint8_t> bytes =
-                            gzip_bytes(encode_quantized_mesh(m));
-                        const fs::path name = fs::path(std::to_string(t.z)) / std::to_string(t.x) /
-                                              (std::to_string(t.y) + ".terrain");
-                        write_bytes((fs::path(path).parent_path() / name).string(), bytes,
-                                    (fs::path(dir) / name).string());
-                        const std::lock_guard<std::mutex> guard(lock);
-                        ++ls.tiles;
-                        ls.triangles += std::int64_t(m.triangles.size() / 3);
-                        ls.vertices += std::int64_t(m.u.size());
-                        ls.bytes += std::int64_t(bytes.size());
-                        ls.rebuilt += m.builds > 1 ? 1 : 0;
-                        ls.max_error = std::max(ls.max_error, m.max_error);
-                        ls.worst_ratio = std::max(ls.worst_ratio, m.error_ratio);
-                    } catch (...) {
-                        const std::lock_guard<std::mutex> guard(lock);
-                        if (!failure)
-                            failure = std::current_exception();
-                        stop = true;
-                    }
-                    ++finished;
-                }
-            };
-            // Workers build the tiles; the calling thread reports progress, and an interrupt it
-            // takes there stops them before it unwinds.
-            std::vector<std::thread> workers;
-            const int threads = std::max(1, std::min<int>(options.threads, int(lr.written.size())));
-            for (int k = 0; k < threads; ++k)
-                workers.emplace_back(work);
-            std::exception_ptr interrupted;
-            for (;;) {
-                try {
-                    if (options.progress)
-                        options.progress(done + finished, total);
-                    check_interrupt();
-                } catch (...) {
-                    interrupted = std::current_exception();
-                    stop = true;
-                }
-                if (stop || finished >= std::int64_t(lr.written.size()))
-                    break;
-                std::this_thread::sleep_for(std::chrono::milliseconds(5));
-            }
-            for (std::thread &w : workers)
-                w.join();
-            if (interrupted)
-                std::rethrow_exception(interrupted);
-            if (failure)
-                std::rethrow_exception(failure);
+            stats.levels.push_back(
+                build_level(g, lr, options, done, total,
+                            [&](const fs::path &name, const std::vector<std::uint8_t> &bytes) {
+                                write_bytes((fs::path(path).parent_path() / name).string(), bytes,
+                                            (fs::path(dir) / name).string());
+                            }));
         });
         done += std::int64_t(lr.written.size());
-        stats.levels.push_back(ls);
     }
     stats.layer = layer_json(g, available, options.tile.normals);
-    stage.write("layer.json", [&](const std::string &path) {
-        std::ofstream out(path);
-        out << stats.layer.dump(2) << "\n";
-        out.close();
-        if (!out)
-            throw Error(path, "cannot write layer.json");
-    });
+    stage.write("layer.json", [&](const std::string &path) { write_layer(stats.layer, path); });
     // Levels written before are replaced whole.
     std::error_code ec;
     for (const LevelRanges &lr : levels)
@@ -255,6 +277,69 @@ PyramidStats write_pyramid(const GeoLattice &g, const std::string &dir,
     stage.commit();
     stats.ms = clock.ms();
     return stats;
+}
+
+// ---- A share of the pyramid (a build spread over processes) -----------------------------------
+
+// The levels a part holds and, on each, its tiles' addresses: a subtree's span shifted down a
+// level at a time, or every tile of the levels above the cut.
+static std::vector<LevelRanges> part_levels(const GeoLattice &g, const PyramidOptions &options,
+                                            const PyramidPart &part) {
+    std::vector<LevelRanges> levels;
+    if (part.top) {
+        for (int z = options.min_zoom; z < part.root.z; ++z)
+            levels.push_back(level_ranges(g, z, options.tile));
+        return levels;
+    }
+    for (int z = part.root.z; z <= options.max_zoom; ++z) {
+        const int d = z - part.root.z;
+        const TileRange span{part.root.x << d, ((part.root.x + 1) << d) - 1, part.root.y << d,
+                             ((part.root.y + 1) << d) - 1};
+        levels.push_back(level_ranges(g, z, options.tile, &span));
+    }
+    return levels;
+}
+
+PyramidStats write_pyramid_part(const GeoLattice &g, const std::string &dir,
+                                const PyramidOptions &options, const PyramidPart &part) {
+    const Stopwatch clock;
+    PyramidStats stats;
+    const std::vector<LevelRanges> levels = part_levels(g, options, part);
+    std::int64_t total = 0, done = 0;
+    for (const LevelRanges &lr : levels)
+        total += std::int64_t(lr.written.size());
+    for (const LevelRanges &lr : levels) {
+        for (const TileId &t : lr.written)
+            fs::create_directories(fs::path(dir) / std::to_string(t.z) / std::to_string(t.x));
+        // Each tile in place at once (a temporary renamed): a part run again, or killed, leaves
+        // whole tiles only, and other parts write beside it.
+        stats.levels.push_back(
+            build_level(g, lr, options, done, total,
+                        [&](const fs::path &name, const std::vector<std::uint8_t> &bytes) {
+                            const std::string path = (fs::path(dir) / name).string();
+                            write_atomically(path, [&](const std::string &tmp) {
+                                write_bytes(tmp, bytes, path);
+                            });
+                        }));
+        done += std::int64_t(lr.written.size());
+    }
+    stats.ms = clock.ms();
+    return stats;
+}
+
+nlohmann::json pyramid_layer(const GeoLattice &g, const PyramidOptions &options) {
+    std::vector<std::vector<TileRange>> available(std::size_t(options.max_zoom + 1));
+    for (int z = options.min_zoom; z <= options.max_zoom; ++z)
+        available[std::size_t(z)] = level_tiles(g, z, options.tile);
+    return layer_json(g, available, options.tile.normals);
+}
+
+void write_layer(const nlohmann::json &layer, const std::string &path) {
+    std::ofstream out(path);
+    out << layer.dump(2) << "\n";
+    out.close();
+    if (!out)
+        throw Error(path, "cannot write layer.json");
 }
 
 } // namespace tinlod
