@@ -153,9 +153,12 @@ inline bool visit_box(const std::int64_t (&x)[3], const std::int64_t (&y)[3], co
         start[k] = down[k] * (y0 - y[a]) + step[k] * (x0 - x[a]);
     }
     for (std::int64_t r = y0; r <= y1; ++r) {
-        std::int64_t e0 = start[0], e1 = start[1], e2 = start[2];
-        for (std::int64_t c = x0; c <= x1; ++c, e0 += step[0], e1 += step[1], e2 += step[2])
-            if ((e0 | e1 | e2) >= 0 && !visit(c, r))
+        std::int64_t e0 = start[0], e1 = start[1], e2 = start[2], c = x0;
+        // The row's inside samples are one run (the triangle is convex): none after it.
+        for (; c <= x1 && (e0 | e1 | e2) < 0; ++c, e0 += step[0], e1 += step[1], e2 += step[2]) {
+        }
+        for (; c <= x1 && (e0 | e1 | e2) >= 0; ++c, e0 += step[0], e1 += step[1], e2 += step[2])
+            if (!visit(c, r))
                 return false;
         for (int k = 0; k < 3; ++k)
             start[k] += down[k];
