@@ -67,6 +67,7 @@ TEST(SimplifySpeed2, ForEachRowGivesSpansRows) {
 TEST(SimplifySpeed2, ForEachRowStopsWhenARowSaysSo) {
     const LatticeTriangle t(16, 0, 6, 6 * 16);
     int rows = 0;
-    EXPECT_FALSE(t.for_each_row([&](std::int64_t, std::int64_t, std::int64_t) { return ++rows < 3; }));
+    EXPECT_FALSE(
+        t.for_each_row([&](std::int64_t, std::int64_t, std::int64_t) { return ++rows < 3; }));
     EXPECT_EQ(rows, 3);
 }
