@@ -18,11 +18,13 @@ inline std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 // span of columns, exactly (integer edge tests in lattice coordinates).
 class LatticeTriangle {
   public:
-    LatticeTriangle(std::uint32_t w, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        const std::uint32_t nodes[3] = {a, b, c};
+    LatticeTriangle(std::uint32_t w, std::uint32_t a, std::uint32_t b, std::uint32_t c)
+        : LatticeTriangle({a % w, b % w, c % w}, {a / w, b / w, c / w}) {}
+    // The triangle with corners (x[k], y[k]).
+    LatticeTriangle(const std::int64_t (&x)[3], const std::int64_t (&y)[3]) {
         for (int k = 0; k < 3; ++k) {
-            x_[k] = nodes[k] % w;
-            y_[k] = nodes[k] / w;
+            x_[k] = x[k];
+            y_[k] = y[k];
         }
         const std::int64_t o =
             (x_[1] - x_[0]) * (y_[2] - y_[0]) - (y_[1] - y_[0]) * (x_[2] - x_[0]);
@@ -51,9 +53,72 @@ class LatticeTriangle {
         }
         return {lo, hi};
     }
+    // row(y, lo, hi) for each row y from first_row to last_row, with span(y) as [lo, hi] (lo > hi
+    // when the row holds none), until it returns false; false when it stopped. Each sloped edge's
+    // floor_div is carried from row to row as a quotient and a remainder: two divisions per edge,
+    // where span() makes two a row (docs/decisions/025-simplify-speed-2.md).
+    template <class Row> bool for_each_row(const Row &row) const {
+        struct Edge {
+            std::int64_t x, b, q, r, dq, dr; // x + or - floor_div(a, b) = q, a - q b = r; a
+                                             // grows by d = dq b + dr a row
+        };
+        Edge hi_edges[3], lo_edges[3];
+        std::int64_t flat_d[3], flat_y[3]; // horizontal edges: their d and row
+        int highs = 0, lows = 0, flats = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int l = (k + 1) % 3;
+            const std::int64_t d = x_[l] - x_[k], b = y_[l] - y_[k];
+            if (b == 0) {
+                flat_d[flats] = d;
+                flat_y[flats++] = y_[k];
+                continue;
+            }
+            Edge &e = b > 0 ? hi_edges[highs++] : lo_edges[lows++];
+            e.x = x_[k];
+            e.b = b > 0 ? b : -b;
+            divide(d * (first_row - y_[k]), e.b, e.q, e.r);
+            divide(d, e.b, e.dq, e.dr);
+        }
+        const auto step = [](Edge &e) {
+            e.q += e.dq;
+            e.r += e.dr;
+            if (e.r >= e.b) {
+                e.r -= e.b;
+                ++e.q;
+            }
+        };
+        for (std::int64_t y = first_row; y <= last_row; ++y) {
+            std::int64_t lo = lo_, hi = hi_;
+            for (int k = 0; k < highs; ++k)
+                hi = std::min(hi, hi_edges[k].x + hi_edges[k].q);
+            for (int k = 0; k < lows; ++k)
+                lo = std::max(lo, lo_edges[k].x - lo_edges[k].q);
+            for (int k = 0; k < flats; ++k)
+                if (flat_d[k] * (y - flat_y[k]) < 0)
+                    lo = hi + 1; // outside the horizontal edge: span() has none
+            if (!row(y, lo, hi))
+                return false;
+            for (int k = 0; k < highs; ++k)
+                step(hi_edges[k]);
+            for (int k = 0; k < lows; ++k)
+                step(lo_edges[k]);
+        }
+        return true;
+    }
     std::int64_t first_row = 0, last_row = -1;
 
   private:
+    // q = floor_div(a, b) and r = a - q b (b > 0), without a division in the cases a small
+    // triangle's edges mostly give (|a| <= b).
+    static void divide(std::int64_t a, std::int64_t b, std::int64_t &q, std::int64_t &r) {
+        if (a >= 0 && a < b)
+            q = 0;
+        else if (a < 0 && a >= -b)
+            q = -1;
+        else
+            q = floor_div(a, b);
+        r = a - q * b;
+    }
     std::int64_t x_[3], y_[3], lo_ = 0, hi_ = 0;
 };
 
@@ -88,9 +153,12 @@ inline bool visit_box(const std::int64_t (&x)[3], const std::int64_t (&y)[3], co
         start[k] = down[k] * (y0 - y[a]) + step[k] * (x0 - x[a]);
     }
     for (std::int64_t r = y0; r <= y1; ++r) {
-        std::int64_t e0 = start[0], e1 = start[1], e2 = start[2];
-        for (std::int64_t c = x0; c <= x1; ++c, e0 += step[0], e1 += step[1], e2 += step[2])
-            if ((e0 | e1 | e2) >= 0 && !visit(c, r))
+        std::int64_t e0 = start[0], e1 = start[1], e2 = start[2], c = x0;
+        // The row's inside samples are one run (the triangle is convex): none after it.
+        for (; c <= x1 && (e0 | e1 | e2) < 0; ++c, e0 += step[0], e1 += step[1], e2 += step[2]) {
+        }
+        for (; c <= x1 && (e0 | e1 | e2) >= 0; ++c, e0 += step[0], e1 += step[1], e2 += step[2])
+            if (!visit(c, r))
                 return false;
         for (int k = 0; k < 3; ++k)
             start[k] += down[k];

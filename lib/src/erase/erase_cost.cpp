@@ -2,9 +2,11 @@
 #include "erase/erase_cost.hpp"
 
 #include "erase/lattice_scan.hpp"
+#include "lattice_triangle.hpp"
 #include "tinlod/significance.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace tinlod::erase {
 
@@ -266,8 +268,26 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
                     return d; // strictly inside: a sample the scan visits
             }
         }
+        // The triangle's samples but its corners, in row order: the first over `stop` ends the
+        // scan. A small one over its box, a larger one a row span at a time (the corners' rows
+        // apart).
         double most = 0.0;
         const std::int64_t x[3] = {rx[a], rx[b], rx[c]}, y[3] = {ry[a], ry[b], ry[c]};
+        const auto scan = [&](std::int64_t row, std::int64_t lo, std::int64_t hi, auto corners) {
+            for (std::int64_t col = lo; col <= hi; ++col) {
+                if (corners && ((col == x[0] && row == y[0]) || (col == x[1] && row == y[1]) ||
+                                (col == x[2] && row == y[2])))
+                    continue;
+                const double d = deviation(lattice.at(col, row));
+                if (d > stop) {
+                    add_witness(std::uint32_t(row * w + col));
+                    most = d;
+                    return false;
+                }
+                most = std::max(most, d);
+            }
+            return true;
+        };
         if (box_samples(x, y) <= k_small_box) {
             visit_box(x, y, [&](std::int64_t col, std::int64_t row) {
                 if ((col == x[0] && row == y[0]) || (col == x[1] && row == y[1]) ||
@@ -281,16 +301,10 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
             });
             return most;
         }
-        scan_lattice(
-            s, node_of(s, h.r[a]), node_of(s, h.r[b]), node_of(s, h.r[c]),
-            [](const glm::dvec2 &, const glm::dvec2 &) { return 1.0; },
-            [&](std::uint32_t u, const Mesh::Point &p, double) {
-                most = std::max(most, deviation(p));
-                if (!(most > stop))
-                    return true;
-                add_witness(u);
-                return false;
-            });
+        LatticeTriangle(x, y).for_each_row([&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+            return row == y[0] || row == y[1] || row == y[2] ? scan(row, lo, hi, std::true_type())
+                                                             : scan(row, lo, hi, std::false_type());
+        });
         return most;
     };
     const int count = min_max_triangulation(h.q.data(), h.n, limit, cost, tri.data());

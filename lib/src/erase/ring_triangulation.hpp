@@ -51,14 +51,14 @@ inline double orient(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 
 // ears in order of quality until one passes (a Delaunay ear stays Delaunay as nodes leave).
 int clip_ears(const glm::dvec2 *q, int n, RingTriangle *out);
 
-// Whether the chord from q[i] to q[j] of the counter-clockwise polygon q[0..n) is one of its sides
-// or a diagonal: inside the polygon near both ends, and meeting no side but at its ends.
-bool is_ring_chord(const glm::dvec2 *q, int n, int i, int j);
-
 // The triangulation of the counter-clockwise polygon q[0..n) (3 <= n <= k_max_ring) whose most
 // costly triangle costs least, among those whose every triangle costs at most `limit`, by dynamic
-// programming over the polygon's chords (is_ring_chord): every triangulation of a polygon splits it
-// by some triangle on its side (0, n - 1) into two smaller ones. cost(a, b, c, stop) gives the cost
+// programming over the polygon's chords: every triangulation of a polygon splits it by some
+// triangle on its side (0, n - 1) into two smaller ones. A triangle (i, j, k) on two sides or
+// chords (i, j) and (j, k), counter-clockwise with no other ring node in it, lies inside the
+// polygon, so (i, k) is a chord too (a side crossing it would end in the triangle, or cross
+// (i, j) or (j, k)): the sub-polygons need no chord test of their own
+// (docs/decisions/025-simplify-speed-2.md). cost(a, b, c, stop) gives the cost
 // of the triangle (a, b, c) (a < b < c, counter-clockwise, no other ring node in it), exactly up to
 // `stop`, beyond it any value > stop; it is asked once per such triangle at most. Writes n - 2
 // triangles to `out` and returns their count, or -1 when no triangulation keeps within the limit.
@@ -86,16 +86,11 @@ int min_max_triangulation(const glm::dvec2 *q, int n, double limit, const Cost &
             const int k = i + len;
             double &b = best[i][k];
             b = std::numeric_limits<double>::infinity();
-            int chord = len < n - 1 ? -1 : 1; // (0, n - 1) is a side; -1: not tested yet
             for (int j = i + 1; j < k; ++j) {
                 const double sub = std::max(best[i][j], best[j][k]);
                 const double stop = std::min(limit, b);
                 if (!(sub <= stop) || !(orient(q[i], q[j], q[k]) > 0.0))
                     continue;
-                if (chord < 0)
-                    chord = is_ring_chord(q, n, i, k) ? 1 : 0;
-                if (chord == 0)
-                    break;
                 if (!empty(i, j, k))
                     continue;
                 const double c = std::max(sub, cost(i, j, k, stop));
