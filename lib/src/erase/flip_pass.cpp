@@ -24,7 +24,9 @@ namespace {
 // (counter-clockwise, -1 when t is free), the triangle across its edge k -> k + 1 across[3t + k]
 // (-1 on the outline), and per node one of its triangles (-1 once erased).
 struct Tin {
-    std::vector<std::uint32_t> sample; // node -> lattice sample
+    std::vector<std::uint32_t> sample;  // node -> lattice sample
+    std::vector<std::int32_t> col, row; // node -> its sample's column and row
+    std::vector<double> z;              // node -> its sample's height
     std::vector<std::int32_t> corner, across, fan;
 
     int index_of(std::int32_t t, std::int32_t node) const {
@@ -32,13 +34,21 @@ struct Tin {
     }
 };
 
-Tin tin_arrays(const Mesh &mesh) {
+Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
     Tin tin;
     const auto origin = find_origin_property(mesh);
     tin.sample.resize(mesh.n_vertices());
     tin.fan.assign(mesh.n_vertices(), -1);
-    for (const auto v : mesh.vertices())
-        tin.sample[std::size_t(v.idx())] = std::uint32_t(mesh.property(origin, v));
+    tin.col.resize(mesh.n_vertices());
+    tin.row.resize(mesh.n_vertices());
+    tin.z.resize(mesh.n_vertices());
+    for (const auto v : mesh.vertices()) {
+        const std::size_t i = std::size_t(v.idx());
+        tin.sample[i] = std::uint32_t(mesh.property(origin, v));
+        tin.col[i] = std::int32_t(tin.sample[i] % std::uint32_t(hf.width));
+        tin.row[i] = std::int32_t(tin.sample[i] / std::uint32_t(hf.width));
+        tin.z[i] = double(mesh.point(v)[2]);
+    }
     tin.corner.resize(3 * mesh.n_faces());
     tin.across.resize(3 * mesh.n_faces());
     for (const auto f : mesh.faces()) {
@@ -69,7 +79,8 @@ class Pass {
     int erase(std::int32_t v, bool first) {
         if (!gather(v))
             return 0;
-        own_ = tin_.sample[std::size_t(v)];
+        own_node_ = std::size_t(v);
+        own_ = tin_.sample[own_node_];
         witnesses_ = 0;
         add_witness(own_);
         extra_.clear();
@@ -129,18 +140,18 @@ class Pass {
     // The plane's height at the sample from its exact lattice areas, as the erase's
     // over_every_triangle has it.
     bool coverable(const std::vector<std::int32_t> &nodes) const {
-        const std::int64_t w = hf_.width, xs = own_ % w, ys = own_ / w;
-        const double z = point(own_).z;
-        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
         const std::size_t n = nodes.size();
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        const double z = tin_.z[own_node_];
+        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
         std::array<std::int64_t, k_max_ring> rx, ry;
         std::array<double, k_max_ring> rz;
         double lo = INFINITY, hi = -INFINITY;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t u = tin_.sample[std::size_t(nodes[i])];
-            rx[i] = u % w - xs;
-            ry[i] = u / w - ys;
-            rz[i] = point(u).z;
+            const std::size_t u = std::size_t(nodes[i]);
+            rx[i] = tin_.col[u] - xs;
+            ry[i] = tin_.row[u] - ys;
+            rz[i] = tin_.z[u];
             lo = std::min(lo, rz[i]);
             hi = std::max(hi, rz[i]);
         }
@@ -163,10 +174,10 @@ class Pass {
                     const std::int64_t s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
                     if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
                         continue;
-                    const double h =
-                        (rz[a] * double(s1) + rz[b] * double(s2) + rz[c] * double(s0)) /
-                        double(s0 + s1 + s2);
-                    if (std::abs(z - h) <= stop)
+                    // |z - plane| <= stop, times the (positive) area: no division.
+                    const double area = double(s0 + s1 + s2);
+                    if (std::abs(z * area - (rz[a] * double(s1) + rz[b] * double(s2) +
+                                             rz[c] * double(s0))) <= stop * area)
                         return true;
                 }
             }
@@ -250,7 +261,7 @@ class Pass {
             p_[std::size_t(i)] = point(node_[std::size_t(i)]);
             q_[std::size_t(i)] = {p_[std::size_t(i)].x, p_[std::size_t(i)].y};
         }
-        if (!covered(own_))
+        if (!covered(nodes))
             return false;
         std::array<RingTriangle, k_max_ring> tri;
         const int count = min_max_triangulation(
@@ -264,19 +275,19 @@ class Pass {
         return true;
     }
 
-    // Whether some triangle a triangulation of the loaded polygon may hold covers sample x
-    // within the limit: its closed lattice triangle holds x, no other node of the polygon lies in
-    // it, its sides are chords of the polygon (is_ring_chord) and its samples keep within the
-    // limit (cost). Else the min-max triangulation finds none; the test costs a few of its
+    // Whether some triangle a triangulation of the polygon `nodes` (loaded) may hold covers v's
+    // sample within the limit: its closed lattice triangle holds x, no other node of the polygon
+    // lies in it, its sides are chords of the polygon (is_ring_chord) and its samples keep within
+    // the limit (cost). Else the min-max triangulation finds none; the test costs a few of its
     // triangles, where the search costs all of them.
-    bool covered(std::uint32_t x) {
-        const int n = int(node_.size());
-        const std::int64_t w = hf_.width, xs = x % w, ys = x / w;
-        const double z = point(x).z;
+    bool covered(const std::vector<std::int32_t> &nodes) {
+        const int n = int(nodes.size());
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        const double z = tin_.z[own_node_];
         std::array<std::int64_t, k_max_ring> rx, ry;
         for (int i = 0; i < n; ++i) {
-            rx[std::size_t(i)] = node_[std::size_t(i)] % w - xs;
-            ry[std::size_t(i)] = node_[std::size_t(i)] / w - ys;
+            rx[std::size_t(i)] = tin_.col[std::size_t(nodes[std::size_t(i)])] - xs;
+            ry[std::size_t(i)] = tin_.row[std::size_t(nodes[std::size_t(i)])] - ys;
         }
         const auto side = [&](int a, int b) {
             return rx[std::size_t(a)] * ry[std::size_t(b)] -
@@ -389,13 +400,14 @@ class Pass {
     std::array<std::uint32_t, 8> witness_{};
     int witnesses_ = 0, next_witness_ = 0;
     std::uint32_t own_ = 0;
+    std::size_t own_node_ = 0;
 };
 
 } // namespace
 
 Mesh flip_pass(const Mesh &mesh, const Heightfield &hf, double limit, int max_valence,
                FlipPassStats *stats) {
-    Tin tin = tin_arrays(mesh);
+    Tin tin = tin_arrays(mesh, hf);
     Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
     FlipPassStats out;
     // Every node once in storage order (spatially coherent), then the outlines of the erases made,
