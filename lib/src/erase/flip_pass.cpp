@@ -438,15 +438,25 @@ Mesh flip_pass(const Mesh &mesh, const Heightfield &hf, double limit, int max_va
         work.swap(next);
         next.clear();
     }
-    std::vector<std::uint32_t> triangles;
-    triangles.reserve(tin.corner.size());
+    // The nodes left in their order (the sample order erase_dem promises), their triangles.
+    Mesh left;
+    const auto origin = get_origin_property(left);
+    std::vector<std::uint32_t> vertex(nodes), corners;
+    for (std::size_t v = 0; v < nodes; ++v)
+        if (tin.fan[v] >= 0) {
+            const Mesh::VertexHandle h = left.add_vertex(mesh.point(Mesh::VertexHandle(int(v))));
+            left.property(origin, h) = tin.sample[v];
+            vertex[v] = std::uint32_t(h.idx());
+        }
+    corners.reserve(tin.corner.size());
     for (std::size_t i = 0; i < tin.corner.size(); i += 3)
         if (tin.corner[i] >= 0)
             for (std::size_t k = 0; k < 3; ++k)
-                triangles.push_back(tin.sample[std::size_t(tin.corner[i + k])]);
+                corners.push_back(vertex[std::size_t(tin.corner[i + k])]);
+    add_triangles(left, corners);
     if (stats)
         *stats = out;
-    return tin_from_indices(hf, triangles);
+    return left;
 }
 
 } // namespace tinlod::erase

@@ -23,8 +23,8 @@ struct FlipPassStats {
 bool flip_pass_applies(const Significance &model, const EraseOptions &options);
 
 // The pass on `tin` (a TIN over hf's samples, origin = sample id, as erase_dem returns it), each
-// sample within `limit` (vertically) of the triangle over it. Returns the TIN it leaves (nodes in
-// sample order), and its counts in `stats` when given.
+// sample within `limit` (vertically) of the triangle over it. Returns the TIN it leaves (the nodes
+// left in tin's order, origin = sample id), and its counts in `stats` when given.
 Mesh flip_pass(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
                FlipPassStats *stats = nullptr);
 
