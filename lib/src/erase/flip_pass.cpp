@@ -64,18 +64,30 @@ Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
     return tin;
 }
 
+// Whether height z lies within `stop` of the plane over corner heights za, zb, zc at a point
+// whose doubled lattice areas against the sides (a, b), (b, c), (c, a) are s0, s1, s2 (each >= 0,
+// their sum > 0): the plane's height from its exact barycentric weights, as the erase's
+// over_every_triangle has it, times the area (no division).
+bool near_plane(std::int64_t s0, std::int64_t s1, std::int64_t s2, double za, double zb, double zc,
+                double z, double stop) {
+    const double area = double(s0 + s1 + s2);
+    return std::abs(z * area - (za * double(s1) + zb * double(s2) + zc * double(s0))) <=
+           stop * area;
+}
+
 // The pass's state: the TIN, the lattice, and the scratch of one node's try.
 class Pass {
   public:
     Pass(Tin &tin, const Heightfield &hf, double limit, int max_ring)
         : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
 
-    // Tries to erase `v` (an interior node). After the erase (`first`), only a node whose own
-    // sample rules out every triangulation of its hole (coverable), its hole widened by the
-    // triangle across each ring edge (a flip of that edge towards v): a new corner may give v's
-    // sample a plane, where the samples that failed the others' holes stay under them. Later (its
-    // ring changed), its hole as it is first. On success rewrites the TIN, leaves the hole's
-    // outline in outline() and returns 1, or 2 when the hole was widened; 0 when v stays.
+    // Tries to erase `v` (an interior node) with its hole widened by the triangle across each ring
+    // edge (a flip of that edge towards v, then v's erase). Right after the erase (`first`) only
+    // when v's own sample rules out every triangulation of its hole (coverable): a new corner may
+    // give that sample a plane, where a node the erase failed on other samples still has them in
+    // its hole (trying those too took twice the time for a few more erases). Once its ring
+    // changed, its hole as it is first. On success rewrites the TIN, leaves the hole's outline in
+    // outline() and returns 1, or 2 when the hole was widened; 0 when v stays.
     int erase(std::int32_t v, bool first) {
         if (!gather(v))
             return 0;
@@ -137,8 +149,7 @@ class Pass {
     // Whether v's sample lies within the limit (a hair over counts) of some triangle over three of
     // the polygon's nodes (counter-clockwise) whose closed lattice triangle holds it: else no
     // triangulation of the polygon holds the bound (most of the nodes the erase leaves fail here).
-    // The plane's height at the sample from its exact lattice areas, as the erase's
-    // over_every_triangle has it.
+    // The plane's height at the sample: near_plane.
     bool coverable(const std::vector<std::int32_t> &nodes) const {
         const std::size_t n = nodes.size();
         const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
@@ -174,10 +185,7 @@ class Pass {
                     const std::int64_t s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
                     if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
                         continue;
-                    // |z - plane| <= stop, times the (positive) area: no division.
-                    const double area = double(s0 + s1 + s2);
-                    if (std::abs(z * area - (rz[a] * double(s1) + rz[b] * double(s2) +
-                                             rz[c] * double(s0))) <= stop * area)
+                    if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop))
                         return true;
                 }
             }
@@ -249,8 +257,8 @@ class Pass {
         return most;
     }
 
-    // The min-max triangulation of the polygon `nodes` (v's ring, or it widened by triangle
-    // `widened`) within the limit, written over v's star (and `widened`); false when none holds.
+    // The min-max triangulation of the polygon `nodes` (v's ring, or it widened by the triangles
+    // extra_) within the limit, written over v's star and extra_; false when none holds.
     bool triangulate(const std::vector<std::int32_t> &nodes) {
         const int n = int(nodes.size());
         q_.resize(std::size_t(n));
@@ -276,7 +284,8 @@ class Pass {
     }
 
     // Whether some triangle a triangulation of the polygon `nodes` (loaded) may hold covers v's
-    // sample within the limit: its closed lattice triangle holds x, no other node of the polygon
+    // sample within the limit (a hair over counts): its closed lattice triangle holds it, no other
+    // node of the polygon
     // lies in it, its sides are chords of the polygon (is_ring_chord) and its samples keep within
     // the limit (cost). Else the min-max triangulation finds none; the test costs a few of its
     // triangles, where the search costs all of them.
@@ -284,6 +293,7 @@ class Pass {
         const int n = int(nodes.size());
         const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
         const double z = tin_.z[own_node_];
+        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
         std::array<std::int64_t, k_max_ring> rx, ry;
         for (int i = 0; i < n; ++i) {
             rx[std::size_t(i)] = tin_.col[std::size_t(nodes[std::size_t(i)])] - xs;
@@ -311,11 +321,8 @@ class Pass {
                     const std::int64_t s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
                     if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
                         continue;
-                    const double h =
-                        (p_[std::size_t(a)].z * double(s1) + p_[std::size_t(b)].z * double(s2) +
-                         p_[std::size_t(c)].z * double(s0)) /
-                        double(s0 + s1 + s2);
-                    if (!(std::abs(z - h) <= limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z)))
+                    if (!near_plane(s0, s1, s2, p_[std::size_t(a)].z, p_[std::size_t(b)].z,
+                                    p_[std::size_t(c)].z, z, stop))
                         continue;
                     bool empty = true;
                     for (int j = 0; j < n && empty; ++j)
