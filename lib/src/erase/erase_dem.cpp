@@ -2,6 +2,7 @@
 // node erase.
 #include "tinlod/decimate.hpp"
 
+#include "erase/flip_pass.hpp"
 #include "erase/hole_geometry.hpp"
 #include "erase/tuning.hpp"
 #include "tinlod/error.hpp"
@@ -167,6 +168,16 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
     run.out.erase = NodeEraser(mesh, run.model, eo).erase();
     run.clock.reset();
     Mesh tin = live_copy(mesh);
+    // At a vertical bound the nodes left may still go with a neighbouring triangle in their hole
+    // (docs/decisions/026-fewer-at-fine-bounds.md), within the erase's limit.
+    if (erase::flip_pass_applies(run.model, run.options)) {
+        erase::FlipPassStats pass;
+        tin = erase::flip_pass(tin, run.hf, run.options.tolerance * (1.0 - 1e-6),
+                               run.options.max_valence, &pass);
+        run.out.erase.erased += pass.erased;
+        run.out.erase.output_nodes = std::int64_t(tin.n_vertices());
+        run.out.erase.output_triangles = std::int64_t(tin.n_faces());
+    }
     run.out.erase.erase_ms += run.clock.ms();
     if (stats)
         *stats = run.out;

@@ -1,0 +1,469 @@
+// The erase's last pass at a vertical bound (flip_pass.hpp).
+#include "erase/flip_pass.hpp"
+
+#include "erase/hole_geometry.hpp"
+#include "erase/ring_triangulation.hpp"
+#include "lattice_triangle.hpp"
+#include "tinlod/significance.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace tinlod::erase {
+
+bool flip_pass_applies(const Significance &model, const EraseOptions &options) {
+    return model.model() == SpModel::vertical && std::isfinite(options.tolerance) &&
+           options.tolerance > 0.0 && options.max_nodes <= 0;
+}
+
+namespace {
+
+// A TIN over the lattice as triangle arrays: corner k of triangle t is corner[3t + k]
+// (counter-clockwise, -1 when t is free), the triangle across its edge k -> k + 1 across[3t + k]
+// (-1 on the outline), and per node one of its triangles (-1 once erased).
+struct Tin {
+    std::vector<std::uint32_t> sample;  // node -> lattice sample
+    std::vector<std::int32_t> col, row; // node -> its sample's column and row
+    std::vector<double> z;              // node -> its sample's height
+    std::vector<std::int32_t> corner, across, fan;
+
+    int index_of(std::int32_t t, std::int32_t node) const {
+        return corner[3 * t] == node ? 0 : corner[3 * t + 1] == node ? 1 : 2;
+    }
+};
+
+Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
+    Tin tin;
+    const auto origin = find_origin_property(mesh);
+    tin.sample.resize(mesh.n_vertices());
+    tin.fan.assign(mesh.n_vertices(), -1);
+    tin.col.resize(mesh.n_vertices());
+    tin.row.resize(mesh.n_vertices());
+    tin.z.resize(mesh.n_vertices());
+    for (const auto v : mesh.vertices()) {
+        const std::size_t i = std::size_t(v.idx());
+        tin.sample[i] = std::uint32_t(mesh.property(origin, v));
+        tin.col[i] = std::int32_t(tin.sample[i] % std::uint32_t(hf.width));
+        tin.row[i] = std::int32_t(tin.sample[i] / std::uint32_t(hf.width));
+        tin.z[i] = double(mesh.point(v)[2]);
+    }
+    tin.corner.resize(3 * mesh.n_faces());
+    tin.across.resize(3 * mesh.n_faces());
+    for (const auto f : mesh.faces()) {
+        Mesh::HalfedgeHandle h = mesh.halfedge_handle(f);
+        for (int k = 0; k < 3; ++k, h = mesh.next_halfedge_handle(h)) {
+            const std::size_t i = std::size_t(3 * f.idx() + k);
+            tin.corner[i] = mesh.from_vertex_handle(h).idx();
+            const Mesh::FaceHandle o = mesh.opposite_face_handle(h);
+            tin.across[i] = o.is_valid() ? o.idx() : -1;
+            tin.fan[std::size_t(tin.corner[i])] = f.idx();
+        }
+    }
+    return tin;
+}
+
+// Whether height z lies within `stop` of the plane over corner heights za, zb, zc at a point
+// whose doubled lattice areas against the sides (a, b), (b, c), (c, a) are s0, s1, s2 (each >= 0,
+// their sum > 0): the plane's height from its exact barycentric weights, as the erase's
+// over_every_triangle has it, times the area (no division).
+bool near_plane(std::int64_t s0, std::int64_t s1, std::int64_t s2, double za, double zb, double zc,
+                double z, double stop) {
+    const double area = double(s0 + s1 + s2);
+    return std::abs(z * area - (za * double(s1) + zb * double(s2) + zc * double(s0))) <=
+           stop * area;
+}
+
+// The pass's state: the TIN, the lattice, and the scratch of one node's try.
+class Pass {
+  public:
+    Pass(Tin &tin, const Heightfield &hf, double limit, int max_ring)
+        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
+
+    // Tries to erase `v` (an interior node) with its hole widened by the triangle across each ring
+    // edge (a flip of that edge towards v, then v's erase). Right after the erase (`first`) only
+    // when v's own sample rules out every triangulation of its hole (coverable): a new corner may
+    // give that sample a plane, where a node the erase failed on other samples still has them in
+    // its hole (trying those too took twice the time for a few more erases). Once its ring
+    // changed, its hole as it is first. On success rewrites the TIN, leaves the hole's outline in
+    // outline() and returns 1, or 2 when the hole was widened; 0 when v stays.
+    int erase(std::int32_t v, bool first) {
+        if (!gather(v))
+            return 0;
+        own_node_ = std::size_t(v);
+        own_ = tin_.sample[own_node_];
+        witnesses_ = 0;
+        add_witness(own_);
+        extra_.clear();
+        const int n = int(ring_.size());
+        const bool held = coverable(ring_);
+        if (held && first)
+            return 0; // the erase failed this hole on other samples than v's
+        if (held && n <= max_ring_ && triangulate(ring_))
+            return 1;
+        wide_.clear();
+        for (int i = 0; i < n; ++i) {
+            const std::int32_t a = ring_[std::size_t(i)];
+            wide_.push_back(a);
+            const std::int32_t u =
+                tin_.across[std::size_t(3 * star_[std::size_t(i)] + edge_[std::size_t(i)])];
+            if (u < 0 || int(wide_.size()) + n - i > max_ring_)
+                continue;
+            // u is (b, a, d) counter-clockwise.
+            const std::int32_t d = tin_.corner[std::size_t(3 * u + (tin_.index_of(u, a) + 1) % 3)];
+            if (std::find(ring_.begin(), ring_.end(), d) != ring_.end() ||
+                std::find(wide_.begin(), wide_.end(), d) != wide_.end())
+                continue; // the outline would touch itself
+            wide_.push_back(d);
+            extra_.push_back(u);
+        }
+        return !extra_.empty() && coverable(wide_) && triangulate(wide_) ? 2 : 0;
+    }
+
+    const std::vector<std::int32_t> &outline() const { return outline_; }
+
+  private:
+    // v's ring (counter-clockwise), its star's triangles and in each the index of its ring edge;
+    // false on the outline.
+    bool gather(std::int32_t v) {
+        ring_.clear();
+        star_.clear();
+        edge_.clear();
+        const std::int32_t first = tin_.fan[std::size_t(v)];
+        if (first < 0)
+            return false;
+        std::int32_t t = first;
+        do {
+            const int k = tin_.index_of(t, v);
+            ring_.push_back(tin_.corner[std::size_t(3 * t + (k + 1) % 3)]);
+            star_.push_back(t);
+            edge_.push_back((k + 1) % 3);
+            t = tin_.across[std::size_t(3 * t + (k + 2) % 3)];
+            if (t < 0 || int(ring_.size()) > k_max_ring)
+                return false;
+        } while (t != first);
+        return true;
+    }
+
+    // Whether v's sample lies within the limit (a hair over counts) of some triangle over three of
+    // the polygon's nodes (counter-clockwise) whose closed lattice triangle holds it: else no
+    // triangulation of the polygon holds the bound (most of the nodes the erase leaves fail here).
+    // The plane's height at the sample: near_plane.
+    bool coverable(const std::vector<std::int32_t> &nodes) const {
+        const std::size_t n = nodes.size();
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        const double z = tin_.z[own_node_];
+        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
+        std::array<std::int64_t, k_max_ring> rx, ry;
+        std::array<double, k_max_ring> rz;
+        double lo = INFINITY, hi = -INFINITY;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t u = std::size_t(nodes[i]);
+            rx[i] = tin_.col[u] - xs;
+            ry[i] = tin_.row[u] - ys;
+            rz[i] = tin_.z[u];
+            lo = std::min(lo, rz[i]);
+            hi = std::max(hi, rz[i]);
+        }
+        // A plane over three nodes lies within their heights: a peak or a pit the nodes do not
+        // reach within the limit stays (most of the nodes left at a fine bound).
+        if (z - hi > stop || lo - z > stop)
+            return false;
+        // side[a][b]: twice the signed area of (node a, node b, the sample), lattice units.
+        std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> side;
+        for (std::size_t a = 0; a < n; ++a)
+            for (std::size_t b = a + 1; b < n; ++b) {
+                side[a][b] = rx[a] * ry[b] - ry[a] * rx[b];
+                side[b][a] = -side[a][b];
+            }
+        for (std::size_t a = 0; a < n; ++a)
+            for (std::size_t b = a + 1; b < n; ++b) {
+                if (side[a][b] < 0)
+                    continue;
+                for (std::size_t c = b + 1; c < n; ++c) {
+                    const std::int64_t s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
+                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                        continue;
+                    if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop))
+                        return true;
+                }
+            }
+        return false;
+    }
+
+    glm::dvec3 point(std::uint32_t sample) const {
+        const int w = hf_.width;
+        const Mesh::Point p = grid_point(hf_, int(sample % std::uint32_t(w)), int(sample / w));
+        return to_glm(p);
+    }
+
+    void add_witness(std::uint32_t sample) {
+        witness_[std::size_t(next_witness_)] = sample;
+        next_witness_ = (next_witness_ + 1) % int(witness_.size());
+        witnesses_ = std::min(witnesses_ + 1, int(witness_.size()));
+    }
+
+    // The largest deviation of the samples in the closed triangle (a, b, c) of the polygon's
+    // points (counter-clockwise) from its plane, exactly up to `stop`, beyond it some value over
+    // it. As the erase measures (scan_hole, measure_hole): the plane's rounding margin at each
+    // sample, and at the corners the margin a steep triangle's float corner needs.
+    double cost(int a, int b, int c, double stop) {
+        const TrianglePlane plane =
+            triangle_frame(q_[std::size_t(a)], q_[std::size_t(b)], q_[std::size_t(c)], true,
+                           p_[std::size_t(a)].z, p_[std::size_t(b)].z, p_[std::size_t(c)].z)
+                .plane;
+        const double margin =
+            plane.margin_over(p_[std::size_t(a)], p_[std::size_t(b)], p_[std::size_t(c)]);
+        double most = 0.0;
+        for (const int k : {a, b, c}) {
+            const glm::dvec3 &p = p_[std::size_t(k)];
+            most = std::max(most,
+                            rounding_margin(std::max(std::abs(p.x), std::abs(p.y)), plane.slope()));
+        }
+        if (most > stop)
+            return most;
+        // The samples that put a triangle over (most often the node's own) first: the candidate
+        // triangles overlap, and most fail on the same few.
+        for (int k = 0; k < witnesses_; ++k) {
+            const glm::dvec3 w = point(witness_[std::size_t(k)]);
+            const glm::dvec2 x(w.x, w.y);
+            if (orient(q_[std::size_t(a)], q_[std::size_t(b)], x) > 0.0 &&
+                orient(q_[std::size_t(b)], q_[std::size_t(c)], x) > 0.0 &&
+                orient(q_[std::size_t(c)], q_[std::size_t(a)], x) > 0.0) {
+                const double d = plane.deviation(w.x, w.y, w.z, margin);
+                if (d > stop)
+                    return d;
+            }
+        }
+        const std::uint32_t w = std::uint32_t(hf_.width);
+        const std::uint32_t ca = node_[std::size_t(a)], cb = node_[std::size_t(b)],
+                            cc = node_[std::size_t(c)];
+        const LatticeTriangle t(w, ca, cb, cc);
+        for (std::int64_t y = t.first_row; y <= t.last_row; ++y) {
+            const auto [first, last] = t.span(y);
+            for (std::int64_t x = first; x <= last; ++x) {
+                const std::uint32_t u = std::uint32_t(y * w + x);
+                if (u == ca || u == cb || u == cc)
+                    continue;
+                const Mesh::Point p = grid_point(hf_, int(x), int(y));
+                most = std::max(most, plane.deviation(p[0], p[1], p[2], margin));
+                if (most > stop) {
+                    add_witness(u);
+                    return most;
+                }
+            }
+        }
+        return most;
+    }
+
+    // The min-max triangulation of the polygon `nodes` (v's ring, or it widened by the triangles
+    // extra_) within the limit, written over v's star and extra_; false when none holds.
+    bool triangulate(const std::vector<std::int32_t> &nodes) {
+        const int n = int(nodes.size());
+        q_.resize(std::size_t(n));
+        p_.resize(std::size_t(n));
+        node_.resize(std::size_t(n));
+        for (int i = 0; i < n; ++i) {
+            node_[std::size_t(i)] = tin_.sample[std::size_t(nodes[std::size_t(i)])];
+            p_[std::size_t(i)] = point(node_[std::size_t(i)]);
+            q_[std::size_t(i)] = {p_[std::size_t(i)].x, p_[std::size_t(i)].y};
+        }
+        if (!covered(nodes))
+            return false;
+        std::array<RingTriangle, k_max_ring> tri;
+        const int count = min_max_triangulation(
+            q_.data(), n, limit_,
+            [this](int a, int b, int c, double stop) { return cost(a, b, c, stop); }, tri.data());
+        if (count != n - 2)
+            return false;
+        old_ = star_;
+        old_.insert(old_.end(), extra_.begin(), extra_.end());
+        rewrite(nodes, tri.data(), count);
+        return true;
+    }
+
+    // Whether some triangle a triangulation of the polygon `nodes` (loaded) may hold covers v's
+    // sample within the limit (a hair over counts): its closed lattice triangle holds it, no other
+    // node of the polygon
+    // lies in it, its sides are chords of the polygon (is_ring_chord) and its samples keep within
+    // the limit (cost). Else the min-max triangulation finds none; the test costs a few of its
+    // triangles, where the search costs all of them.
+    bool covered(const std::vector<std::int32_t> &nodes) {
+        const int n = int(nodes.size());
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        const double z = tin_.z[own_node_];
+        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
+        std::array<std::int64_t, k_max_ring> rx, ry;
+        for (int i = 0; i < n; ++i) {
+            rx[std::size_t(i)] = tin_.col[std::size_t(nodes[std::size_t(i)])] - xs;
+            ry[std::size_t(i)] = tin_.row[std::size_t(nodes[std::size_t(i)])] - ys;
+        }
+        const auto side = [&](int a, int b) {
+            return rx[std::size_t(a)] * ry[std::size_t(b)] -
+                   ry[std::size_t(a)] * rx[std::size_t(b)];
+        };
+        // known[a][b]: 0 not tested yet, 1 a chord, 2 not (each tested once).
+        std::array<std::array<std::uint8_t, k_max_ring>, k_max_ring> known;
+        for (int a = 0; a < n; ++a)
+            std::fill_n(known[std::size_t(a)].begin(), n, std::uint8_t(0));
+        const auto chord = [&](int a, int b) {
+            if (b == a + 1 || (a == 0 && b == n - 1))
+                return true;
+            std::uint8_t &k = known[std::size_t(a)][std::size_t(b)];
+            if (k == 0)
+                k = is_ring_chord(q_.data(), n, a, b) ? 1 : 2;
+            return k == 1;
+        };
+        for (int a = 0; a < n; ++a)
+            for (int b = a + 1; b < n; ++b)
+                for (int c = b + 1; c < n; ++c) {
+                    const std::int64_t s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
+                    if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                        continue;
+                    if (!near_plane(s0, s1, s2, p_[std::size_t(a)].z, p_[std::size_t(b)].z,
+                                    p_[std::size_t(c)].z, z, stop))
+                        continue;
+                    bool empty = true;
+                    for (int j = 0; j < n && empty; ++j)
+                        empty = j == a || j == b || j == c ||
+                                !(orient(q_[std::size_t(a)], q_[std::size_t(b)],
+                                         q_[std::size_t(j)]) >= 0.0 &&
+                                  orient(q_[std::size_t(b)], q_[std::size_t(c)],
+                                         q_[std::size_t(j)]) >= 0.0 &&
+                                  orient(q_[std::size_t(c)], q_[std::size_t(a)],
+                                         q_[std::size_t(j)]) >= 0.0);
+                    if (empty && chord(a, b) && chord(b, c) && chord(a, c) &&
+                        cost(a, b, c, limit_) <= limit_)
+                        return true;
+                }
+        return false;
+    }
+
+    // Replaces the triangles old_ (they tile the polygon `nodes`) by `tri` over it.
+    void rewrite(const std::vector<std::int32_t> &nodes, const RingTriangle *tri, int count) {
+        const std::size_t n = nodes.size();
+        // The triangle outside each outline edge nodes[i] -> nodes[i + 1] (-1 on the TIN's
+        // outline).
+        outside_.assign(n, -1);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::int32_t a = nodes[i], b = nodes[(i + 1) % n];
+            for (const std::int32_t t : old_)
+                for (int k = 0; k < 3; ++k)
+                    if (tin_.corner[std::size_t(3 * t + k)] == a &&
+                        tin_.corner[std::size_t(3 * t + (k + 1) % 3)] == b)
+                        outside_[i] = tin_.across[std::size_t(3 * t + k)];
+        }
+        for (const std::int32_t t : star_)
+            for (int k = 0; k < 3; ++k) {
+                const std::int32_t x = tin_.corner[std::size_t(3 * t + k)];
+                if (std::find(nodes.begin(), nodes.end(), x) == nodes.end())
+                    tin_.fan[std::size_t(x)] = -1; // the erased node
+            }
+        for (const std::int32_t t : old_)
+            tin_.corner[std::size_t(3 * t)] = -1;
+        for (int j = 0; j < count; ++j) {
+            const std::int32_t t = old_[std::size_t(j)];
+            const std::uint8_t c[3] = {tri[j].a, tri[j].b, tri[j].c};
+            for (int k = 0; k < 3; ++k) {
+                tin_.corner[std::size_t(3 * t + k)] = nodes[c[k]];
+                tin_.fan[std::size_t(nodes[c[k]])] = t;
+            }
+        }
+        for (int j = 0; j < count; ++j) {
+            const std::int32_t t = old_[std::size_t(j)];
+            const std::uint8_t c[3] = {tri[j].a, tri[j].b, tri[j].c};
+            for (int k = 0; k < 3; ++k) {
+                const std::uint8_t a = c[k], b = c[(k + 1) % 3];
+                std::int32_t &link = tin_.across[std::size_t(3 * t + k)];
+                if (std::size_t(b) == (std::size_t(a) + 1) % n) {
+                    link = outside_[a];
+                    if (link >= 0) {
+                        const int e = tin_.index_of(link, nodes[b]);
+                        tin_.across[std::size_t(3 * link + e)] = t;
+                    }
+                    continue;
+                }
+                for (int o = 0; o < count; ++o) {
+                    const std::uint8_t d[3] = {tri[o].a, tri[o].b, tri[o].c};
+                    for (int e = 0; e < 3; ++e)
+                        if (d[e] == b && d[(e + 1) % 3] == a)
+                            link = old_[std::size_t(o)];
+                }
+            }
+        }
+        outline_ = nodes;
+    }
+
+    Tin &tin_;
+    const Heightfield &hf_;
+    const double limit_;
+    const int max_ring_;
+    std::vector<std::int32_t> ring_, star_, extra_, wide_, old_, outline_, outside_;
+    std::vector<int> edge_;
+    std::vector<glm::dvec2> q_;
+    std::vector<glm::dvec3> p_;
+    std::vector<std::uint32_t> node_;
+    std::array<std::uint32_t, 8> witness_{};
+    int witnesses_ = 0, next_witness_ = 0;
+    std::uint32_t own_ = 0;
+    std::size_t own_node_ = 0;
+};
+
+} // namespace
+
+Mesh flip_pass(const Mesh &mesh, const Heightfield &hf, double limit, int max_valence,
+               FlipPassStats *stats) {
+    Tin tin = tin_arrays(mesh, hf);
+    Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
+    FlipPassStats out;
+    // Every node once in storage order (spatially coherent), then the outlines of the erases made,
+    // until none goes. changed: the node's ring changed since the erase (or its last try).
+    const std::size_t nodes = tin.sample.size();
+    std::vector<std::int32_t> work, next;
+    work.reserve(nodes);
+    for (std::size_t v = 0; v < nodes; ++v)
+        work.push_back(std::int32_t(v));
+    std::vector<std::uint8_t> queued(nodes, 1), changed(nodes, 0);
+    while (!work.empty()) {
+        for (const std::int32_t v : work) {
+            queued[std::size_t(v)] = 0;
+            const int made = pass.erase(v, !changed[std::size_t(v)]);
+            changed[std::size_t(v)] = 0;
+            if (made == 0)
+                continue;
+            ++out.erased;
+            out.widened += made == 2;
+            for (const std::int32_t x : pass.outline()) {
+                changed[std::size_t(x)] = 1;
+                if (!queued[std::size_t(x)]) {
+                    queued[std::size_t(x)] = 1;
+                    next.push_back(x);
+                }
+            }
+        }
+        work.swap(next);
+        next.clear();
+    }
+    // The nodes left in their order (the sample order erase_dem promises), their triangles.
+    Mesh left;
+    const auto origin = get_origin_property(left);
+    std::vector<std::uint32_t> vertex(nodes), corners;
+    for (std::size_t v = 0; v < nodes; ++v)
+        if (tin.fan[v] >= 0) {
+            const Mesh::VertexHandle h = left.add_vertex(mesh.point(Mesh::VertexHandle(int(v))));
+            left.property(origin, h) = tin.sample[v];
+            vertex[v] = std::uint32_t(h.idx());
+        }
+    corners.reserve(tin.corner.size());
+    for (std::size_t i = 0; i < tin.corner.size(); i += 3)
+        if (tin.corner[i] >= 0)
+            for (std::size_t k = 0; k < 3; ++k)
+                corners.push_back(vertex[std::size_t(tin.corner[i + k])]);
+    add_triangles(left, corners);
+    if (stats)
+        *stats = out;
+    return left;
+}
+
+} // namespace tinlod::erase
