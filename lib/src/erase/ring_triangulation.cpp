@@ -47,7 +47,44 @@ bool is_delaunay_ear(const glm::dvec2 *q, const std::uint8_t *next, int a, int b
     return true;
 }
 
+// Whether the closed segments ab and cd meet.
+bool segments_meet(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 &c,
+                   const glm::dvec2 &d) {
+    const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+                 o4 = orient(c, d, b);
+    if (((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) &&
+        ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)))
+        return true;
+    const auto on = [](const glm::dvec2 &p, const glm::dvec2 &r, const glm::dvec2 &x, double o) {
+        return o == 0.0 && std::min(p.x, r.x) <= x.x && x.x <= std::max(p.x, r.x) &&
+               std::min(p.y, r.y) <= x.y && x.y <= std::max(p.y, r.y);
+    };
+    return on(a, b, c, o1) || on(a, b, d, o2) || on(c, d, a, o3) || on(c, d, b, o4);
+}
+
+// Whether the chord from node i towards q[j] leaves i into the polygon (strictly inside the angle
+// of its two sides at i).
+bool in_cone(const glm::dvec2 *q, int n, int i, int j) {
+    const glm::dvec2 &a = q[i], &prev = q[(i + n - 1) % n], &next = q[(i + 1) % n];
+    if (orient(a, next, prev) >= 0.0) // convex at i
+        return orient(a, q[j], prev) > 0.0 && orient(q[j], a, next) > 0.0;
+    return !(orient(a, q[j], next) >= 0.0 && orient(q[j], a, prev) >= 0.0);
+}
+
 } // namespace
+
+bool is_ring_chord(const glm::dvec2 *q, int n, int i, int j) {
+    if ((i + 1) % n == j || (j + 1) % n == i)
+        return true;
+    if (!in_cone(q, n, i, j) || !in_cone(q, n, j, i))
+        return false;
+    for (int a = 0; a < n; ++a) {
+        const int b = (a + 1) % n;
+        if (a != i && a != j && b != i && b != j && segments_meet(q[i], q[j], q[a], q[b]))
+            return false;
+    }
+    return true;
+}
 
 int clip_ears(const glm::dvec2 *q, int n, RingTriangle *out) {
     if (n < 3 || n > k_max_ring)

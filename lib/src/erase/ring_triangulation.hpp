@@ -51,6 +51,11 @@ inline double orient(const glm::dvec2 &a, const glm::dvec2 &b, const glm::dvec2 
 // ears in order of quality until one passes (a Delaunay ear stays Delaunay as nodes leave).
 int clip_ears(const glm::dvec2 *q, int n, RingTriangle *out);
 
+// Whether the chord from q[i] to q[j] of the counter-clockwise polygon q[0..n) is one of its sides
+// or a diagonal: inside the polygon near both ends, and meeting no side but at its ends (the flip
+// pass's test of a triangle that some triangulation of the hole can hold).
+bool is_ring_chord(const glm::dvec2 *q, int n, int i, int j);
+
 // The triangulation of the counter-clockwise polygon q[0..n) (3 <= n <= k_max_ring) whose most
 // costly triangle costs least, among those whose every triangle costs at most `limit`, by dynamic
 // programming over the polygon's chords: every triangulation of a polygon splits it by some
