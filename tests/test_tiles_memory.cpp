@@ -229,8 +229,8 @@ TEST(TilesMemory, DemLargerThanTheBudgetBuildsWithinIt) {
     });
     // Level 9's tiles, 0.35 degrees (421 posts) across: a tile's work is small beside the
     // lattice (a coarser level's interior reaches 1,024 x 1,024 posts, some 40 MiB of work).
-    const std::vector<std::string> common{"--threads",  "1", "tiles", dem, "--min-zoom", "9",
-                                          "--max-zoom", "9"};
+    const std::vector<std::string> common{"--threads",  "1", "tiles",      dem,
+                                          "--min-zoom", "9", "--max-zoom", "9"};
     auto bounded = common, unbounded = common;
     bounded.insert(bounded.end(), {"-o", dir + "/bounded", "--memory-mb", "8"});
     unbounded.insert(unbounded.end(), {"-o", dir + "/unbounded"});
