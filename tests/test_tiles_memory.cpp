@@ -44,17 +44,31 @@ std::map<std::string, std::string> files_under(const std::string &dir) {
     return out;
 }
 
-// Writes a w x h float32 GeoTIFF in EPSG:4326 whose sample (c, r) (r from the north) stands at
-// (lon0 + c * step, lat_north - r * step) with height `height(c, r)` (NaN: the nodata value
-// -9999), in tiles of `tile` x `tile` samples, a tile at a time: never the raster whole.
-void write_tiled_geotiff(const std::string &path, unsigned w, unsigned h, unsigned tile,
-                         double lon0, double lat_north, double step,
-                         const std::function<float(unsigned, unsigned)> &height) {
+// The two tile sets hold the same files, byte for byte, and more than `at_least` of them.
+void expect_same_files(const std::string &a, const std::string &b, std::size_t at_least) {
+    const auto x = files_under(a), y = files_under(b);
+    EXPECT_GT(x.size(), at_least);
+    ASSERT_EQ(x.size(), y.size());
+    for (const auto &[name, bytes] : x)
+        EXPECT_TRUE(y.count(name) && y.at(name) == bytes) << name << " differs";
+}
+
+// Writes a w x h float32 GeoTIFF in EPSG:`epsg` (4326, or a projected CRS in metres) whose
+// sample (c, r) (r from the north) stands at (x0 + c * step, y_north - r * step) with height
+// `height(c, r)` (NaN: the nodata value -9999), in tiles of `tile` x `tile` samples, a tile at a
+// time: never the raster whole.
+void write_tiled_geotiff(const std::string &path, unsigned w, unsigned h, unsigned tile, double x0,
+                         double y_north, double step,
+                         const std::function<float(unsigned, unsigned)> &height,
+                         unsigned epsg = 4326) {
     const unsigned across = (w + tile - 1) / tile, down = (h + tile - 1) / tile;
     const unsigned tiles = across * down, tile_bytes = tile * tile * 4;
-    const std::vector<double> scale{step, step, 0.0}, tie{0, 0, 0, lon0, lat_north, 0};
-    // GeoKeys: geographic model, pixel is point, EPSG:4326.
-    const std::vector<unsigned> keys{1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 2, 2048, 0, 1, 4326};
+    const std::vector<double> scale{step, step, 0.0}, tie{0, 0, 0, x0, y_north, 0};
+    // GeoKeys: geographic (2, key 2048) or projected (1, key 3072) model, pixel is point.
+    const bool geographic = epsg == 4326;
+    const std::vector<unsigned> keys{
+        1, 1, 0,   3, 1024, 0, 1, geographic ? 2u : 1u, 1025, 0, 1, 2, geographic ? 2048u : 3072u,
+        0, 1, epsg};
     const std::string nodata = "-9999";
     // Entries: tag, type (3 SHORT, 4 LONG, 12 DOUBLE, 2 ASCII), count, value or offset.
     struct Entry {
@@ -144,11 +158,7 @@ TEST(TilesMemory, SrtmByWindowsMatchesTheWholeLatticeByteForByte) {
     ASSERT_EQ(a.status, 0) << a.err;
     const auto b = run_cli(common + "'" + windows + "' --memory-mb 1");
     ASSERT_EQ(b.status, 0) << b.err;
-    const auto x = files_under(whole), y = files_under(windows);
-    EXPECT_GT(x.size(), 80u);
-    ASSERT_EQ(x.size(), y.size());
-    for (const auto &[name, bytes] : x)
-        EXPECT_TRUE(y.count(name) && y.at(name) == bytes) << name << " differs";
+    expect_same_files(whole, windows, 80);
 }
 
 // A level-12 tile over the tile's voids, built alone from a lattice read by windows (the voids
@@ -209,11 +219,24 @@ TEST(TilesMemory, TiledGeotiffsSplitTwoByTwoByWindowsMatchTheWholeLattice) {
     const auto stats = nlohmann::json::parse(slurp(whole + ".json"));
     EXPECT_EQ(stats["input"]["nodes"].get<std::int64_t>(), 601 * 601);
     EXPECT_FALSE(stats["input"]["resampled"].get<bool>());
-    const auto x = files_under(whole), y = files_under(windows);
-    EXPECT_GT(x.size(), 20u);
-    ASSERT_EQ(x.size(), y.size());
-    for (const auto &[name, bytes] : x)
-        EXPECT_TRUE(y.count(name) && y.at(name) == bytes) << name << " differs";
+    expect_same_files(whole, windows, 20);
+}
+
+// A DEM in UTM zone 31N (EPSG:32631), warped onto the lattice band by band, each band from the
+// DEM's rows its posts fall between.
+TEST(TilesMemory, ProjectedDemWarpedByWindowsMatchesTheWholeLattice) {
+    const std::string dir = temp_dir();
+    const std::string dem = dir + "/utm.tif";
+    write_tiled_geotiff(
+        dem, 500, 400, 128, 400000.0, 4.65e6, 30.0,
+        [](unsigned c, unsigned r) { return terrain(c / 3600.0, r / 3600.0); }, 32631);
+    const std::string whole = dir + "/whole", windows = dir + "/windows";
+    const auto a = run_cli("tiles '" + dem + "' -o '" + whole + "' --stats '" + whole + ".json'");
+    ASSERT_EQ(a.status, 0) << a.err;
+    EXPECT_TRUE(nlohmann::json::parse(slurp(whole + ".json"))["input"]["resampled"].get<bool>());
+    const auto b = run_cli("tiles '" + dem + "' -o '" + windows + "' --memory-mb 1");
+    ASSERT_EQ(b.status, 0) << b.err;
+    expect_same_files(whole, windows, 20);
 }
 
 // A DEM of 3073 x 3073 floats (36 MiB of heights, which a whole load holds with its own arrays
@@ -242,10 +265,7 @@ TEST(TilesMemory, DemLargerThanTheBudgetBuildsWithinIt) {
     constexpr double k_own_mb = 48.0;
     EXPECT_LT(peak_bounded, 8.0 + k_own_mb) << "whole: " << peak_whole;
     EXPECT_GT(peak_whole, 8.0 + k_own_mb) << "a whole load should not fit";
-    const auto x = files_under(dir + "/unbounded"), y = files_under(dir + "/bounded");
-    ASSERT_EQ(x.size(), y.size());
-    for (const auto &[name, bytes] : x)
-        EXPECT_TRUE(y.count(name) && y.at(name) == bytes) << name << " differs";
+    expect_same_files(dir + "/unbounded", dir + "/bounded", 20);
 }
 
 // Not a test: writes the DEM of bench/bench_tiles_memory.sh, $TINLOD_DEM_SIDE samples square

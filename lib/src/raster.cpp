@@ -339,6 +339,37 @@ template <typename T> constexpr backends::SampleType sample_type_of() {
         return SampleType::float32;
 }
 
+// Calls f(T{}) with T the C++ type of samples of type `t` (float for half and float).
+template <typename F> void with_sample_type(backends::SampleType t, F &&f) {
+    using backends::SampleType;
+    switch (t) {
+    case SampleType::int16:
+        f(std::int16_t{});
+        break;
+    case SampleType::uint16:
+        f(std::uint16_t{});
+        break;
+    case SampleType::int32:
+        f(std::int32_t{});
+        break;
+    case SampleType::uint32:
+        f(std::uint32_t{});
+        break;
+    case SampleType::uint8:
+        f(std::uint8_t{});
+        break;
+    case SampleType::int8:
+        f(std::int8_t{});
+        break;
+    case SampleType::float64:
+        f(double{});
+        break;
+    default:
+        f(float{});
+        break;
+    }
+}
+
 // The heights (and voids, where alpha is 0) of `file`; nullopt when its reader declines it after
 // all.
 std::optional<RawGrid> read_samples(const std::string &path, const LoadOptions &options,
@@ -397,32 +428,7 @@ std::optional<RawGrid> read_samples(const std::string &path, const LoadOptions &
         if (!declined)
             copy_heights(buf, nc, height, alpha, g);
     };
-    switch (spec.type) {
-    case SampleType::int16:
-        heights(std::int16_t{});
-        break;
-    case SampleType::uint16:
-        heights(std::uint16_t{});
-        break;
-    case SampleType::int32:
-        heights(std::int32_t{});
-        break;
-    case SampleType::uint32:
-        heights(std::uint32_t{});
-        break;
-    case SampleType::uint8:
-        heights(std::uint8_t{});
-        break;
-    case SampleType::int8:
-        heights(std::int8_t{});
-        break;
-    case SampleType::float64:
-        heights(double{});
-        break;
-    default:
-        heights(float{});
-        break; // half and float
-    }
+    with_sample_type(spec.type, heights);
     if (declined)
         return std::nullopt;
     return g;
@@ -1006,33 +1012,7 @@ struct DemWindows::Impl {
                                           std::to_string(fb - 1) + " (truncated or corrupt)");
                 copy_heights(buf, channels, height, alpha, g);
             };
-            using backends::SampleType;
-            switch (type) {
-            case SampleType::int16:
-                heights(std::int16_t{});
-                break;
-            case SampleType::uint16:
-                heights(std::uint16_t{});
-                break;
-            case SampleType::int32:
-                heights(std::int32_t{});
-                break;
-            case SampleType::uint32:
-                heights(std::uint32_t{});
-                break;
-            case SampleType::uint8:
-                heights(std::uint8_t{});
-                break;
-            case SampleType::int8:
-                heights(std::int8_t{});
-                break;
-            case SampleType::float64:
-                heights(double{});
-                break;
-            default:
-                heights(float{});
-                break; // half and float
-            }
+            with_sample_type(type, heights);
         }
         mirror(g.z, g.width, g.height, geo.flip_columns, geo.flip_rows);
         mirror(g.is_void, g.width, g.height, geo.flip_columns, geo.flip_rows);
