@@ -1,6 +1,7 @@
 // `tinlod tiles DEM... -o DIR [--min-zoom Z] [--max-zoom Z] [--normals] [--fill-height H]
-// [--stats J]`: a Cesium quantized-mesh-1.0 tile pyramid (lib/src/tiles, docs/tiles.md). `--plan`,
-// `--part SPEC` and `--layer-only` cut the same build into jobs (python/tinlod_dask).
+// [--stats J] [--memory-mb M]`: a Cesium quantized-mesh-1.0 tile pyramid (lib/src/tiles,
+// docs/tiles.md). `--plan`, `--part SPEC` and `--layer-only` cut the same build into jobs
+// (python/tinlod_dask).
 #include "commands.hpp"
 #include "outputs.hpp"
 
@@ -71,6 +72,7 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         std::string output, stats, part;
         int min_zoom = 0, max_zoom = 0;
         double fill_height = 0.0;
+        double memory_mb = 0.0;
         bool normals = false, plan = false, layer_only = false;
         RasterOptions raster;
     };
@@ -93,6 +95,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                    "height outside the DEMs in partly covered tiles, metres above the ellipsoid")
         ->check(real_in(-12000.0, 12000.0))
         ->capture_default_str();
+    cmd.add_option("--memory-mb", args->memory_mb,
+                   "memory the run may hold, MiB: past it the DEMs are read by windows "
+                   "(default: half of this machine's memory)")
+        ->check(real_in(1.0, 1e9));
     cmd.add_flag("--normals", args->normals,
                  "add the oct-encoded vertex normals extension (normals of the DEM)");
     auto *part =
@@ -126,7 +132,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
             check_writable({args->stats});
         }
         StageTimes times;
-        const GeoLattice lattice = load_coverage(args->inputs, args->raster.load_options());
+        CoverageMemory memory;
+        memory.memory_mb = args->memory_mb > 0 ? args->memory_mb : default_memory_mb();
+        memory.threads = max_threads();
+        const GeoLattice lattice = load_coverage(args->inputs, args->raster.load_options(), memory);
         times.lap("load");
         const int finest = finest_zoom(lattice);
         const int last = max_zoom->count() > 0 ? args->max_zoom : default_max_zoom(lattice);

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <type_traits>
 
@@ -128,7 +129,8 @@ void check_size(const std::string &path, std::int64_t w, std::int64_t h) {
 
 // --- SRTM .hgt: big-endian int16, square 1201 or 3601, row 0 north, file name = SW corner. ---
 
-RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &geo) {
+// The side of an SRTM tile (1201 or 3601) and its georeferencing, from its size and name.
+int hgt_georef(const std::string &path, const LoadOptions &options, Georef &geo) {
     const auto bytes = fs::file_size(path);
     int n = 0;
     for (int side : {1201, 3601})
@@ -139,7 +141,6 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
                               " bytes is not an SRTM tile (1201x1201 or 3601x3601 int16 = " +
                               std::to_string(1201 * 1201 * 2) + " or " +
                               std::to_string(3601 * 3601 * 2) + " bytes)");
-    check_memory(path, options, n, n, 1, 2);
     // SRTM names the tile by its south-west corner: [NS]dd[EW]ddd, e.g. N42E001.
     const std::string stem = fs::path(path).filename().string();
     auto digits = [&](std::size_t from, std::size_t count) {
@@ -165,6 +166,12 @@ RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &ge
                           "where it lies and its spacing are unknown: rename it, or give --cell");
     }
     geo.nodata = -32768.0;
+    return n;
+}
+
+RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &geo) {
+    const int n = hgt_georef(path, options, geo);
+    check_memory(path, options, n, n, 1, 2);
     // Read a block at a time: the file's bytes are never held whole beside the heights.
     std::ifstream in(path, std::ios::binary);
     const std::size_t samples = std::size_t(n) * n;
@@ -332,6 +339,37 @@ template <typename T> constexpr backends::SampleType sample_type_of() {
         return SampleType::float32;
 }
 
+// Calls f(T{}) with T the C++ type of samples of type `t` (float for half and float).
+template <typename F> void with_sample_type(backends::SampleType t, F &&f) {
+    using backends::SampleType;
+    switch (t) {
+    case SampleType::int16:
+        f(std::int16_t{});
+        break;
+    case SampleType::uint16:
+        f(std::uint16_t{});
+        break;
+    case SampleType::int32:
+        f(std::int32_t{});
+        break;
+    case SampleType::uint32:
+        f(std::uint32_t{});
+        break;
+    case SampleType::uint8:
+        f(std::uint8_t{});
+        break;
+    case SampleType::int8:
+        f(std::int8_t{});
+        break;
+    case SampleType::float64:
+        f(double{});
+        break;
+    default:
+        f(float{});
+        break;
+    }
+}
+
 // The heights (and voids, where alpha is 0) of `file`; nullopt when its reader declines it after
 // all.
 std::optional<RawGrid> read_samples(const std::string &path, const LoadOptions &options,
@@ -390,32 +428,7 @@ std::optional<RawGrid> read_samples(const std::string &path, const LoadOptions &
         if (!declined)
             copy_heights(buf, nc, height, alpha, g);
     };
-    switch (spec.type) {
-    case SampleType::int16:
-        heights(std::int16_t{});
-        break;
-    case SampleType::uint16:
-        heights(std::uint16_t{});
-        break;
-    case SampleType::int32:
-        heights(std::int32_t{});
-        break;
-    case SampleType::uint32:
-        heights(std::uint32_t{});
-        break;
-    case SampleType::uint8:
-        heights(std::uint8_t{});
-        break;
-    case SampleType::int8:
-        heights(std::int8_t{});
-        break;
-    case SampleType::float64:
-        heights(double{});
-        break;
-    default:
-        heights(float{});
-        break; // half and float
-    }
+    with_sample_type(spec.type, heights);
     if (declined)
         return std::nullopt;
     return g;
@@ -887,7 +900,8 @@ void apply_georef(const std::string &path, const Georef &geo, const LoadOptions 
 
 namespace {
 
-Heightfield load(const std::string &path, const LoadOptions &options) {
+// What every loader checks first: the file and the options.
+void check_input(const std::string &path, const LoadOptions &options) {
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw Error(path, "no such file");
@@ -904,6 +918,10 @@ Heightfield load(const std::string &path, const LoadOptions &options) {
         if (!probe)
             throw Error(path, "cannot open for reading");
     }
+}
+
+Heightfield load(const std::string &path, const LoadOptions &options) {
+    check_input(path, options);
     Georef geo;
     RawGrid g;
     const std::string ext = lower_extension(path);
@@ -941,6 +959,224 @@ Heightfield load_heightfield(const std::string &path, const LoadOptions &options
         // What the estimate did not foresee (a decoder's own buffers) still names the file.
         throw Error(path, "out of memory while loading it");
     }
+}
+
+// --- DEMs read by windows (raster.hpp: DemWindows). ---
+
+struct DemWindows::Impl {
+    std::string path;
+    LoadOptions options;
+    Heightfield grid;
+    Georef geo;
+    int file_width = 0, file_height = 0;        // before the crop
+    int left = 0, top = 0;                      // the crop's first column and row (north row 0)
+    std::unique_ptr<backends::TiffFile> tiff;   // a TIFF's, which its plain reader needs
+    std::unique_ptr<backends::RasterFile> file; // libtiff's for a plain TIFF, else OpenImageIO's
+    int channels = 1, alpha = -1;
+    backends::SampleType type = backends::SampleType::int16;
+    bool hgt = false;
+    mutable std::mutex lock; // a reader reads one window at a time
+    // The strip filled last (its number, its rows): a band's rows and the next band's often fall
+    // in one strip.
+    mutable std::mutex fill_lock;
+    mutable int filled_strip = -1;
+    mutable std::vector<float> filled_rows;
+
+    // Rows [a, b) of the file as load() orients them (north row 0, west column 0), every column,
+    // the voids marked.
+    RawGrid oriented(int a, int b) const {
+        RawGrid g;
+        g.width = file_width, g.height = b - a;
+        const std::size_t n = std::size_t(g.width) * std::size_t(g.height);
+        g.z.resize(n);
+        g.is_void.assign(n, 0);
+        // The file's own rows: mirrored when its rows run north.
+        const int fa = geo.flip_rows ? file_height - b : a,
+                  fb = geo.flip_rows ? file_height - a : b;
+        const std::lock_guard<std::mutex> guard(lock);
+        if (hgt) {
+            std::vector<unsigned char> bytes(2 * n);
+            std::ifstream in(path, std::ios::binary);
+            in.seekg(std::streamoff(2) * fa * file_width);
+            if (!in.read(reinterpret_cast<char *>(bytes.data()), std::streamsize(bytes.size())))
+                throw Error(path, "cannot read file");
+            for (std::size_t i = 0; i < n; ++i)
+                g.z[i] = static_cast<std::int16_t>((bytes[2 * i] << 8) | bytes[2 * i + 1]);
+        } else {
+            const int height = alpha == 0 ? 1 : 0;
+            const auto heights = [&](auto tag) {
+                using T = decltype(tag);
+                std::vector<T> buf(n * std::size_t(channels));
+                if (!file->read_window(fa, fb, sample_type_of<T>(), buf.data()))
+                    throw Error(path, "cannot read rows " + std::to_string(fa) + " to " +
+                                          std::to_string(fb - 1) + " (truncated or corrupt)");
+                copy_heights(buf, channels, height, alpha, g);
+            };
+            with_sample_type(type, heights);
+        }
+        mirror(g.z, g.width, g.height, geo.flip_columns, geo.flip_rows);
+        mirror(g.is_void, g.width, g.height, geo.flip_columns, geo.flip_rows);
+        mark_voids(path, g, geo);
+        return g;
+    }
+
+    // Rows [a, b) of the cropped grid (north row 0), voids marked, not filled.
+    RawGrid cropped(int a, int b) const {
+        RawGrid g = oriented(a + top, b + top);
+        if (left == 0 && grid.width == file_width)
+            return g;
+        RawGrid c;
+        c.width = grid.width, c.height = g.height;
+        for (int r = 0; r < g.height; ++r) {
+            const std::size_t from = std::size_t(r) * std::size_t(g.width) + std::size_t(left);
+            c.z.insert(c.z.end(), g.z.begin() + std::ptrdiff_t(from),
+                       g.z.begin() + std::ptrdiff_t(from) + c.width);
+            c.is_void.insert(c.is_void.end(), g.is_void.begin() + std::ptrdiff_t(from),
+                             g.is_void.begin() + std::ptrdiff_t(from) + c.width);
+        }
+        return c;
+    }
+};
+
+DemWindows::DemWindows(const std::string &path, const LoadOptions &options)
+    : impl_(std::make_unique<Impl>()) {
+    Impl &m = *impl_;
+    check_input(path, options);
+    if (options.terrain_rgb)
+        throw Error(path, "a Terrain-RGB raster is read whole: give more memory");
+    m.path = path;
+    m.options = options;
+    const std::string ext = lower_extension(path);
+    if (ext == ".hgt") {
+        m.hgt = true;
+        m.file_width = m.file_height = hgt_georef(path, options, m.geo);
+    } else {
+        // A plain TIFF through libtiff (as load_heightfield reads it), the rest through
+        // OpenImageIO, whose plugins' libraries alone take about 90 MiB.
+        if (ext == ".tif" || ext == ".tiff")
+            m.tiff = backends::tiff_files().open(path, false);
+        if (m.tiff)
+            m.file = m.tiff->raster();
+        if (!m.file)
+            m.file = backends::image_files().open_raster(path);
+        const backends::RasterSpec &spec = m.file->spec();
+        check_size(path, spec.width, spec.height);
+        if (spec.depth > 1)
+            throw Error(path, "volume images are not elevation rasters");
+        m.channels = spec.channels;
+        m.alpha = spec.alpha >= 0 && spec.alpha < spec.channels ? spec.alpha : -1;
+        if (spec.channels - (m.alpha >= 0) != 1)
+            throw Error(path, not_a_dem(path, spec, spec.channels - (m.alpha >= 0)));
+        if (spec.mixed_types || spec.type == backends::SampleType::other)
+            throw Error(path, "samples of mixed or unusual types are read whole: give more memory");
+        // Half floats widen exactly.
+        m.type =
+            spec.type == backends::SampleType::float16 ? backends::SampleType::float32 : spec.type;
+        m.file_width = spec.width, m.file_height = spec.height;
+        if (m.tiff)
+            m.geo = read_geotiff_tags(path, spec.width, spec.height, m.tiff->geo_tags());
+    }
+    // One pass over the file: its voids, and the box of its valid samples (crop_and_fill's).
+    int top = m.file_height, bottom = -1, left = m.file_width, right = -1;
+    std::int64_t voids = 0;
+    const int strip = std::max(1, int((std::int64_t(1) << 20) / m.file_width));
+    for (int a = 0; a < m.file_height; a += strip) {
+        const RawGrid g = m.oriented(a, std::min(m.file_height, a + strip));
+        for (int r = 0; r < g.height; ++r) {
+            const std::uint8_t *row = g.is_void.data() + std::size_t(r) * std::size_t(g.width);
+            const std::uint8_t *first = std::find(row, row + g.width, 0);
+            if (first == row + g.width) {
+                voids += g.width;
+                continue;
+            }
+            int last = g.width - 1;
+            while (row[last])
+                --last;
+            voids += std::count(row, row + g.width, 1);
+            top = std::min(top, a + r), bottom = a + r;
+            left = std::min(left, int(first - row)), right = std::max(right, last);
+        }
+    }
+    if (bottom < 0)
+        throw Error(path, "every sample is a void (nodata); there is no terrain to use");
+    Heightfield &hf = m.grid;
+    hf.voids = voids;
+    const int w = right - left + 1, h = bottom - top + 1;
+    if (w < m.file_width || h < m.file_height) {
+        check_size(path, w, h);
+        hf.cropped = std::int64_t(m.file_width) * m.file_height - std::int64_t(w) * h;
+        m.geo.west += left * m.geo.sx;
+        m.geo.north -= top * m.geo.sy;
+    }
+    m.left = left, m.top = top;
+    // The cropped rows and columns hold only voids.
+    hf.filled = voids - hf.cropped;
+    if (hf.filled > 0 && !options.fill_voids)
+        throw Error(path, std::to_string(hf.filled) + " void samples inside the terrain");
+    RawGrid size;
+    size.width = w, size.height = h;
+    apply_georef(path, m.geo, options, size, hf);
+    hf.width = w, hf.height = h;
+}
+
+DemWindows::~DemWindows() = default;
+
+const Heightfield &DemWindows::grid() const { return impl_->grid; }
+
+std::vector<float> DemWindows::rows(int r0, int r1) const {
+    const Impl &m = *impl_;
+    const int h = m.grid.height, w = m.grid.width;
+    // The cropped grid's rows run north first.
+    const int a = h - r1, b = h - r0;
+    RawGrid g = m.cropped(a, b);
+    if (std::find(g.is_void.begin(), g.is_void.end(), 1) != g.is_void.end()) {
+        // Each strip of k_fill_rows with voids, filled over it and its margins.
+        for (int s = a / k_fill_rows; s * k_fill_rows < b; ++s) {
+            const int sa = s * k_fill_rows, sb = std::min(h, sa + k_fill_rows);
+            const int lo = std::max(a, sa), hi = std::min(b, sb);
+            const auto first = g.is_void.begin() + std::ptrdiff_t(lo - a) * w;
+            if (std::find(first, first + std::ptrdiff_t(hi - lo) * w, 1) == first + (hi - lo) * w)
+                continue;
+            const std::lock_guard<std::mutex> guard(m.fill_lock);
+            if (m.filled_strip != s) {
+                const int wa = std::max(0, sa - k_fill_margin);
+                const int wb = std::min(h, sb + k_fill_margin);
+                RawGrid f = m.cropped(wa, wb);
+                const VoidNumbers voids(f.is_void);
+                ring_fill(f, voids);
+                harmonic_fill(f, voids);
+                m.filled_rows.assign(f.z.begin() + std::ptrdiff_t(sa - wa) * w,
+                                     f.z.begin() + std::ptrdiff_t(sb - wa) * w);
+                m.filled_strip = s;
+            }
+            std::copy(m.filled_rows.begin() + std::ptrdiff_t(lo - sa) * w,
+                      m.filled_rows.begin() + std::ptrdiff_t(hi - sa) * w,
+                      g.z.begin() + std::ptrdiff_t(lo - a) * w);
+        }
+    }
+    mirror(g.z, g.width, g.height, false, true);
+    if (m.options.zscale != 1.0)
+        for (float &z : g.z)
+            z = static_cast<float>(z * m.options.zscale);
+    return std::move(g.z);
+}
+
+std::int64_t raster_samples(const std::string &path) {
+    const std::string ext = lower_extension(path);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw Error(path, "not a regular file");
+    if (ext == ".hgt") {
+        const auto bytes = fs::file_size(path, ec);
+        const auto side = std::int64_t(std::llround(std::sqrt(double(ec ? 0 : bytes) / 2.0)));
+        return side * side;
+    }
+    if (ext == ".tif" || ext == ".tiff")
+        if (const auto tiff = backends::tiff_files().open(path))
+            if (const auto layout = tiff->layout())
+                return std::int64_t(layout->width) * std::int64_t(layout->height);
+    const auto file = backends::image_files().open_raster(path);
+    return std::int64_t(file->spec().width) * file->spec().height;
 }
 
 } // namespace tinlod

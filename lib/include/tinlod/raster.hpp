@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +60,37 @@ struct LoadOptions {
 // allowed, a colour image, georeferencing it cannot honour). Alpha 0 and a PNG's tRNS key are
 // voids, as is the nodata value.
 Heightfield load_heightfield(const std::string &path, const LoadOptions &options = {});
+
+// A DEM read by windows of rows, never whole: what `tinlod tiles` reads when the DEMs exceed its
+// memory (docs/tiles.md, "Memory"). Opening it reads the file once, a strip at a time, to find its
+// voids and the rows and columns of voids at its edges that load_heightfield crops away.
+// .hgt files are read directly, every other raster through OpenImageIO (its scanline reads, which
+// read a tiled file's tiles). Voids are filled by strips of k_fill_rows rows, each filled as
+// load_heightfield fills the whole raster but over the strip and k_fill_margin rows on both
+// sides: a void region within the margin (with a row of valid samples round it) is filled
+// exactly as load_heightfield fills it, a larger one from what the margin shows. Either way a
+// sample's height does not depend on which rows were asked for.
+class DemWindows {
+  public:
+    static constexpr int k_fill_rows = 256;
+    static constexpr int k_fill_margin = 256;
+    // Throws Error naming the file as load_heightfield does (options.terrain_rgb is refused).
+    DemWindows(const std::string &path, const LoadOptions &options);
+    ~DemWindows();
+    DemWindows(const DemWindows &) = delete;
+    DemWindows &operator=(const DemWindows &) = delete;
+    // What load_heightfield would return but the heights (z and void_mask are empty).
+    const Heightfield &grid() const;
+    // Heights of rows [r0, r1) (row 0 south, as a Heightfield's), every column; voids filled.
+    std::vector<float> rows(int r0, int r1) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// Samples of a raster (width * height) from its header, without reading its samples.
+std::int64_t raster_samples(const std::string &path);
 
 // Largest raster we accept (samples); checked before allocating.
 inline constexpr std::int64_t k_max_raster_samples = std::int64_t{1} << 31;

@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ double level_error(int z);
 
 // ---- The coverage: the DEMs as one lattice in longitude and latitude --------------------------
 
+// The posts of a lattice too large for memory, read by bands of rows through the DEMs' windows
+// and kept in a cache of the most recently used bands within a memory budget (coverage.cpp).
+class LatticeBands;
+
 struct GeoLattice {
     double lon0 = 0, lat0 = 0; // degrees (WGS84) of post (0, 0), the south-west one
     double dlon = 0, dlat = 0; // spacing, degrees (> 0)
@@ -61,15 +66,29 @@ struct GeoLattice {
     std::vector<float> z;      // width * height heights, metres, row 0 south; NaN: not covered
     bool resampled = false;    // a DEM was warped onto the lattice (its samples are not posts)
     std::int64_t covered = 0;  // posts that hold a height
+    // Set when the lattice is read by windows: `z` is then empty and the posts come from the
+    // bands, the same heights post for post as the whole lattice would hold.
+    std::shared_ptr<LatticeBands> bands;
 
     double lon(std::int64_t i) const { return lon0 + double(i) * dlon; }
     double lat(std::int64_t j) const { return lat0 + double(j) * dlat; }
     // Height of post (i, j), or NaN outside the lattice or the DEMs.
     float at(std::int64_t i, std::int64_t j) const {
-        return i < 0 || j < 0 || i >= width || j >= height
-                   ? NAN
-                   : z[std::size_t(j) * std::size_t(width) + std::size_t(i)];
+        if (i < 0 || j < 0 || i >= width || j >= height)
+            return NAN;
+        return bands ? band_post(i, j) : z[std::size_t(j) * std::size_t(width) + std::size_t(i)];
     }
+    // Rows of posts that are best read together (a band; the whole lattice when it is held).
+    int rows_together() const;
+
+  private:
+    float band_post(std::int64_t i, std::int64_t j) const;
+};
+
+// How much memory a tile set's run may hold, and what that leaves the lattice.
+struct CoverageMemory {
+    double memory_mb = 0; // the whole run's budget, MiB (0: no bound, the lattice held whole)
+    int threads = 1;      // tiles built at once (each holds its own tile's work)
 };
 
 // Loads the DEMs (load_heightfield: voids filled, each must be georeferenced) as one lattice. When
@@ -78,7 +97,13 @@ struct GeoLattice {
 // finest DEM's spacing in degrees (a geographic DEM's own grid) and each post's height is the
 // bilinear interpolation of the first DEM (in the order given) whose samples surround it, its
 // position transformed into that DEM's CRS with PROJ. Throws Error naming the file at fault.
-GeoLattice load_coverage(const std::vector<std::string> &paths, const LoadOptions &options);
+// Within `memory` the lattice is held whole when it fits, else read by windows (DemWindows) into
+// bands the tiles read (docs/tiles.md, "Memory").
+GeoLattice load_coverage(const std::vector<std::string> &paths, const LoadOptions &options,
+                         const CoverageMemory &memory = {});
+
+// The default memory budget of a run: a share of this machine's physical memory, MiB.
+double default_memory_mb();
 
 // The default deepest level: the first whose tiles are at most 64 of the lattice's finer spacing
 // across (the 65-post heightmap tile CesiumJS's error estimate assumes is then as fine as the

@@ -59,6 +59,12 @@ class RasterFile {
     // faster readers do: OpenImageIO then reads it); throws Error naming the file when the file
     // is bad.
     virtual bool read(SampleType type, void *out) = 0;
+    // Reads rows [y0, y1) alike (every channel, `type` the file's own), and only those, for a
+    // raster read by windows; false when this reader reads only whole images.
+    virtual bool read_window(int y0, int y1, SampleType type, void *out) {
+        (void)y0, (void)y1, (void)type, (void)out;
+        return false;
+    }
 };
 
 // --- OpenImageIO: rasters and images of every format it knows. ---
@@ -136,8 +142,10 @@ class TiffFile {
 class TiffFiles {
   public:
     virtual ~TiffFiles() = default;
-    // nullptr when libtiff cannot open `path` as a TIFF.
-    virtual std::unique_ptr<TiffFile> open(const std::string &path) = 0;
+    // nullptr when libtiff cannot open `path` as a TIFF. `mapped`: libtiff maps the whole file
+    // into memory (its default); a file read by windows is not, so that only the windows it
+    // reads are resident.
+    virtual std::unique_ptr<TiffFile> open(const std::string &path, bool mapped = true) = 0;
 };
 
 // --- libpng: PNG files that are not interlaced. ---

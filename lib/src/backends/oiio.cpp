@@ -125,11 +125,51 @@ class OiioRaster final : public RasterFile {
         }
         return true;
     }
+    bool read_window(int y0, int y1, SampleType type, void *out) override {
+        const QuietStderr quiet;
+        // A tiled file's rows come from the tiles they cross (OpenImageIO reads those tiles).
+        const bool native = type == spec_.type && !spec_.mixed_types;
+        const OIIO::TypeDesc as = native ? OIIO::TypeDesc::UNKNOWN : type_desc(type);
+        const OIIO::ImageSpec &s = in_->spec();
+        bool ok = true;
+        if (s.tile_width > 0 && s.tile_height > 0) {
+            // A tiled file reads whole rows of tiles: those holding rows y0 .. y1 - 1.
+            const int t0 = y0 / s.tile_height * s.tile_height;
+            const int t1 =
+                std::min(s.height, (y1 + s.tile_height - 1) / s.tile_height * s.tile_height);
+            const std::size_t row = std::size_t(s.width) * std::size_t(spec_.channels) *
+                                    std::size_t(type_desc(type).size());
+            // The last rows of tiles read are kept: the next window often falls in them.
+            if (t0 != tiles_from_ || t1 != tiles_to_ || type != tiles_type_) {
+                tiles_from_ = tiles_to_ = -1;
+                tiles_.resize(row * std::size_t(t1 - t0));
+                ok = in_->read_tiles(0, 0, 0, s.width, t0, t1, 0, 1, 0, spec_.channels, as,
+                                     tiles_.data());
+                if (ok)
+                    tiles_from_ = t0, tiles_to_ = t1, tiles_type_ = type;
+            }
+            std::memcpy(out, tiles_.data() + row * std::size_t(y0 - t0),
+                        row * std::size_t(y1 - y0));
+        } else {
+            ok = in_->read_scanlines(0, 0, y0, y1, 0, 0, spec_.channels, as, out);
+        }
+        if (!ok || in_->has_error()) {
+            std::string why = in_->geterror();
+            const auto nl = why.find('\n');
+            throw Error(path_, "cannot read rows " + std::to_string(y0) + " to " +
+                                   std::to_string(y1 - 1) +
+                                   " (truncated or corrupt): " + why.substr(0, nl));
+        }
+        return true;
+    }
 
   private:
     std::string path_;
     std::unique_ptr<OIIO::ImageInput> in_;
     RasterSpec spec_;
+    std::vector<unsigned char> tiles_; // rows tiles_from_ .. tiles_to_ - 1 of tiles, as read
+    int tiles_from_ = -1, tiles_to_ = -1;
+    SampleType tiles_type_ = SampleType::other;
 };
 
 OIIO::ImageBuf wrap(const PixelView &p) {

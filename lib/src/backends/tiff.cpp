@@ -153,24 +153,59 @@ class TiffRaster final : public RasterFile {
         return ok && errors_ == before;
     }
 
+    // Rows [y0, y1): the strips or rows of tiles that hold them, the last one kept (the next
+    // window often falls in it).
+    bool read_window(int y0, int y1, SampleType type, void *out) override {
+        if (type != spec_.type)
+            return false;
+        const int before = errors_;
+        std::uint32_t block = 0;
+        if (TIFFIsTiled(tif_))
+            TIFFGetField(tif_, TIFFTAG_TILELENGTH, &block);
+        else
+            TIFFGetFieldDefaulted(tif_, TIFFTAG_ROWSPERSTRIP, &block);
+        block = std::clamp<std::uint32_t>(block, 1, std::uint32_t(spec_.height));
+        const std::size_t row_bytes = std::size_t(spec_.width) * bytes_;
+        for (std::uint32_t b = std::uint32_t(y0) / block * block; b < std::uint32_t(y1);
+             b += block) {
+            const std::uint32_t rows = std::min(block, std::uint32_t(spec_.height) - b);
+            if (b != block_from_) {
+                block_from_ = std::uint32_t(-1);
+                block_.resize(rows * row_bytes);
+                const bool ok = TIFFIsTiled(tif_) ? read_tiles(block_.data(), b, b + rows)
+                                                  : read_strips(block_.data(), b, b + rows);
+                if (!ok || errors_ != before)
+                    return false;
+                block_from_ = b;
+            }
+            const std::uint32_t lo = std::max(b, std::uint32_t(y0));
+            const std::uint32_t hi = std::min(b + rows, std::uint32_t(y1));
+            std::memcpy(static_cast<unsigned char *>(out) + (lo - std::uint32_t(y0)) * row_bytes,
+                        block_.data() + (lo - b) * row_bytes, (hi - lo) * row_bytes);
+        }
+        return true;
+    }
+
   private:
-    bool read_strips(unsigned char *out) {
+    // Rows [y0, y1) (whole strips) into `out`.
+    bool read_strips(unsigned char *out, std::uint32_t y0 = 0, std::uint32_t y1 = 0) {
         std::uint32_t rows_per_strip = 0;
         TIFFGetFieldDefaulted(tif_, TIFFTAG_ROWSPERSTRIP, &rows_per_strip);
-        const std::uint32_t h = std::uint32_t(spec_.height);
-        rows_per_strip = std::clamp<std::uint32_t>(rows_per_strip, 1, h);
+        const std::uint32_t h = y1 > 0 ? y1 : std::uint32_t(spec_.height);
+        rows_per_strip = std::clamp<std::uint32_t>(rows_per_strip, 1, std::uint32_t(spec_.height));
         const std::size_t row_bytes = std::size_t(spec_.width) * bytes_;
-        for (std::uint32_t row = 0; row < h; row += rows_per_strip) {
+        for (std::uint32_t row = y0; row < h; row += rows_per_strip) {
             const std::uint32_t rows = std::min(rows_per_strip, h - row);
             const tmsize_t want = tmsize_t(rows * row_bytes);
             const tstrip_t strip = TIFFComputeStrip(tif_, row, 0);
-            if (TIFFReadEncodedStrip(tif_, strip, out + row * row_bytes, want) != want)
+            if (TIFFReadEncodedStrip(tif_, strip, out + (row - y0) * row_bytes, want) != want)
                 return false;
         }
         return true;
     }
 
-    bool read_tiles(unsigned char *out) {
+    // Rows [y0, y1) (whole rows of tiles) into `out`.
+    bool read_tiles(unsigned char *out, std::uint32_t y0 = 0, std::uint32_t y1 = 0) {
         std::uint32_t tw = 0, th = 0;
         TIFFGetField(tif_, TIFFTAG_TILEWIDTH, &tw);
         TIFFGetField(tif_, TIFFTAG_TILELENGTH, &th);
@@ -178,15 +213,16 @@ class TiffRaster final : public RasterFile {
         if (tw == 0 || th == 0 || tile_bytes != tmsize_t(std::size_t(tw) * th * bytes_))
             return false;
         std::vector<unsigned char> tile(static_cast<std::size_t>(tile_bytes));
-        const std::uint32_t w = std::uint32_t(spec_.width), h = std::uint32_t(spec_.height);
-        for (std::uint32_t y = 0; y < h; y += th)
+        const std::uint32_t w = std::uint32_t(spec_.width);
+        const std::uint32_t h = y1 > 0 ? y1 : std::uint32_t(spec_.height);
+        for (std::uint32_t y = y0; y < h; y += th)
             for (std::uint32_t x = 0; x < w; x += tw) {
                 if (TIFFReadEncodedTile(tif_, TIFFComputeTile(tif_, x, y, 0, 0), tile.data(),
                                         tile_bytes) != tile_bytes)
                     return false;
                 const std::size_t cols = std::min(tw, w - x) * bytes_;
                 for (std::uint32_t r = 0; r < th && y + r < h; ++r)
-                    std::memcpy(out + ((std::size_t(y) + r) * w + x) * bytes_,
+                    std::memcpy(out + ((std::size_t(y - y0) + r) * w + x) * bytes_,
                                 tile.data() + std::size_t(r) * tw * bytes_, cols);
             }
         return true;
@@ -196,6 +232,8 @@ class TiffRaster final : public RasterFile {
     RasterSpec spec_;
     std::size_t bytes_; // of a sample
     int &errors_;
+    std::vector<unsigned char> block_; // the strip or row of tiles read last, from block_from_
+    std::uint32_t block_from_ = std::uint32_t(-1);
 };
 
 class OpenTiff final : public TiffFile {
@@ -295,7 +333,7 @@ class OpenTiff final : public TiffFile {
 
 class Tiff final : public TiffFiles {
   public:
-    std::unique_ptr<TiffFile> open(const std::string &path) override {
+    std::unique_ptr<TiffFile> open(const std::string &path, bool mapped) override {
         static std::once_flag once;
         std::call_once(once, [] { g_parent_extender = TIFFSetTagExtender(add_geotiff_fields); });
         auto errors = std::make_unique<int>(0);
@@ -303,7 +341,7 @@ class Tiff final : public TiffFiles {
             TIFFOpenOptionsAlloc(), TIFFOpenOptionsFree);
         TIFFOpenOptionsSetErrorHandlerExtR(options.get(), count_message, errors.get());
         TIFFOpenOptionsSetWarningHandlerExtR(options.get(), drop_message, nullptr);
-        TIFF *tif = TIFFOpenExt(path.c_str(), "r", options.get());
+        TIFF *tif = TIFFOpenExt(path.c_str(), mapped ? "r" : "rm", options.get());
         if (!tif)
             return nullptr;
         return std::make_unique<OpenTiff>(tif, std::move(errors));

@@ -1,5 +1,7 @@
 // The tile pyramid: which tiles each level writes, layer.json, and the build over threads
 // (tiles.hpp: write_pyramid).
+#include "post_range.hpp"
+
 #include "tinlod/error.hpp"
 #include "tinlod/tiles.hpp"
 #include "tinlod/util.hpp"
@@ -10,6 +12,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -48,9 +51,10 @@ void clip_span(const TileRange &clip, std::int64_t &x0, std::int64_t &x1, std::i
     y0 = std::max(y0, clip.y0), y1 = std::min(y1, clip.y1);
 }
 
-// `clip` (optional) keeps the tiles written to those addresses (a part of the pyramid).
+// `range` (optional) gives a tile's height range, else it is read from the lattice; `clip`
+// (optional) keeps the tiles written to those addresses (a part of the pyramid).
 LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options,
-                         const TileRange *clip = nullptr) {
+                         const RangeOf &range = {}, const TileRange *clip = nullptr) {
     LevelRanges lr;
     lr.z = z;
     std::int64_t x0, x1, y0, y1;
@@ -62,7 +66,7 @@ LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options,
         for (std::int64_t dx = x0 - 1; dx <= x1 + 1; ++dx) {
             const std::int64_t x = (dx % nx + nx) % nx;
             const TileId id{z, x, y};
-            const HeightRange r = tile_height_range(g, id, options);
+            const HeightRange r = range ? range(id) : tile_height_range(g, id, options);
             lr.ranges[{x, y}] = r;
             if (r.covered && y >= y0 && y <= y1 && dx >= x0 && dx <= x1)
                 lr.written.push_back(id);
@@ -77,6 +81,37 @@ LevelRanges level_ranges(const GeoLattice &g, int z, const TileOptions &options,
         });
     return lr;
 }
+
+// The height ranges of levels up to `last`, the lattice read once: a tile of `last` reads its
+// posts, a coarser one joins its children's (post_range.hpp). Not thread-safe.
+class PyramidRanges {
+  public:
+    PyramidRanges(const GeoLattice &g, int last, const TileOptions &options)
+        : g_(g), last_(last), options_(options), levels_(std::size_t(last + 1)) {}
+
+    HeightRange operator()(const TileId &t) { return tiles::with_fill(posts(t), options_); }
+
+  private:
+    tiles::PostRange posts(const TileId &t) {
+        auto &level = levels_[std::size_t(t.z)];
+        if (const auto it = level.find({t.x, t.y}); it != level.end())
+            return it->second;
+        tiles::PostRange r;
+        if (t.z >= last_ || !tiles::tile_meets_lattice(g_, t)) {
+            r = tiles::tile_post_range(g_, t);
+        } else {
+            for (int k = 0; k < 4; ++k)
+                r.add(posts({t.z + 1, 2 * t.x + (k & 1), 2 * t.y + (k >> 1)}));
+        }
+        level[{t.x, t.y}] = r;
+        return r;
+    }
+
+    const GeoLattice &g_;
+    int last_;
+    TileOptions options_;
+    std::vector<std::map<std::pair<std::int64_t, std::int64_t>, tiles::PostRange>> levels_;
+};
 
 // Rows of tiles as layer.json's rectangles: each row's runs, merged with the row above when they
 // span the same columns.
@@ -247,9 +282,11 @@ PyramidStats write_pyramid(const GeoLattice &g, const std::string &dir,
     PyramidStats stats;
     std::vector<LevelRanges> levels;
     std::int64_t total = 0;
-    for (int z = options.min_zoom; z <= options.max_zoom; ++z) {
-        levels.push_back(level_ranges(g, z, options.tile));
-        total += std::int64_t(levels.back().written.size());
+    // Deepest level first, so that each coarser one joins ranges already read.
+    PyramidRanges ranges(g, options.max_zoom, options.tile);
+    for (int z = options.max_zoom; z >= options.min_zoom; --z) {
+        levels.insert(levels.begin(), level_ranges(g, z, options.tile, std::ref(ranges)));
+        total += std::int64_t(levels.front().written.size());
     }
     StagedFolder stage(dir);
     std::vector<std::vector<TileRange>> available(std::size_t(options.max_zoom + 1));
@@ -295,7 +332,7 @@ static std::vector<LevelRanges> part_levels(const GeoLattice &g, const PyramidOp
         const int d = z - part.root.z;
         const TileRange span{part.root.x << d, ((part.root.x + 1) << d) - 1, part.root.y << d,
                              ((part.root.y + 1) << d) - 1};
-        levels.push_back(level_ranges(g, z, options.tile, &span));
+        levels.push_back(level_ranges(g, z, options.tile, {}, &span));
     }
     return levels;
 }

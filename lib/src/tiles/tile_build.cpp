@@ -10,6 +10,7 @@
 // decode it to the same height.
 #include "../triangle_plane.hpp"
 #include "geodesy.hpp"
+#include "post_range.hpp"
 
 #include "tinlod/decimate.hpp"
 #include "tinlod/error.hpp"
@@ -471,7 +472,6 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
     for (std::int64_t j = j0; j <= j1; ++j)
         pv[std::size_t(j - j0)] = offset_units(g.lat0, g.dlat, j, rect.south, z);
     const auto inside = [](double x) { return x >= 0.0 && x <= double(k_quantized_max); };
-    std::vector<std::uint8_t> seen((i1 - i0 + 1) * (j1 - j0 + 1), 0);
     // The posts' Earth-centred frames (tiles::ecef's terms per column and row) and the vertices'
     // positions as decoded.
     const double e2 =
@@ -494,74 +494,87 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
                         rect.south + double(vs[k].v) / k_quantized_max * (rect.north - rect.south),
                         decoded_height(q, q.codes[k])));
     constexpr double k_eps = 1e-9;
-    for (std::size_t t = 0; t < triangles.size(); t += 3) {
-        std::array<glm::dvec3, 3> c;
-        for (int k = 0; k < 3; ++k) {
-            const Vertex &v = vs[triangles[t + std::size_t(k)]];
-            c[std::size_t(k)] = {double(v.u), double(v.v),
-                                 decoded_height(q, q.codes[triangles[t + std::size_t(k)]])};
-        }
-        const double area2 =
-            (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
-        if (area2 < 0.0)
-            ++m.flipped;
-        if (area2 <= 0.0)
-            continue;
-        const TrianglePlane plane(c[0], c[1], c[2]);
-        const PlaneWeights w = plane_weights(glm::dvec2(c[0]), glm::dvec2(c[1]), glm::dvec2(c[2]));
-        const glm::dvec3 &xa = xyz[triangles[t]], &xb = xyz[triangles[t + 1]],
-                         &xc = xyz[triangles[t + 2]];
-        const double vlo = std::min({c[0].y, c[1].y, c[2].y}),
-                     vhi = std::max({c[0].y, c[1].y, c[2].y});
-        const auto jl = std::lower_bound(pv.begin(), pv.end(), vlo - k_eps) - pv.begin();
-        const auto jh = std::upper_bound(pv.begin(), pv.end(), vhi + k_eps) - pv.begin();
-        for (auto jr = jl; jr < jh; ++jr) {
-            const double y = pv[std::size_t(jr)];
-            if (!inside(y))
-                continue;
-            // The triangle's span on this row: the intersections of its edges with the line.
-            double ulo = INFINITY, uhi = -INFINITY;
+    // By bands of rows, the lattice's (one when it is held whole): a lattice read by windows
+    // then reads each band once, whatever the order of the triangles.
+    const std::int64_t band = g.rows_together();
+    for (std::int64_t b = j0 / band; b <= j1 / band; ++b) {
+        const std::ptrdiff_t band_lo = std::max<std::ptrdiff_t>(0, b * band - j0),
+                             band_hi = std::min<std::ptrdiff_t>(std::ptrdiff_t(pv.size()),
+                                                                (b + 1) * band - j0);
+        // The band's posts some triangle covers.
+        std::vector<bool> seen(std::size_t(band_hi - band_lo) * pu.size(), false);
+        for (std::size_t t = 0; t < triangles.size(); t += 3) {
+            std::array<glm::dvec3, 3> c;
             for (int k = 0; k < 3; ++k) {
-                const glm::dvec3 &p = c[std::size_t(k)], &r = c[std::size_t((k + 1) % 3)];
-                if ((y < std::min(p.y, r.y) - k_eps) || (y > std::max(p.y, r.y) + k_eps))
-                    continue;
-                if (p.y == r.y) {
-                    ulo = std::min({ulo, p.x, r.x}), uhi = std::max({uhi, p.x, r.x});
-                    continue;
-                }
-                const double x =
-                    p.x + (std::clamp(y, std::min(p.y, r.y), std::max(p.y, r.y)) - p.y) /
-                              (r.y - p.y) * (r.x - p.x);
-                ulo = std::min(ulo, x), uhi = std::max(uhi, x);
+                const Vertex &v = vs[triangles[t + std::size_t(k)]];
+                c[std::size_t(k)] = {double(v.u), double(v.v),
+                                     decoded_height(q, q.codes[triangles[t + std::size_t(k)]])};
             }
-            const auto il = std::lower_bound(pu.begin(), pu.end(), ulo - k_eps) - pu.begin();
-            const auto ih = std::upper_bound(pu.begin(), pu.end(), uhi + k_eps) - pu.begin();
-            for (auto ir = il; ir < ih; ++ir) {
-                const double x = pu[std::size_t(ir)];
-                const float h = g.at(i0 + ir, j0 + jr);
-                if (!inside(x) || std::isnan(h))
+            const double area2 =
+                (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
+            if (area2 < 0.0 && b == j0 / band)
+                ++m.flipped;
+            if (area2 <= 0.0)
+                continue;
+            const TrianglePlane plane(c[0], c[1], c[2]);
+            const PlaneWeights w =
+                plane_weights(glm::dvec2(c[0]), glm::dvec2(c[1]), glm::dvec2(c[2]));
+            const glm::dvec3 &xa = xyz[triangles[t]], &xb = xyz[triangles[t + 1]],
+                             &xc = xyz[triangles[t + 2]];
+            const double vlo = std::min({c[0].y, c[1].y, c[2].y}),
+                         vhi = std::max({c[0].y, c[1].y, c[2].y});
+            const auto jl =
+                std::max(band_lo, std::lower_bound(pv.begin(), pv.end(), vlo - k_eps) - pv.begin());
+            const auto jh =
+                std::min(band_hi, std::upper_bound(pv.begin(), pv.end(), vhi + k_eps) - pv.begin());
+            for (auto jr = jl; jr < jh; ++jr) {
+                const double y = pv[std::size_t(jr)];
+                if (!inside(y))
                     continue;
-                seen[std::size_t(jr) * pu.size() + std::size_t(ir)] = 1;
-                m.max_error = std::max(m.max_error, std::abs(plane.height(x, y) - double(h)));
-                const double wa = glm::dot(w.a, glm::dvec3(x, y, 1.0)),
-                             wb = glm::dot(w.b, glm::dvec3(x, y, 1.0));
-                const glm::dvec2 &cl = col_trig[std::size_t(ir)];
-                const glm::dvec3 &rw = row_trig[std::size_t(jr)];
-                const double up = rw.z + double(h);
-                const glm::dvec3 post{up * rw.x * cl.x, up * rw.x * cl.y,
-                                      (rw.z * (1.0 - e2) + double(h)) * rw.y};
-                m.max_drawn = std::max(
-                    m.max_drawn, glm::length(wa * xa + wb * xb + (1.0 - wa - wb) * xc - post));
+                // The triangle's span on this row: the intersections of its edges with the line.
+                double ulo = INFINITY, uhi = -INFINITY;
+                for (int k = 0; k < 3; ++k) {
+                    const glm::dvec3 &p = c[std::size_t(k)], &r = c[std::size_t((k + 1) % 3)];
+                    if ((y < std::min(p.y, r.y) - k_eps) || (y > std::max(p.y, r.y) + k_eps))
+                        continue;
+                    if (p.y == r.y) {
+                        ulo = std::min({ulo, p.x, r.x}), uhi = std::max({uhi, p.x, r.x});
+                        continue;
+                    }
+                    const double x =
+                        p.x + (std::clamp(y, std::min(p.y, r.y), std::max(p.y, r.y)) - p.y) /
+                                  (r.y - p.y) * (r.x - p.x);
+                    ulo = std::min(ulo, x), uhi = std::max(uhi, x);
+                }
+                const auto il = std::lower_bound(pu.begin(), pu.end(), ulo - k_eps) - pu.begin();
+                const auto ih = std::upper_bound(pu.begin(), pu.end(), uhi + k_eps) - pu.begin();
+                for (auto ir = il; ir < ih; ++ir) {
+                    const double x = pu[std::size_t(ir)];
+                    const float h = g.at(i0 + ir, j0 + jr);
+                    if (!inside(x) || std::isnan(h))
+                        continue;
+                    seen[std::size_t(jr - band_lo) * pu.size() + std::size_t(ir)] = true;
+                    m.max_error = std::max(m.max_error, std::abs(plane.height(x, y) - double(h)));
+                    const double wa = glm::dot(w.a, glm::dvec3(x, y, 1.0)),
+                                 wb = glm::dot(w.b, glm::dvec3(x, y, 1.0));
+                    const glm::dvec2 &cl = col_trig[std::size_t(ir)];
+                    const glm::dvec3 &rw = row_trig[std::size_t(jr)];
+                    const double up = rw.z + double(h);
+                    const glm::dvec3 post{up * rw.x * cl.x, up * rw.x * cl.y,
+                                          (rw.z * (1.0 - e2) + double(h)) * rw.y};
+                    m.max_drawn = std::max(
+                        m.max_drawn, glm::length(wa * xa + wb * xb + (1.0 - wa - wb) * xc - post));
+                }
             }
         }
+        for (auto jr = band_lo; jr < band_hi; ++jr)
+            for (std::size_t ir = 0; ir < pu.size(); ++ir)
+                if (inside(pu[ir]) && inside(pv[std::size_t(jr)]) &&
+                    !std::isnan(g.at(i0 + std::int64_t(ir), j0 + jr))) {
+                    ++m.samples;
+                    m.missed += seen[std::size_t(jr - band_lo) * pu.size() + ir] ? 0 : 1;
+                }
     }
-    for (std::size_t jr = 0; jr < pv.size(); ++jr)
-        for (std::size_t ir = 0; ir < pu.size(); ++ir)
-            if (inside(pu[ir]) && inside(pv[jr]) &&
-                !std::isnan(g.at(i0 + std::int64_t(ir), j0 + std::int64_t(jr)))) {
-                ++m.samples;
-                m.missed += seen[jr * pu.size() + ir] ? 0 : 1;
-            }
     return m;
 }
 
@@ -585,29 +598,56 @@ glm::dvec3 dem_normal(const Surface &s, double lon, double lat) {
 
 } // namespace
 
-HeightRange tile_height_range(const GeoLattice &g, const TileId &tile, const TileOptions &options) {
+namespace tiles {
+
+namespace {
+
+// The posts of a tile and the next beyond each edge: [i0, i1] x [j0, j1], unclipped.
+std::array<std::int64_t, 4> post_box(const GeoLattice &g, const TileId &tile) {
     const GeoRect rect = tile_rect(tile);
-    const std::int64_t i0 = std::int64_t(std::ceil((rect.west - g.lon0) / g.dlon)) - 1;
-    const std::int64_t i1 = std::int64_t(std::floor((rect.east - g.lon0) / g.dlon)) + 1;
-    const std::int64_t j0 = std::int64_t(std::ceil((rect.south - g.lat0) / g.dlat)) - 1;
-    const std::int64_t j1 = std::int64_t(std::floor((rect.north - g.lat0) / g.dlat)) + 1;
-    HeightRange r{INFINITY, -INFINITY, false};
-    bool fill = i0 < 0 || j0 < 0 || i1 >= g.width || j1 >= g.height;
+    return {std::int64_t(std::ceil((rect.west - g.lon0) / g.dlon)) - 1,
+            std::int64_t(std::floor((rect.east - g.lon0) / g.dlon)) + 1,
+            std::int64_t(std::ceil((rect.south - g.lat0) / g.dlat)) - 1,
+            std::int64_t(std::floor((rect.north - g.lat0) / g.dlat)) + 1};
+}
+
+} // namespace
+
+PostRange tile_post_range(const GeoLattice &g, const TileId &tile) {
+    const auto [i0, i1, j0, j1] = post_box(g, tile);
+    PostRange r;
+    r.fill = i0 < 0 || j0 < 0 || i1 >= g.width || j1 >= g.height;
     for (std::int64_t j = std::max<std::int64_t>(j0, 0);
          j <= std::min<std::int64_t>(j1, g.height - 1); ++j)
         for (std::int64_t i = std::max<std::int64_t>(i0, 0);
              i <= std::min<std::int64_t>(i1, g.width - 1); ++i) {
-            const float h = g.z[std::size_t(j) * std::size_t(g.width) + std::size_t(i)];
+            const float h = g.at(i, j);
             if (std::isnan(h)) {
-                fill = true;
+                r.fill = true;
                 continue;
             }
             r.covered = true;
             r.lo = std::min(r.lo, double(h)), r.hi = std::max(r.hi, double(h));
         }
-    if (fill || !r.covered)
+    return r;
+}
+
+bool tile_meets_lattice(const GeoLattice &g, const TileId &tile) {
+    const auto [i0, i1, j0, j1] = post_box(g, tile);
+    return i1 >= 0 && i0 < g.width && j1 >= 0 && j0 < g.height;
+}
+
+HeightRange with_fill(const PostRange &p, const TileOptions &options) {
+    HeightRange r{p.lo, p.hi, p.covered};
+    if (p.fill || !p.covered)
         r.lo = std::min(r.lo, options.fill_height), r.hi = std::max(r.hi, options.fill_height);
     return r;
+}
+
+} // namespace tiles
+
+HeightRange tile_height_range(const GeoLattice &g, const TileId &tile, const TileOptions &options) {
+    return tiles::with_fill(tiles::tile_post_range(g, tile), options);
 }
 
 TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &options,
@@ -823,14 +863,21 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
     std::sort(best.north.begin(), best.north.end(), by(best.u, true));
 
     if (options.normals) {
-        for (std::size_t k = 0; k < best.u.size(); ++k) {
+        // From south to north: a lattice read by windows reads each band once.
+        std::vector<std::uint32_t> order(best.u.size());
+        for (std::uint32_t k = 0; k < order.size(); ++k)
+            order[k] = k;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::uint32_t p, std::uint32_t q) { return best.v[p] < best.v[q]; });
+        best.normals.resize(2 * best.u.size());
+        for (const std::uint32_t k : order) {
             const double lon =
                 rect.west + double(best.u[k]) / k_quantized_max * (rect.east - rect.west);
             const double lat =
                 rect.south + double(best.v[k]) / k_quantized_max * (rect.north - rect.south);
             const auto oct = tiles::oct_encode(dem_normal(surface, lon, lat));
-            best.normals.push_back(oct[0]);
-            best.normals.push_back(oct[1]);
+            best.normals[2 * k] = oct[0];
+            best.normals[2 * k + 1] = oct[1];
         }
     }
     return best;
