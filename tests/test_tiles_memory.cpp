@@ -279,3 +279,34 @@ TEST(TilesMemory, DISABLED_WriteBenchDem) {
         return terrain(10.0 + c * step, 47.0 - r * step);
     });
 }
+
+// A tile that the rebuilds leave over its level's error (a rough 4097² DEM's level-7 tiles, with
+// this build) is never silent: the stats count such tiles per level, in agreement with the worst
+// ratio each level reports, and a warning line on stderr names the worst tile.
+TEST(TilesMemory, TilesLeftOverTheirBoundAreReported) {
+    const std::string dem = temp_dir() + "/rough.tif", out = temp_dir() + "/rough",
+                      stats = temp_dir() + "/rough.json";
+    const unsigned n = 4097;
+    const double step = 1.0 / 3600.0;
+    write_tiled_geotiff(dem, n, n, 256, 10.0, 47.0, step, [&](unsigned c, unsigned r) {
+        return terrain(10.0 + c * step, 47.0 - r * step);
+    });
+    const auto r = run_cli("tiles '" + dem + "' --min-zoom 6 --max-zoom 8 -o '" + out +
+                           "' --stats '" + stats + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    std::int64_t over = 0;
+    for (const auto &level : j["levels"]) {
+        EXPECT_EQ(level["over_bound"].get<std::int64_t>() > 0,
+                  level["worst_ratio"].get<double>() > 1.0)
+            << "level " << level["z"];
+        over += level["over_bound"].get<std::int64_t>();
+    }
+    EXPECT_EQ(j["error"]["tiles_over_bound"].get<std::int64_t>(), over);
+    EXPECT_EQ(r.err.find("warning: ") != std::string::npos, over > 0) << r.err;
+    if (over > 0) {
+        EXPECT_NE(r.err.find(std::to_string(over) + " tiles over their level's error"),
+                  std::string::npos)
+            << r.err;
+    }
+}

@@ -174,6 +174,10 @@ struct LevelStats {
     int z = 0;
     std::int64_t tiles = 0, triangles = 0, vertices = 0, bytes = 0, rebuilt = 0;
     double bound = 0.0, max_error = 0.0, worst_ratio = 0.0;
+    // Tiles still over the bound after every rebuild (written as the best build found), and the
+    // tile of the worst ratio.
+    std::int64_t over_bound = 0;
+    TileId worst_tile;
 };
 
 struct PyramidStats {

@@ -199,7 +199,11 @@ build_level(const GeoLattice &g, const LevelRanges &lr, const PyramidOptions &op
                 ls.bytes += std::int64_t(bytes.size());
                 ls.rebuilt += m.builds > 1 ? 1 : 0;
                 ls.max_error = std::max(ls.max_error, m.max_error);
-                ls.worst_ratio = std::max(ls.worst_ratio, m.error_ratio);
+                ls.over_bound += m.error_ratio > 1.0 ? 1 : 0;
+                if (m.error_ratio > ls.worst_ratio || ls.tiles == 1) {
+                    ls.worst_ratio = m.error_ratio;
+                    ls.worst_tile = t;
+                }
             } catch (...) {
                 const std::lock_guard<std::mutex> guard(lock);
                 if (!failure)
