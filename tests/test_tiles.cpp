@@ -24,15 +24,11 @@
 namespace fs = std::filesystem;
 using namespace tinlod;
 using tinlod::test::asset;
+using tinlod::test::file_bytes;
 using tinlod::test::run_cli;
 using tinlod::test::temp_dir;
 
 namespace {
-
-std::string slurp(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // `path` in single quotes for the shell (appended piece by piece: GCC 12 warns, -Wrestrict, a
 // false positive, on the inlined `"'" + std::string`).
@@ -51,7 +47,7 @@ std::pair<int, nlohmann::json> check_tiles(const std::string &dir, const std::st
         std::system(("node '" + script + "' '" + dir + "' " + dems + " > '" + out + "'").c_str());
     nlohmann::json report;
     try {
-        report = nlohmann::json::parse(slurp(out));
+        report = nlohmann::json::parse(file_bytes(out));
     } catch (const std::exception &) {
     }
     return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, report};
@@ -79,7 +75,7 @@ std::string gunzip(const std::string &bytes) {
 
 // The header's minimum and maximum heights (floats at bytes 24 and 28 of the quantized mesh).
 std::pair<float, float> header_heights(const std::string &gz_file) {
-    const std::string raw = gunzip(slurp(gz_file));
+    const std::string raw = gunzip(file_bytes(gz_file));
     float h[2] = {NAN, NAN};
     if (raw.size() >= 32)
         std::memcpy(h, raw.data() + 24, sizeof h);
@@ -124,7 +120,7 @@ TEST(Tiles, SrtmPyramidDecodesWithNoCrackAndEveryDemSampleWithinTheLevelsError) 
     const auto r = run_cli("tiles '" + asset("N42E001.hgt") + "' -o '" + dir +
                            "' --normals --stats '" + dir + ".json'");
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto stats = nlohmann::json::parse(slurp(dir + ".json"));
+    const auto stats = nlohmann::json::parse(file_bytes(dir + ".json"));
     ASSERT_EQ(stats["levels"].size(), 13u);
     for (const auto &level : stats["levels"])
         EXPECT_GT(level["tiles"].get<int>(), 0) << level.dump();
@@ -164,7 +160,8 @@ TEST(Tiles, TileBuiltAloneIsByteIdenticalToTheSameTileOfTheWholeRun) {
         const int z = std::stoi(f.path().parent_path().parent_path().filename().string());
         const TileMesh m = build_tile(lattice, {z, x, y}, options);
         const std::vector<std::uint8_t> bytes = gzip_bytes(encode_quantized_mesh(m));
-        EXPECT_EQ(std::string(bytes.begin(), bytes.end()), slurp(f.path().string())) << f.path();
+        EXPECT_EQ(std::string(bytes.begin(), bytes.end()), file_bytes(f.path().string()))
+            << f.path();
         ++compared;
     }
     EXPECT_GT(compared, 60);
@@ -180,7 +177,7 @@ TEST(Tiles, AdjacentSrtmTilesFormOneCoverageWithNoSeam) {
     const auto r = run_cli("tiles '" + asset("N42E001.hgt") + "' '" + dir + "/N42E002.hgt' -o '" +
                            dir + "/set' --min-zoom 9 --max-zoom 9 --stats '" + dir + "/s.json'");
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto stats = nlohmann::json::parse(slurp(dir + "/s.json"));
+    const auto stats = nlohmann::json::parse(file_bytes(dir + "/s.json"));
     EXPECT_EQ(stats["input"]["nodes"], 2401 * 1201);
     EXPECT_FALSE(stats["input"]["resampled"].get<bool>());
     const auto [rc, report] = check_tiles(dir + "/set", quoted(asset("N42E001.hgt")) + " " +
@@ -198,7 +195,7 @@ TEST(Tiles, DemInAnotherCrsIsResampledAndDecodes) {
     const auto r = run_cli("tiles '" + asset("dem_squared.tif") + "' -o '" + dir +
                            "/set' --stats '" + dir + "/s.json'");
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto stats = nlohmann::json::parse(slurp(dir + "/s.json"));
+    const auto stats = nlohmann::json::parse(file_bytes(dir + "/s.json"));
     EXPECT_TRUE(stats["input"]["resampled"].get<bool>());
     EXPECT_LE(stats["error"]["worst_ratio"].get<double>(), 1.0);
     const auto [rc, report] = check_tiles(dir + "/set", "--no-error");
@@ -296,7 +293,7 @@ TEST(Tiles, ProjectedDemIsWarpedWithProj) {
     const auto r =
         run_cli("tiles '" + dir + "/utm.tif' -o '" + dir + "/set' --stats '" + dir + "/s.json'");
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto stats = nlohmann::json::parse(slurp(dir + "/s.json"));
+    const auto stats = nlohmann::json::parse(file_bytes(dir + "/s.json"));
     EXPECT_TRUE(stats["input"]["resampled"].get<bool>());
     EXPECT_GT(stats["input"]["covered"].get<int>(), 0);
     // 30 m is about 1/3700 of a degree of latitude.
@@ -313,5 +310,5 @@ TEST(Tiles, OutputThatIsAFileIsRefusedAndKept) {
     const auto r = run_cli("tiles '" + asset("dem_srtm30.tif") + "' -o '" + file + "'");
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
-    EXPECT_EQ(slurp(file), "not a folder");
+    EXPECT_EQ(file_bytes(file), "not a folder");
 }

@@ -27,19 +27,11 @@
 namespace fs = std::filesystem;
 using tinlod::test::asset;
 using tinlod::test::file_bytes;
+using tinlod::test::files_under;
 using tinlod::test::run_cli;
 using tinlod::test::temp_dir;
 
 namespace {
-
-// Every file under `dir` (hidden ones too), by its path inside it, with its bytes.
-std::map<std::string, std::string> tree(const std::string &dir) {
-    std::map<std::string, std::string> files;
-    for (const auto &f : fs::recursive_directory_iterator(dir))
-        if (f.is_regular_file())
-            files[fs::relative(f.path(), dir).string()] = file_bytes(f.path().string());
-    return files;
-}
 
 // The files of two trees that differ or are in one only.
 std::vector<std::string> differences(const std::map<std::string, std::string> &a,
@@ -73,7 +65,7 @@ const std::map<std::string, std::string> &whole_run() {
         const std::string dir = temp_dir() + "/whole";
         const auto r = run_cli("--threads 1 tiles " + dem() + " -o " + dir + k_levels);
         EXPECT_EQ(r.status, 0) << r.err;
-        return tree(dir);
+        return files_under(dir);
     }();
     return files;
 }
@@ -206,7 +198,7 @@ TEST(TilesParts, PartsInAnyOrderAndRunTwiceMakeTheWholeRunsTileSet) {
     ASSERT_EQ(r.status, 0) << r.err;
     const auto &whole = whole_run();
     ASSERT_GT(whole.size(), 80u);
-    EXPECT_EQ(differences(whole, tree(dir)), std::vector<std::string>{});
+    EXPECT_EQ(differences(whole, files_under(dir)), std::vector<std::string>{});
 }
 
 TEST(TilesParts, KilledPartLeavesWholeTilesAndItsRerunCompletesTheSet) {
@@ -228,7 +220,7 @@ TEST(TilesParts, KilledPartLeavesWholeTilesAndItsRerunCompletesTheSet) {
     waitpid(pid, &status, 0);
     ASSERT_TRUE(killed) << "the part finished before a tile was in";
     int tiles = 0;
-    for (const auto &[name, bytes] : tree(dir))
+    for (const auto &[name, bytes] : files_under(dir))
         if (fs::path(name).extension() == ".terrain") {
             ++tiles;
             EXPECT_TRUE(whole.count(name) && whole.at(name) == bytes) << name << " is not whole";
@@ -242,7 +234,7 @@ TEST(TilesParts, KilledPartLeavesWholeTilesAndItsRerunCompletesTheSet) {
         ASSERT_EQ(r.status, 0) << part << ": " << r.err;
     }
     ASSERT_EQ(run_cli("tiles " + dem() + " -o " + dir + k_levels + " --layer-only").status, 0);
-    EXPECT_EQ(differences(whole, tree(dir)), std::vector<std::string>{});
+    EXPECT_EQ(differences(whole, files_under(dir)), std::vector<std::string>{});
 }
 
 TEST(TilesParts, PartOutsideTheLevelsIsAUsageError) {
@@ -289,7 +281,7 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
     {
         Process build(dask_build(dir + "/dask", {"--scheduler", address}), dir + "/build.log");
         ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/build.log");
-        EXPECT_EQ(differences(whole, tree(dir + "/dask")), std::vector<std::string>{});
+        EXPECT_EQ(differences(whole, files_under(dir + "/dask")), std::vector<std::string>{});
     }
     {
         Process build(dask_build(dir + "/killed", {"--scheduler", address}), dir + "/killed.log");
@@ -297,7 +289,7 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
             << log_of(dir + "/killed.log");
         workers[0]->kill();
         ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/killed.log");
-        EXPECT_EQ(differences(whole, tree(dir + "/killed")), std::vector<std::string>{});
+        EXPECT_EQ(differences(whole, files_under(dir + "/killed")), std::vector<std::string>{});
         // The scheduler lost the worker with jobs on it, and ran them on the other one.
         const std::string log = dir + "/scheduler.log";
         ASSERT_TRUE(wait_for(log, "Remove worker", 10)) << log_of(log);
@@ -323,7 +315,7 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
         const std::string err = file_bytes(dir + "/failed.log");
         EXPECT_NE(err.find("tinlod_dask: error: part "), std::string::npos) << err;
         EXPECT_NE(err.find(": tinlod: error: x.hgt: cannot read\n"), std::string::npos) << err;
-        EXPECT_EQ(tree(dir + "/kept"),
+        EXPECT_EQ(files_under(dir + "/kept"),
                   (std::map<std::string, std::string>{{"layer.json", "earlier"}}));
     }
 }
@@ -335,5 +327,5 @@ TEST(TilesDask, BuildOnALocalClusterEqualsTheSingleProcessBuild) {
     const std::string dir = temp_dir();
     Process build(dask_build(dir + "/local", {"--local", "2"}), dir + "/local.log");
     ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/local.log");
-    EXPECT_EQ(differences(whole_run(), tree(dir + "/local")), std::vector<std::string>{});
+    EXPECT_EQ(differences(whole_run(), files_under(dir + "/local")), std::vector<std::string>{});
 }

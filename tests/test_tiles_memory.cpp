@@ -25,24 +25,12 @@
 namespace fs = std::filesystem;
 using namespace tinlod;
 using tinlod::test::asset;
+using tinlod::test::file_bytes;
+using tinlod::test::files_under;
 using tinlod::test::run_cli;
 using tinlod::test::temp_dir;
 
 namespace {
-
-std::string slurp(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-// Every file under `dir` (relative path -> bytes).
-std::map<std::string, std::string> files_under(const std::string &dir) {
-    std::map<std::string, std::string> out;
-    for (const auto &e : fs::recursive_directory_iterator(dir))
-        if (e.is_regular_file())
-            out[fs::relative(e.path(), dir).string()] = slurp(e.path().string());
-    return out;
-}
 
 // The two tile sets hold the same files, byte for byte, and more than `at_least` of them.
 void expect_same_files(const std::string &a, const std::string &b, std::size_t at_least) {
@@ -165,7 +153,7 @@ TEST(TilesMemory, SrtmByWindowsMatchesTheWholeLatticeByteForByte) {
 // filled from the strips round them), against the same tile from the whole lattice.
 TEST(TilesMemory, TileOverVoidsBuiltAloneByWindowsIsTheWholeRunsTile) {
     // The first void of the file, and where it stands (N42E001: 1201 x 1201, rows from the north).
-    const std::string raw = slurp(asset("N42E001.hgt"));
+    const std::string raw = file_bytes(asset("N42E001.hgt"));
     std::size_t k = 0;
     while (k < raw.size() / 2 &&
            std::int16_t((std::uint8_t(raw[2 * k]) << 8) | std::uint8_t(raw[2 * k + 1])) != -32768)
@@ -216,7 +204,7 @@ TEST(TilesMemory, TiledGeotiffsSplitTwoByTwoByWindowsMatchTheWholeLattice) {
     ASSERT_EQ(a.status, 0) << a.err;
     const auto b = run_cli("tiles" + dems + " -o '" + windows + "' --memory-mb 1");
     ASSERT_EQ(b.status, 0) << b.err;
-    const auto stats = nlohmann::json::parse(slurp(whole + ".json"));
+    const auto stats = nlohmann::json::parse(file_bytes(whole + ".json"));
     EXPECT_EQ(stats["input"]["nodes"].get<std::int64_t>(), 601 * 601);
     EXPECT_FALSE(stats["input"]["resampled"].get<bool>());
     expect_same_files(whole, windows, 20);
@@ -233,7 +221,8 @@ TEST(TilesMemory, ProjectedDemWarpedByWindowsMatchesTheWholeLattice) {
     const std::string whole = dir + "/whole", windows = dir + "/windows";
     const auto a = run_cli("tiles '" + dem + "' -o '" + whole + "' --stats '" + whole + ".json'");
     ASSERT_EQ(a.status, 0) << a.err;
-    EXPECT_TRUE(nlohmann::json::parse(slurp(whole + ".json"))["input"]["resampled"].get<bool>());
+    EXPECT_TRUE(
+        nlohmann::json::parse(file_bytes(whole + ".json"))["input"]["resampled"].get<bool>());
     const auto b = run_cli("tiles '" + dem + "' -o '" + windows + "' --memory-mb 1");
     ASSERT_EQ(b.status, 0) << b.err;
     expect_same_files(whole, windows, 20);
@@ -294,7 +283,7 @@ TEST(TilesMemory, TilesLeftOverTheirBoundAreReported) {
     const auto r = run_cli("tiles '" + dem + "' --min-zoom 6 --max-zoom 8 -o '" + out +
                            "' --stats '" + stats + "'");
     ASSERT_EQ(r.status, 0) << r.err;
-    const nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    const nlohmann::json j = nlohmann::json::parse(file_bytes(stats));
     std::int64_t over = 0;
     for (const auto &level : j["levels"]) {
         EXPECT_EQ(level["over_bound"].get<std::int64_t>() > 0,

@@ -68,6 +68,14 @@ static std::string slurp(const fs::path &p) {
 
 std::string file_bytes(const std::string &path) { return slurp(path); }
 
+std::map<std::string, std::string> files_under(const std::string &dir) {
+    std::map<std::string, std::string> files;
+    for (const auto &f : fs::recursive_directory_iterator(dir))
+        if (f.is_regular_file())
+            files[fs::relative(f.path(), dir).string()] = slurp(f.path().string());
+    return files;
+}
+
 std::string geotiff_bytes(const std::vector<std::pair<unsigned, std::vector<double>>> &georef,
                           const std::vector<unsigned> &keys, const std::string &nodata) {
     std::string b = "II*";

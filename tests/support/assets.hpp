@@ -8,6 +8,7 @@
 #include <sys/types.h>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,8 @@ Heightfield crop(const Heightfield &hf, int x0, int y0, int w, int h);
 std::string temp_dir();
 // The bytes of the file at `path` (empty when it cannot be read).
 std::string file_bytes(const std::string &path);
+// Every file under `dir` (hidden ones too), by its path inside it, with its bytes.
+std::map<std::string, std::string> files_under(const std::string &dir);
 
 // The bytes of a 2 x 2 int16 GeoTIFF (heights 100, 200 in the north row, 300, 400 in the south):
 // `georef` holds TIFF tags with their doubles, in ascending tag order (33550 pixel scale, 33922
