@@ -320,12 +320,14 @@ TEST(TilesDask, BuildOnASchedulerWithAndWithoutAKilledWorkerEqualsTheSingleProce
     }
 }
 
-// `--local 2`: the same build on a local cluster the driver starts itself.
+// `--local 2`: the same build on a local cluster the driver starts itself, each job within
+// `--memory-mb 1` (its DEM read by windows).
 TEST(TilesDask, BuildOnALocalClusterEqualsTheSingleProcessBuild) {
     if (!dask_installed())
         FAIL() << k_python << " has no Dask: run scripts/setup.sh (python3-distributed)";
     const std::string dir = temp_dir();
-    Process build(dask_build(dir + "/local", {"--local", "2"}), dir + "/local.log");
+    Process build(dask_build(dir + "/local", {"--local", "2", "--memory-mb", "1"}),
+                  dir + "/local.log");
     ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/local.log");
     EXPECT_EQ(differences(whole_run(), files_under(dir + "/local")), std::vector<std::string>{});
 }

@@ -48,6 +48,10 @@ def parse(argv):
     tiles.add_argument("--max-zoom", type=int, metavar="Z")
     tiles.add_argument("--normals", action="store_true")
     tiles.add_argument("--fill-height", metavar="H")
+    tiles.add_argument("--memory-mb", metavar="M",
+                       help="memory each job may hold, MiB (tinlod tiles --memory-mb; default "
+                       "tinlod's, half of the machine's memory per job: give the worker "
+                       "machine's memory over its jobs at once)")
     where = tiles.add_mutually_exclusive_group(required=True)
     where.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                        help="a running Dask scheduler")
@@ -78,6 +82,8 @@ def tile_options(args, max_zoom):
         opts.append("--normals")
     if args.fill_height is not None:
         opts += ["--fill-height", args.fill_height]
+    if args.memory_mb is not None:
+        opts += ["--memory-mb", args.memory_mb]
     return opts
 
 
