@@ -169,26 +169,31 @@ int hgt_georef(const std::string &path, const LoadOptions &options, Georef &geo)
     return n;
 }
 
+// `count` heights of an .hgt into `out`, from sample `first` on (file order), a block at a time:
+// the file's bytes are never held whole beside the heights.
+void read_hgt_samples(const std::string &path, std::size_t first, std::size_t count, float *out) {
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(std::streamoff(2 * first));
+    std::vector<unsigned char> block(std::size_t(1) << 16);
+    for (std::size_t done = 0; done < count;) {
+        const std::size_t n = std::min(count - done, block.size() / 2);
+        if (!in.read(reinterpret_cast<char *>(block.data()), std::streamsize(2 * n)))
+            throw Error(path, "cannot read file");
+        for (std::size_t i = 0; i < n; ++i)
+            out[done + i] = static_cast<std::int16_t>((block[2 * i] << 8) | block[2 * i + 1]);
+        done += n;
+    }
+}
+
 RawGrid read_hgt(const std::string &path, const LoadOptions &options, Georef &geo) {
     const int n = hgt_georef(path, options, geo);
     check_memory(path, options, n, n, 1, 2);
-    // Read a block at a time: the file's bytes are never held whole beside the heights.
-    std::ifstream in(path, std::ios::binary);
     const std::size_t samples = std::size_t(n) * n;
-    std::vector<unsigned char> block(std::size_t(1) << 16);
     RawGrid g;
     g.width = g.height = n;
     reserve_mapped(g.z, samples);
     g.z.resize(samples);
-    for (std::size_t done = 0; done < samples;) {
-        const std::size_t count = std::min(samples - done, block.size() / 2);
-        if (!in.read(reinterpret_cast<char *>(block.data()), std::streamsize(2 * count)))
-            throw Error(path, "cannot read file");
-        float *out = g.z.data() + done;
-        for (std::size_t i = 0; i < count; ++i)
-            out[i] = static_cast<std::int16_t>((block[2 * i] << 8) | block[2 * i + 1]);
-        done += count;
-    }
+    read_hgt_samples(path, 0, samples, g.z.data());
     return g;
 }
 
@@ -995,13 +1000,7 @@ struct DemWindows::Impl {
                   fb = geo.flip_rows ? file_height - a : b;
         const std::lock_guard<std::mutex> guard(lock);
         if (hgt) {
-            std::vector<unsigned char> bytes(2 * n);
-            std::ifstream in(path, std::ios::binary);
-            in.seekg(std::streamoff(2) * fa * file_width);
-            if (!in.read(reinterpret_cast<char *>(bytes.data()), std::streamsize(bytes.size())))
-                throw Error(path, "cannot read file");
-            for (std::size_t i = 0; i < n; ++i)
-                g.z[i] = static_cast<std::int16_t>((bytes[2 * i] << 8) | bytes[2 * i + 1]);
+            read_hgt_samples(path, std::size_t(fa) * std::size_t(file_width), n, g.z.data());
         } else {
             const int height = alpha == 0 ? 1 : 0;
             const auto heights = [&](auto tag) {
