@@ -169,15 +169,40 @@ bool wait_for(const std::string &path, const std::string &text, double seconds) 
 
 // `python3 -m tinlod_dask tiles` of the tests' pyramid into `out`, on `where` (--scheduler ADDRESS
 // or --local N), its stderr to `log`.
-std::vector<std::string> dask_build(const std::string &out, const std::vector<std::string> &where) {
+std::vector<std::string> dask_build(const std::string &out, const std::vector<std::string> &where,
+                                    const std::string &tinlod = TINLOD_CLI) {
     std::vector<std::string> argv = {
         k_python, "-m",         "tinlod_dask", "tiles",     asset("N42E001.hgt"), "-o",
-        out,      "--max-zoom", "10",          "--normals", "--tinlod",           TINLOD_CLI};
+        out,      "--max-zoom", "10",          "--normals", "--tinlod",           tinlod};
     argv.insert(argv.end(), where.begin(), where.end());
     return argv;
 }
 
 std::string log_of(const std::string &path) { return path + ":\n" + file_bytes(path); }
+
+// An executable shell script at `path` standing in for tinlod: `--plan` and `--layer-only` go to
+// the real one; a `--part SPEC` job appends SPEC to `path`.jobs, then runs `part` (shell code that
+// sees SPEC in $spec and the real binary in $tinlod).
+void write_stand_in(const std::string &path, const std::string &part) {
+    std::ofstream(path) << "#!/bin/sh\n"
+                        << "tinlod='" << TINLOD_CLI << "'\n"
+                        << "spec=\n"
+                        << "prev=\n"
+                        << "for a in \"$@\"; do [ \"$prev\" = --part ] && spec=$a; prev=$a; done\n"
+                        << "[ -z \"$spec\" ] && exec \"$tinlod\" \"$@\"\n"
+                        << "echo \"$spec\" >> '" << path << ".jobs'\n"
+                        << part << "\n";
+    fs::permissions(path, fs::perms::owner_all);
+}
+
+// The lines of a file, counted.
+std::map<std::string, int> line_counts(const std::string &path) {
+    std::map<std::string, int> counts;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);)
+        ++counts[line];
+    return counts;
+}
 
 } // namespace
 
@@ -330,4 +355,43 @@ TEST(TilesDask, BuildOnALocalClusterEqualsTheSingleProcessBuild) {
                   dir + "/local.log");
     ASSERT_EQ(build.wait(90), 0) << log_of(dir + "/local.log");
     EXPECT_EQ(differences(whole_run(), files_under(dir + "/local")), std::vector<std::string>{});
+}
+
+// A job tinlod refuses with its own error line fails the same way on any worker: the run ends with
+// that line after one try of the job, however many --retries (Dask retried such jobs before).
+TEST(TilesDask, JobRefusedByTinlodEndsTheRunWithoutRetries) {
+    if (!dask_installed())
+        FAIL() << k_python << " has no Dask: run scripts/setup.sh (python3-distributed)";
+    const std::string dir = temp_dir(), stand_in = dir + "/refusing-tinlod";
+    write_stand_in(stand_in, "echo \"tinlod: error: $spec: refused by the stand-in\" >&2; exit 1");
+    Process build(dask_build(dir + "/refused", {"--local", "1", "--retries", "3"}, stand_in),
+                  dir + "/refused.log");
+    ASSERT_EQ(build.wait(90), 1) << log_of(dir + "/refused.log");
+    EXPECT_NE(file_bytes(dir + "/refused.log").find("refused by the stand-in"), std::string::npos)
+        << log_of(dir + "/refused.log");
+    const auto tries = line_counts(stand_in + ".jobs");
+    ASSERT_FALSE(tries.empty());
+    for (const auto &[spec, count] : tries)
+        EXPECT_EQ(count, 1) << "part " << spec << " ran " << count << " times";
+    EXPECT_FALSE(fs::exists(dir + "/refused"));
+}
+
+// A job whose tinlod dies (here: SIGKILL on its first try, as the kernel's OOM killer would) runs
+// again, and the set is the single-process build's.
+TEST(TilesDask, JobWhoseTinlodDiesRunsAgain) {
+    if (!dask_installed())
+        FAIL() << k_python << " has no Dask: run scripts/setup.sh (python3-distributed)";
+    const std::string dir = temp_dir(), stand_in = dir + "/dying-tinlod";
+    write_stand_in(stand_in, "mark='" + dir +
+                                 "/died-'$(echo \"$spec\" | tr / _)\n"
+                                 "[ -e \"$mark\" ] || { touch \"$mark\"; kill -KILL $$; }\n"
+                                 "exec \"$tinlod\" \"$@\"");
+    Process build(dask_build(dir + "/died", {"--local", "1", "--cut-zoom", "8"}, stand_in),
+                  dir + "/died.log");
+    ASSERT_EQ(build.wait(120), 0) << log_of(dir + "/died.log");
+    const auto tries = line_counts(stand_in + ".jobs");
+    ASSERT_FALSE(tries.empty());
+    for (const auto &[spec, count] : tries)
+        EXPECT_EQ(count, 2) << "part " << spec << " ran " << count << " times";
+    EXPECT_EQ(differences(whole_run(), files_under(dir + "/died")), std::vector<std::string>{});
 }

@@ -63,7 +63,8 @@ def parse(argv):
     tiles.add_argument("--cut-zoom", type=int, metavar="Z",
                        help="the level the jobs' subtrees start from (default: plan.choose_cut)")
     tiles.add_argument("--retries", type=int, default=2, metavar="N",
-                       help="times a failed job is run again (default 2)")
+                       help="times a job whose tinlod or worker died is run again (default 2); "
+                       "a job tinlod refuses with its own error line is not")
     args = parser.parse_args(argv)
     if args.local is not None and args.local < 1:
         parser.error("--local: at least 1 worker")
@@ -143,12 +144,15 @@ def run_jobs(client, tinlod, dems, stage, opts, specs, retries):
     try:
         for future in as_completed(futures):
             if future.status != "finished":
-                # "error": the job's last try raised (its tinlod line, or Dask's KilledWorker
-                # after its workers died); otherwise the scheduler cancelled or lost it.
+                # "error": the job's last try died (JobFailed, or Dask's KilledWorker after its
+                # workers died); otherwise the scheduler cancelled or lost it.
                 error = future.exception() if future.status == "error" else future.status
                 raise Failure(f"part {spec_of[future.key]}: {error}")
+            seconds, refused = future.result()
+            if refused:
+                raise Failure(f"part {spec_of[future.key]}: {refused}")
             done_jobs += 1
-            job_seconds += future.result()
+            job_seconds += seconds
             done_tiles += tiles_of[future.key]
             line = f"{PROG}: {done_jobs}/{len(futures)} jobs, {done_tiles}/{total} tiles"
             print("\r" + line if tty else line, end="" if tty else "\n", file=sys.stderr,

@@ -10,14 +10,16 @@ import time
 
 
 class JobFailed(RuntimeError):
-    """A job's tinlod run failed; the message is the tool's own error line."""
+    """A job's tinlod run died; the message says how."""
 
 
 def run_part(command):
-    """Runs ``command`` (a ``tinlod tiles ... --part SPEC`` argument list); returns its seconds.
+    """Runs ``command`` (a ``tinlod tiles ... --part SPEC`` argument list).
 
-    Raises JobFailed with tinlod's last stderr line (its ``tinlod: error: ...``) when it fails, so
-    that Dask retries the job and the driver reports that line.
+    Returns ``(seconds, None)``, or ``(None, line)`` when tinlod refused the job with its own
+    ``tinlod: error: ...`` line (exit status 1 or 2): the same job fails the same way anywhere, so
+    it is returned rather than raised, and Dask does not retry it. A tinlod killed by a signal (the
+    kernel's OOM killer, a machine going down) raises JobFailed: Dask runs that job again.
     """
     start = time.monotonic()
     # Killed with the worker (setpriv's parent-death signal), as on a machine that went down: a
@@ -26,11 +28,11 @@ def run_part(command):
         command = ["setpriv", "--pdeathsig", "KILL", *command]
     run = subprocess.run(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                          stderr=subprocess.PIPE, text=True, errors="replace", check=False)
-    if run.returncode != 0:
+    if run.returncode in (1, 2):
         lines = [line for line in run.stderr.splitlines() if line.strip()]
-        if lines:
-            raise JobFailed(lines[-1].strip())
-        if run.returncode < 0:
-            raise JobFailed(f"tinlod killed by {signal.Signals(-run.returncode).name}")
+        return None, lines[-1].strip() if lines else f"tinlod exited with status {run.returncode}"
+    if run.returncode < 0:
+        raise JobFailed(f"tinlod killed by {signal.Signals(-run.returncode).name}")
+    if run.returncode != 0:
         raise JobFailed(f"tinlod exited with status {run.returncode}")
-    return time.monotonic() - start
+    return time.monotonic() - start, None
