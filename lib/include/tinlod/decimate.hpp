@@ -222,7 +222,9 @@ struct DemEraseOptions {
     // first, when a probe on a coarser lattice says it keeps few enough samples (about half or
     // less, where it is faster than the erase from the grid); should it still pass this share of
     // the samples, it stops and the erase starts from the full grid (0: always from the grid).
-    double greedy_cap = 0.6;
+    // All of them by default: an insertion the probe let through that ends keeps fewer triangles
+    // than the grid's erase for about its time (docs/decisions/028-fewest-2.md).
+    double greedy_cap = 1.0;
 };
 
 // What the erase of erase_dem started from.

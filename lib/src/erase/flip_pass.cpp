@@ -68,11 +68,11 @@ Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
 // whose doubled lattice areas against the sides (a, b), (b, c), (c, a) are s0, s1, s2 (each >= 0,
 // their sum > 0): the plane's height from its exact barycentric weights, as the erase's
 // over_every_triangle has it, times the area (no division).
-bool near_plane(std::int64_t s0, std::int64_t s1, std::int64_t s2, double za, double zb, double zc,
-                double z, double stop) {
-    const double area = double(s0 + s1 + s2);
-    return std::abs(z * area - (za * double(s1) + zb * double(s2) + zc * double(s0))) <=
-           stop * area;
+// The areas come as doubles (exact: lattice areas are far under 2^53), converted once per pair.
+bool near_plane(double s0, double s1, double s2, double za, double zb, double zc, double z,
+                double stop) {
+    const double area = s0 + s1 + s2;
+    return std::abs(z * area - (za * s1 + zb * s2 + zc * s0)) <= stop * area;
 }
 
 // The pass's state: the TIN, the lattice, and the scratch of one node's try.
@@ -171,19 +171,19 @@ class Pass {
         if (z - hi > stop || lo - z > stop)
             return false;
         // side[a][b]: twice the signed area of (node a, node b, the sample), lattice units.
-        std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> side;
+        std::array<std::array<double, k_max_ring>, k_max_ring> side;
         for (std::size_t a = 0; a < n; ++a)
             for (std::size_t b = a + 1; b < n; ++b) {
-                side[a][b] = rx[a] * ry[b] - ry[a] * rx[b];
+                side[a][b] = double(rx[a] * ry[b] - ry[a] * rx[b]);
                 side[b][a] = -side[a][b];
             }
         for (std::size_t a = 0; a < n; ++a)
             for (std::size_t b = a + 1; b < n; ++b) {
-                if (side[a][b] < 0)
+                if (side[a][b] < 0.0)
                     continue;
                 for (std::size_t c = b + 1; c < n; ++c) {
-                    const std::int64_t s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
-                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                    const double s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
+                    if (s1 < 0.0 || s2 < 0.0 || s0 + s1 + s2 <= 0.0)
                         continue;
                     if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop))
                         return true;
@@ -321,8 +321,8 @@ class Pass {
                     const std::int64_t s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
                     if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
                         continue;
-                    if (!near_plane(s0, s1, s2, p_[std::size_t(a)].z, p_[std::size_t(b)].z,
-                                    p_[std::size_t(c)].z, z, stop))
+                    if (!near_plane(double(s0), double(s1), double(s2), p_[std::size_t(a)].z,
+                                    p_[std::size_t(b)].z, p_[std::size_t(c)].z, z, stop))
                         continue;
                     bool empty = true;
                     for (int j = 0; j < n && empty; ++j)
