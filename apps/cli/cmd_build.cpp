@@ -69,7 +69,8 @@ static Register build("build", 20, [](CLI::App &cmd) {
         double ms_build = 0.0;
         std::int64_t tree_nodes = 0;
         GridFrame grid;
-        if (by_windows(args->input, memory_mb)) {
+        const bool windows = by_windows(args->input, memory_mb);
+        if (windows) {
             const DemWindows dem(args->input, args->raster.load_options());
             const Heightfield &hf = dem.grid();
             grid = {hf.width, hf.height, hf.dx, hf.dy, hf.origin_x, hf.origin_y, hf.crs};
@@ -113,7 +114,8 @@ static Register build("build", 20, [](CLI::App &cmd) {
                                       {{"file", args->input},
                                        {"nodes", samples},
                                        {"width", grid.width},
-                                       {"height", grid.height}}},
+                                       {"height", grid.height},
+                                       {"read", windows ? "by windows" : "whole"}}},
                                      {"output",
                                       {{"file", args->output},
                                        {"bytes", store.file_bytes()},
