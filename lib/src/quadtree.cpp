@@ -645,6 +645,31 @@ QuadTreeLod::QuadTreeLod(const QuadTree &tree)
 QuadTreeLod::QuadTreeLod(std::unique_ptr<NodeSource> source)
     : impl_(std::make_unique<Impl>(std::move(source))) {}
 
+namespace {
+
+// A source the traversal reads but does not own.
+class BorrowedSource final : public NodeSource {
+  public:
+    explicit BorrowedSource(NodeSource &source) : s_(source) {}
+    const QuadLayout &layout() const override { return s_.layout(); }
+    const GridFrame &frame() const override { return s_.frame(); }
+    NodeBound bound(int d, std::uint32_t i, std::uint32_t j) override { return s_.bound(d, i, j); }
+    float vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
+                   std::uint32_t r) override {
+        return s_.vertex_z(d, i, j, c, r);
+    }
+    void begin_retrieval() override { s_.begin_retrieval(); }
+    void end_retrieval() override { s_.end_retrieval(); }
+
+  private:
+    NodeSource &s_;
+};
+
+} // namespace
+
+QuadTreeLod::QuadTreeLod(NodeSource &source)
+    : impl_(std::make_unique<Impl>(std::make_unique<BorrowedSource>(source))) {}
+
 QuadTreeLod::~QuadTreeLod() = default;
 
 const Retrieval &QuadTreeLod::retrieve(const View &view, const RetrieveOptions &options) {
