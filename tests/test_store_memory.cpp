@@ -1,5 +1,6 @@
 // `tinlod build` within --memory-mb (issue #49, item 1): past the memory given, the DEM is read by
-// windows and the store written tile by tile, the same bytes as the whole-raster build.
+// windows and the store written tile by tile, the same bytes as the whole-raster build; `simplify
+// STORE` retrieves from the store's bounds.
 #include "assets.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/store.hpp"
@@ -58,8 +59,8 @@ struct Built {
 Built build(const std::string &dem, const std::string &options, const std::string &name) {
     const std::string store = temp_dir() + "/" + name + ".tlq",
                       stats = temp_dir() + "/" + name + ".json";
-    const RunResult r = run_cli("build '" + dem + "' -o '" + store + "' --stats '" + stats +
-                                "' " + options);
+    const RunResult r =
+        run_cli("build '" + dem + "' -o '" + store + "' --stats '" + stats + "' " + options);
     EXPECT_EQ(r.status, 0) << r.err;
     if (r.status != 0)
         return {};
@@ -91,8 +92,8 @@ TEST(StoreMemory, BuildByWindowsEqualsWholeBuildOnTiledTiff) {
     expect_same_store(dem, "tiled");
 }
 
-// Thin and tiny grids, in bands of one or several tile rows: one-cell-wide nodes above the tiles spanning many
-// bands, a single tile, no node bounds at all.
+// Thin and tiny grids, in bands of one or several tile rows: one-cell-wide nodes above the tiles
+// spanning many bands, a single tile, no node bounds at all.
 TEST(StoreMemory, StoreByRowsEqualsStoreOfTheTreeOnOddShapes) {
     const std::pair<int, int> shapes[] = {{2, 2},    {3, 200},   {300, 7},  {2, 300},
                                           {1000, 3}, {257, 129}, {130, 517}};
@@ -140,4 +141,23 @@ TEST(StoreMemory, BuildByWindowsHoldsLessThanTheRaster) {
     const double whole_mb = whole.stats["peak_rss_mb"], windows_mb = windows.stats["peak_rss_mb"];
     EXPECT_LT(windows_mb + heights_mb, whole_mb)
         << "by windows " << windows_mb << " MB, whole " << whole_mb << " MB";
+}
+
+// simplify STORE with a camera retrieves from the store's bounds, its tiles through a cache of
+// --cache-mb (1 MiB: tiles evicted between the retrievals of a budget's search): the TIN the DEM
+// gives, node for node, with a bound and with a budget.
+TEST(StoreMemory, SimplifyStoreGivesTheDemsTin) {
+    const std::string dem = asset("N42E001.hgt"), store = temp_dir() + "/simplify.tlq";
+    ASSERT_EQ(run_cli("build '" + dem + "' -o '" + store + "'").status, 0);
+    const std::string view = " --eye 41000,50000,20000 --at 41000,55000,980 ";
+    for (const std::string mode : {"--tol 1", "--max-nodes 3000"}) {
+        const std::string from_dem = temp_dir() + "/from-dem.ply",
+                          from_store = temp_dir() + "/from-store.ply";
+        const RunResult a = run_cli("simplify '" + dem + "'" + view + mode + " -o " + from_dem);
+        const RunResult b =
+            run_cli("simplify '" + store + "'" + view + mode + " --cache-mb 1 -o " + from_store);
+        ASSERT_EQ(a.status, 0) << a.err;
+        ASSERT_EQ(b.status, 0) << b.err;
+        EXPECT_TRUE(file_bytes(from_dem) == file_bytes(from_store)) << mode << ": the TINs differ";
+    }
 }

@@ -81,8 +81,8 @@ static Register build("build", 20, [](CLI::App &cmd) {
                 std::int64_t(std::max(memory_mb - k_fixed_mb, 1.0) * k_mib / 4.0);
             Progress bar("build ", 2 * std::int64_t(grid.height - 1));
             write_store_by_rows(
-                grid, [&dem](int r0, int r1) { return dem.rows(r0, r1); }, band_bytes,
-                args->output, &bar);
+                grid, [&dem](int r0, int r1) { return dem.rows(r0, r1); }, band_bytes, args->output,
+                &bar);
             bar.finish();
             ms_build = times.lap("build");
             const QuadLayout layout(grid.width, grid.height);

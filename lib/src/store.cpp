@@ -3,8 +3,8 @@
 // a cache that drops the least recently used tiles (madvise) beyond its cap.
 #include "tinlod/store.hpp"
 
-#include "tinlod/error.hpp"
 #include "node_bound.hpp"
+#include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
 
 #include <fcntl.h>
@@ -415,8 +415,8 @@ NodeBound band_tile(const QuadLayout &lay, const StoreGeometry &g, const GridRow
     // The bounds of level d sit at the tile's offset for it, row-major over its descendants.
     auto slot = [&](int d, std::uint32_t i, std::uint32_t j) {
         return tile.data() + g.level_offset[t * g.tile_levels + (d - tl - 1)] +
-               sizeof(NodeBound) *
-                   (std::size_t{j - g.ay.first[d][tj]} * g.ax.count[d][ti] + (i - g.ax.first[d][ti]));
+               sizeof(NodeBound) * (std::size_t{j - g.ay.first[d][tj]} * g.ax.count[d][ti] +
+                                    (i - g.ax.first[d][ti]));
     };
     auto stored = [&](int d) {
         return [&, d](std::uint32_t i, std::uint32_t j) {
@@ -440,7 +440,8 @@ NodeBound band_tile(const QuadLayout &lay, const StoreGeometry &g, const GridRow
     }
     if (tl > levels - 2)
         return {};
-    return node_bound(lay, tl, ti, tj, own_bound(rows, x0, x1, y0, y1, y0, y1, tl + 1 >= levels - 1),
+    return node_bound(lay, tl, ti, tj,
+                      own_bound(rows, x0, x1, y0, y1, y0, y1, tl + 1 >= levels - 1),
                       stored(tl + 1));
 }
 
@@ -518,8 +519,8 @@ void write_store_by_rows(const GridFrame &fr, const GridRowReader &read, std::in
             // Levels above the tiles: their nodes' own errors over the band's rows.
             for (int d = 0; d < tl; ++d) {
                 const std::uint32_t nx = lay.x.count(d);
-                // The nodes with a cell in the band: one that only touches its first or last
-                // row has that row in the next band or the last.
+                // The nodes with a cell in the band; one that meets it in a single row (its
+                // first or its last) has that row in the band before or after as well.
                 const std::uint32_t j0 = lay.y.interval_of(d, rows.r0);
                 const std::uint32_t j1 = lay.y.interval_of(d, rows.r1 - 1);
                 split_over_threads(nx, [&](std::uint32_t a, std::uint32_t b) {
