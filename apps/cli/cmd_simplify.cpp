@@ -11,6 +11,7 @@
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/store.hpp"
 #include "tinlod/util.hpp"
 
 #include <cmath>
@@ -47,6 +48,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         double max_error = 0.0;
         std::int64_t max_nodes = 0, max_triangles = 0;
         double retrieve_share = DemEraseOptions{}.retrieve_share;
+        double cache_mb = StoreOptions{}.cache_mb;
         CameraOptions camera;
         RasterOptions raster;
     };
@@ -90,6 +92,10 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                        "the terrain)")
             ->check(real_in(0.0, 1.0))
             ->capture_default_str();
+    cmd.add_option("--cache-mb", args->cache_mb,
+                   "store input with a camera: store tiles the retrieval keeps in memory, MiB")
+        ->check(real_in(0.0, INFINITY))
+        ->capture_default_str();
     args->camera.add(cmd, false);
     args->raster.add(cmd);
     // Peak memory per DEM sample of `tinlod simplify`, measured
@@ -177,6 +183,15 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             // insertion), then the node erase of its TIN over every sample of the grid.
             if (hf) {
                 DemEraseOptions dem_options;
+                // A store holds the quad-tree's bounds: the retrieval reads them, tile by tile,
+                // instead of building them again from the heights.
+                std::optional<TileStore> store;
+                if (is_store_path(args->input)) {
+                    StoreOptions so;
+                    so.cache_mb = args->cache_mb;
+                    store.emplace(args->input, so);
+                    dem_options.nodes = &*store;
+                }
                 dem_options.retrieve_share = args->retrieve_share;
                 if (args->retrieve_share == 0.0) {
                     dem_options.budget_share = 0.0;

@@ -6,6 +6,7 @@
 #include "tinlod/quadtree.hpp"
 
 #include "float_rounding.hpp"
+#include "node_bound.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/screen_weight.hpp"
 #include "tinlod/util.hpp"
@@ -89,25 +90,15 @@ namespace {
 // most numerous scan of the build.
 using Plane = TrianglePlane::Rows;
 
-struct OwnBound {
-    double error = 0.0;
-    float zmin = std::numeric_limits<float>::max();
-    float zmax = std::numeric_limits<float>::lowest();
-    void box(float z) {
-        zmin = std::min(zmin, z);
-        zmax = std::max(zmax, z);
-    }
-};
-
 // A node at least two cells wide and tall: a fan around its centre over the four corners, each
 // side optionally split at its midpoint. The four wedges are independent, so the worst case over
 // the 16 variants is, per sample, the worse of its wedge with and without the side midpoint. Each
 // row crosses the wedges in at most three spans (cut by the diagonals), and inside a span the half
 // of the split wedge is fixed by the row or by the centre column.
-OwnBound fan_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t x1,
-                   std::uint32_t y0, std::uint32_t y1, bool box) {
+OwnBound fan_bound(const GridRows &rows, std::uint32_t x0, std::uint32_t x1, std::uint32_t y0,
+                   std::uint32_t y1, std::uint32_t ra, std::uint32_t rb, bool box) {
     auto at = [&](std::uint32_t c, std::uint32_t r) {
-        return glm::dvec3(double(c), double(r), double(z[std::size_t{r} * w + c]));
+        return glm::dvec3(double(c), double(r), double(rows.at(c, r)));
     };
     const auto plane = TrianglePlane::rows;
     const std::uint32_t mx = (x0 + x1) / 2, my = (y0 + y1) / 2;
@@ -131,8 +122,8 @@ OwnBound fan_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::ui
             e = std::max(e, std::max(a.deviation(za, c, zs), b.deviation(zb, c, zs)));
         }
     };
-    for (std::uint32_t r = y0; r <= y1; ++r) {
-        const float *row = &z[std::size_t{r} * w];
+    for (std::uint32_t r = std::max(y0, ra); r <= std::min(y1, rb); ++r) {
+        const float *row = rows.row(r);
         if (box)
             for (std::uint32_t c = x0; c <= x1; ++c)
                 out.box(row[c]);
@@ -159,12 +150,12 @@ OwnBound fan_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::ui
 
 // A node of 2x2 cells (the most numerous): every sample is a vertex of the fan with all side
 // midpoints, so the error is that of a side midpoint left out.
-OwnBound small_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t y0) {
+OwnBound small_bound(const GridRows &rows, std::uint32_t x0, std::uint32_t y0) {
     OwnBound out;
     float s[3][3];
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            out.box(s[r][c] = z[std::size_t{y0 + r} * w + x0 + c]);
+    for (std::uint32_t r = 0; r < 3; ++r)
+        for (std::uint32_t c = 0; c < 3; ++c)
+            out.box(s[r][c] = rows.row(y0 + r)[x0 + c]);
     auto gap = [](float m, float a, float b) {
         return std::abs(double(m) - 0.5 * (double(a) + b));
     };
@@ -173,13 +164,15 @@ OwnBound small_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::
     return out;
 }
 
-// One side of a one-cell-wide node: samples z(0..n) along it, optionally split at n/2. In such a
-// node every sample lies on a side, so the sides alone give the bound.
-template <class Z> double side_bound(Z z, std::uint32_t n) {
+// One side of a one-cell-wide node: samples z(0..n) along it, optionally split at n/2, over its
+// samples s0..s1. In such a node every sample lies on a side, so the sides alone give the bound.
+template <class Z>
+double side_bound(Z z, std::uint32_t n, std::uint32_t s0 = 0,
+                  std::uint32_t s1 = std::numeric_limits<std::uint32_t>::max()) {
     const std::uint32_t m = n / 2;
     const double z0 = z(0), zm = z(m), zn = z(n);
     double e = 0.0;
-    for (std::uint32_t s = 1; s < n; ++s) {
+    for (std::uint32_t s = std::max(s0, 1u); s < n && s <= s1; ++s) {
         const double zs = z(s);
         const double whole = z0 + (zn - z0) * s / n;
         const double half = s <= m ? z0 + (zm - z0) * s / m : zm + (zn - zm) * (s - m) / (n - m);
@@ -188,37 +181,52 @@ template <class Z> double side_bound(Z z, std::uint32_t n) {
     return e;
 }
 
-OwnBound strip_bound(const std::vector<float> &z, int w, std::uint32_t x0, std::uint32_t x1,
-                     std::uint32_t y0, std::uint32_t y1, bool box) {
+OwnBound strip_bound(const GridRows &rows, std::uint32_t x0, std::uint32_t x1, std::uint32_t y0,
+                     std::uint32_t y1, std::uint32_t ra, std::uint32_t rb, bool box) {
     OwnBound out;
+    const std::uint32_t r0 = std::max(y0, ra), r1 = std::min(y1, rb);
     if (box)
-        for (std::uint32_t r = y0; r <= y1; ++r)
+        for (std::uint32_t r = r0; r <= r1; ++r)
             for (std::uint32_t c = x0; c <= x1; ++c)
-                out.box(z[std::size_t{r} * w + c]);
+                out.box(rows.row(r)[c]);
     if (x1 - x0 == 1) {
         for (std::uint32_t c : {x0, x1})
             out.error = std::max(
-                out.error,
-                side_bound([&](std::uint32_t s) { return double(z[std::size_t{y0 + s} * w + c]); },
-                           y1 - y0));
+                out.error, side_bound([&](std::uint32_t s) { return double(rows.at(c, y0 + s)); },
+                                      y1 - y0, r0 - y0, r1 - y0));
     } else if (y1 - y0 == 1) {
         for (std::uint32_t r : {y0, y1})
-            out.error = std::max(
-                out.error,
-                side_bound([&](std::uint32_t s) { return double(z[std::size_t{r} * w + x0 + s]); },
-                           x1 - x0));
+            if (r >= r0 && r <= r1)
+                out.error = std::max(
+                    out.error,
+                    side_bound([&](std::uint32_t s) { return double(rows.row(r)[x0 + s]); },
+                               x1 - x0));
     }
     return out;
 }
 
 } // namespace
 
-static void check_grid(const Heightfield &hf) {
-    if (hf.width < 2 || hf.height < 2)
+OwnBound own_bound(const GridRows &rows, std::uint32_t x0, std::uint32_t x1, std::uint32_t y0,
+                   std::uint32_t y1, std::uint32_t ra, std::uint32_t rb, bool box) {
+    if (x1 - x0 == 2 && y1 - y0 == 2) {
+        assert(ra <= y0 && rb >= y1);
+        return small_bound(rows, x0, y0);
+    }
+    return x1 - x0 >= 2 && y1 - y0 >= 2 ? fan_bound(rows, x0, x1, y0, y1, ra, rb, box)
+                                        : strip_bound(rows, x0, x1, y0, y1, ra, rb, box);
+}
+
+void check_quad_grid(int width, int height) {
+    if (width < 2 || height < 2)
         throw Error("quad-tree", "the grid must be at least 2x2 samples, got " +
-                                     std::to_string(hf.width) + "x" + std::to_string(hf.height));
-    if (hf.size() > k_max_raster_samples)
+                                     std::to_string(width) + "x" + std::to_string(height));
+    if (std::int64_t{width} * height > k_max_raster_samples)
         throw Error("quad-tree", "the grid has more than 2^31 samples");
+}
+
+static void check_grid(const Heightfield &hf) {
+    check_quad_grid(hf.width, hf.height);
     assert(hf.z.size() == static_cast<std::size_t>(hf.size()));
 }
 
@@ -243,6 +251,10 @@ void QuadTree::build(const Heightfield &hf, Progress *progress) {
     frame_ = {hf.width, hf.height, hf.dx, hf.dy, hf.origin_x, hf.origin_y, hf.crs};
     const int levels = layout_.levels();
     bounds_.resize(std::max(levels - 1, 0));
+    GridRows grid;
+    grid.band = z_.data();
+    grid.width = hf.width;
+    grid.r1 = static_cast<std::uint32_t>(hf.height - 1);
     std::int64_t done = 0;
     for (int d = levels - 2; d >= 0; --d) {
         const std::uint32_t nx = layout_.x.count(d), ny = layout_.y.count(d);
@@ -258,25 +270,9 @@ void QuadTree::build(const Heightfield &hf, Progress *progress) {
                 for (std::uint32_t i = 0; i < nx; ++i) {
                     const std::uint32_t x0 = layout_.x.lo(d, i), x1 = layout_.x.hi(d, i);
                     const std::uint32_t y0 = layout_.y.lo(d, j), y1 = layout_.y.hi(d, j);
-                    OwnBound own = x1 - x0 == 2 && y1 - y0 == 2 ? small_bound(z_, hf.width, x0, y0)
-                                   : x1 - x0 >= 2 && y1 - y0 >= 2
-                                       ? fan_bound(z_, hf.width, x0, x1, y0, y1, leaf)
-                                       : strip_bound(z_, hf.width, x0, x1, y0, y1, leaf);
-                    float children = 0.0f;
-                    if (!leaf) {
-                        const std::uint32_t cx = layout_.x.first_child(d, i);
-                        const std::uint32_t cy = layout_.y.first_child(d, j);
-                        const std::uint32_t ncx = x1 - x0 >= 2 ? 2 : 1, ncy = y1 - y0 >= 2 ? 2 : 1;
-                        for (std::uint32_t b = 0; b < ncy; ++b)
-                            for (std::uint32_t a = 0; a < ncx; ++a) {
-                                const NodeBound &child = bound(d + 1, cx + a, cy + b);
-                                children = std::max(children, child.error);
-                                own.box(child.zmin);
-                                own.box(child.zmax);
-                            }
-                    }
-                    level[std::size_t{j} * nx + i] = {std::max(float_up(own.error), children),
-                                                      own.zmin, own.zmax};
+                    level[std::size_t{j} * nx + i] = node_bound(
+                        layout_, d, i, j, own_bound(grid, x0, x1, y0, y1, y0, y1, leaf),
+                        [&](std::uint32_t ci, std::uint32_t cj) { return bound(d + 1, ci, cj); });
                 }
         };
         // Rows of nodes are independent (the level below is complete): split them over threads.
@@ -648,6 +644,31 @@ QuadTreeLod::QuadTreeLod(const QuadTree &tree)
 
 QuadTreeLod::QuadTreeLod(std::unique_ptr<NodeSource> source)
     : impl_(std::make_unique<Impl>(std::move(source))) {}
+
+namespace {
+
+// A source the traversal reads but does not own.
+class BorrowedSource final : public NodeSource {
+  public:
+    explicit BorrowedSource(NodeSource &source) : s_(source) {}
+    const QuadLayout &layout() const override { return s_.layout(); }
+    const GridFrame &frame() const override { return s_.frame(); }
+    NodeBound bound(int d, std::uint32_t i, std::uint32_t j) override { return s_.bound(d, i, j); }
+    float vertex_z(int d, std::uint32_t i, std::uint32_t j, std::uint32_t c,
+                   std::uint32_t r) override {
+        return s_.vertex_z(d, i, j, c, r);
+    }
+    void begin_retrieval() override { s_.begin_retrieval(); }
+    void end_retrieval() override { s_.end_retrieval(); }
+
+  private:
+    NodeSource &s_;
+};
+
+} // namespace
+
+QuadTreeLod::QuadTreeLod(NodeSource &source)
+    : impl_(std::make_unique<Impl>(std::make_unique<BorrowedSource>(source))) {}
 
 QuadTreeLod::~QuadTreeLod() = default;
 

@@ -3,6 +3,7 @@
 // a cache that drops the least recently used tiles (madvise) beyond its cap.
 #include "tinlod/store.hpp"
 
+#include "node_bound.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/util.hpp"
 
@@ -20,6 +21,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <thread>
 
 namespace tinlod {
 
@@ -255,25 +257,85 @@ void check_store_writable(const std::string &path) {
     check_writable({path});
 }
 
+namespace {
+
+// A store being written to `file`: the tiles in order, from the first page after the top tree and
+// the corner elevations, then those two sections, the directory and the header, whose offsets and
+// checksums are known only then. Every byte not written is zero.
+class StoreWriter {
+  public:
+    StoreWriter(const GridFrame &fr, const StoreGeometry &g, const std::string &file,
+                const std::string &path)
+        : g_(g), f_(file, path), dir_(k_dir_entry * g.tile_count(), 0) {
+        h_.width = fr.width;
+        h_.height = fr.height;
+        h_.dx = fr.dx;
+        h_.dy = fr.dy;
+        h_.origin_x = fr.origin_x;
+        h_.origin_y = fr.origin_y;
+        h_.crs = fr.crs;
+        h_.levels = static_cast<std::uint32_t>(g.levels);
+        h_.tile_level = static_cast<std::uint32_t>(g.tile_level);
+        h_.corner_level = static_cast<std::uint32_t>(g.corner_level);
+        h_.tile_count = static_cast<std::uint32_t>(g.tile_count());
+        const QuadLayout lay(fr.width, fr.height);
+        h_.dir_offset = align(encode(h_).size(), 8);
+        h_.top_offset = align(h_.dir_offset + k_dir_entry * g.tile_count(), 8);
+        h_.top_bytes = g.top_nodes(lay) * sizeof(NodeBound);
+        h_.corner_offset = align(h_.top_offset + h_.top_bytes, 8);
+        h_.corner_bytes = g.corner_count(lay) * sizeof(float);
+        f_.pad_to(h_.corner_offset + h_.corner_bytes);
+    }
+
+    // Tile t, the next one.
+    void tile(std::size_t t, const std::vector<std::uint8_t> &bytes) {
+        assert(bytes.size() == g_.tile_bytes[t]);
+        const std::uint64_t offset = align(f_.position(), k_page);
+        f_.pad_to(offset);
+        f_.write(bytes.data(), bytes.size());
+        put(dir_, t * k_dir_entry, offset);
+        put(dir_, t * k_dir_entry + 8, std::uint64_t{bytes.size()});
+        put(dir_, t * k_dir_entry + 16, crc32(bytes.data(), bytes.size()));
+    }
+
+    // The top tree (levels down to the tile level, each row-major) and the corner elevations.
+    void finish(const std::vector<NodeBound> &top, const std::vector<float> &corners) {
+        assert(top.size() * sizeof(NodeBound) == h_.top_bytes &&
+               corners.size() * sizeof(float) == h_.corner_bytes);
+        h_.top_crc = crc32(top.data(), h_.top_bytes);
+        h_.corner_crc = crc32(corners.data(), h_.corner_bytes);
+        h_.dir_crc = crc32(dir_.data(), dir_.size());
+        f_.seek(h_.top_offset);
+        f_.write(top.data(), h_.top_bytes);
+        f_.seek(h_.corner_offset);
+        f_.write(corners.data(), h_.corner_bytes);
+        f_.seek(0);
+        const auto head = encode(h_);
+        f_.write(head.data(), head.size());
+        f_.pad_to(h_.dir_offset);
+        f_.write(dir_.data(), dir_.size());
+        f_.close();
+    }
+
+  private:
+    const StoreGeometry &g_;
+    File f_;
+    Header h_;
+    std::vector<std::uint8_t> dir_;
+};
+
+// The column and row of corner (i, j): the bounds of the corner level.
+std::uint32_t corner_at(const AxisSplit &s, int level, std::uint32_t k) {
+    return k < s.count(level) ? s.lo(level, k) : s.hi(level, s.count(level) - 1);
+}
+
+} // namespace
+
 void write_store(const QuadTree &tree, const std::string &path, Progress *progress) {
     check_store_writable(path);
     const QuadLayout &lay = tree.layout();
     const GridFrame &fr = tree.frame();
     const StoreGeometry g(lay);
-    Header h;
-    h.width = fr.width;
-    h.height = fr.height;
-    h.dx = fr.dx;
-    h.dy = fr.dy;
-    h.origin_x = fr.origin_x;
-    h.origin_y = fr.origin_y;
-    h.crs = fr.crs;
-    h.levels = static_cast<std::uint32_t>(g.levels);
-    h.tile_level = static_cast<std::uint32_t>(g.tile_level);
-    h.corner_level = static_cast<std::uint32_t>(g.corner_level);
-    h.tile_count = static_cast<std::uint32_t>(g.tile_count());
-
-    // The top tree (levels down to the tile level) and the corner elevations.
     std::vector<NodeBound> top;
     top.reserve(g.top_nodes(lay));
     for (int d = 0; d <= std::min(g.tile_level, g.levels - 2); ++d)
@@ -283,28 +345,11 @@ void write_store(const QuadTree &tree, const std::string &path, Progress *progre
     std::vector<float> corners;
     corners.reserve(g.corner_count(lay));
     for (std::uint32_t j = 0; j <= lay.y.count(g.corner_level); ++j)
-        for (std::uint32_t i = 0; i <= lay.x.count(g.corner_level); ++i) {
-            const std::uint32_t c =
-                i < lay.x.count(g.corner_level) ? lay.x.lo(g.corner_level, i) : fr.width - 1;
-            const std::uint32_t r =
-                j < lay.y.count(g.corner_level) ? lay.y.lo(g.corner_level, j) : fr.height - 1;
-            corners.push_back(tree.elevation(c, r));
-        }
-    h.dir_offset = align(encode(h).size(), 8);
-    h.top_offset = align(h.dir_offset + k_dir_entry * g.tile_count(), 8);
-    h.top_bytes = top.size() * sizeof(NodeBound);
-    h.corner_offset = align(h.top_offset + h.top_bytes, 8);
-    h.corner_bytes = corners.size() * sizeof(float);
-    h.top_crc = crc32(top.data(), h.top_bytes);
-    h.corner_crc = crc32(corners.data(), h.corner_bytes);
-
+        for (std::uint32_t i = 0; i <= lay.x.count(g.corner_level); ++i)
+            corners.push_back(tree.elevation(corner_at(lay.x, g.corner_level, i),
+                                             corner_at(lay.y, g.corner_level, j)));
     write_atomically(path, [&](const std::string &tmp) {
-        File f(tmp, path);
-        f.pad_to(h.top_offset);
-        f.write(top.data(), h.top_bytes);
-        f.pad_to(h.corner_offset);
-        f.write(corners.data(), h.corner_bytes);
-        std::vector<std::uint8_t> dir(k_dir_entry * g.tile_count(), 0);
+        StoreWriter out(fr, g, tmp, path);
         std::vector<std::uint8_t> tile;
         std::int64_t samples_done = 0;
         for (std::uint32_t tj = 0; tj < g.tiles_y; ++tj)
@@ -331,26 +376,182 @@ void write_store(const QuadTree &tree, const std::string &path, Progress *progre
                             at += sizeof nb;
                         }
                 assert(at == tile.size());
-                const std::uint64_t offset = align(f.position(), k_page);
-                f.pad_to(offset);
-                f.write(tile.data(), tile.size());
-                put(dir, t * k_dir_entry, offset);
-                put(dir, t * k_dir_entry + 8, std::uint64_t{tile.size()});
-                put(dir, t * k_dir_entry + 16, crc32(tile.data(), tile.size()));
+                out.tile(t, tile);
                 samples_done += std::int64_t{x1 - x0} * (y1 - y0);
                 if (progress)
                     progress->update(samples_done);
             }
-        h.dir_crc = crc32(dir.data(), dir.size());
-        f.seek(0);
-        const auto head = encode(h);
-        f.write(head.data(), head.size());
-        f.pad_to(h.dir_offset);
-        f.write(dir.data(), dir.size());
-        f.close();
+        out.finish(top, corners);
     });
 }
 
+namespace {
+
+// fn(lo, hi) over [0, n) split among the threads.
+template <class Fn> void split_over_threads(std::uint32_t n, Fn &&fn) {
+    const std::uint32_t workers = std::min<std::uint32_t>(std::uint32_t(max_threads()), n);
+    std::vector<std::thread> pool;
+    for (std::uint32_t t = 1; t < workers; ++t)
+        pool.emplace_back(fn, n * t / workers, n * (t + 1) / workers);
+    if (workers > 0)
+        fn(0u, n / workers);
+    for (auto &th : pool)
+        th.join();
+}
+
+// Tile (ti, tj) of a band of rows: its samples, then the bounds of its descendants level by level
+// (each made from its own error and its children's), as write_store lays it out. Returns the tile
+// node's own bound with the bound of its children folded in.
+NodeBound band_tile(const QuadLayout &lay, const StoreGeometry &g, const GridRows &rows,
+                    std::uint32_t ti, std::uint32_t tj, std::vector<std::uint8_t> &tile) {
+    const int tl = g.tile_level, levels = g.levels;
+    const std::size_t t = std::size_t{tj} * g.tiles_x + ti;
+    tile.assign(g.tile_bytes[t], 0);
+    const std::uint32_t x0 = lay.x.lo(tl, ti), x1 = lay.x.hi(tl, ti);
+    const std::uint32_t y0 = lay.y.lo(tl, tj), y1 = lay.y.hi(tl, tj);
+    std::size_t at = 0;
+    for (std::uint32_t r = y0; r <= y1; ++r, at += 4 * (x1 - x0 + 1))
+        std::memcpy(tile.data() + at, rows.row(r) + x0, 4 * (x1 - x0 + 1));
+    // The bounds of level d sit at the tile's offset for it, row-major over its descendants.
+    auto slot = [&](int d, std::uint32_t i, std::uint32_t j) {
+        return tile.data() + g.level_offset[t * g.tile_levels + (d - tl - 1)] +
+               sizeof(NodeBound) * (std::size_t{j - g.ay.first[d][tj]} * g.ax.count[d][ti] +
+                                    (i - g.ax.first[d][ti]));
+    };
+    auto stored = [&](int d) {
+        return [&, d](std::uint32_t i, std::uint32_t j) {
+            NodeBound b;
+            std::memcpy(&b, slot(d, i, j), sizeof b);
+            return b;
+        };
+    };
+    for (int d = levels - 2; d > tl; --d) {
+        const bool leaf = d + 1 >= levels - 1;
+        for (std::uint32_t b = 0; b < g.ay.count[d][tj]; ++b)
+            for (std::uint32_t a = 0; a < g.ax.count[d][ti]; ++a) {
+                const std::uint32_t i = g.ax.first[d][ti] + a, j = g.ay.first[d][tj] + b;
+                const std::uint32_t nx0 = lay.x.lo(d, i), nx1 = lay.x.hi(d, i);
+                const std::uint32_t ny0 = lay.y.lo(d, j), ny1 = lay.y.hi(d, j);
+                const NodeBound nb =
+                    node_bound(lay, d, i, j, own_bound(rows, nx0, nx1, ny0, ny1, ny0, ny1, leaf),
+                               stored(d + 1));
+                std::memcpy(slot(d, i, j), &nb, sizeof nb);
+            }
+    }
+    if (tl > levels - 2)
+        return {};
+    return node_bound(lay, tl, ti, tj,
+                      own_bound(rows, x0, x1, y0, y1, y0, y1, tl + 1 >= levels - 1),
+                      stored(tl + 1));
+}
+
+} // namespace
+
+void write_store_by_rows(const GridFrame &fr, const GridRowReader &read, std::int64_t band_bytes,
+                         const std::string &path, Progress *progress) {
+    check_store_writable(path);
+    check_quad_grid(fr.width, fr.height);
+    const QuadLayout lay(fr.width, fr.height);
+    const StoreGeometry g(lay);
+    const int tl = g.tile_level, cl = g.corner_level, levels = g.levels;
+    // Bands: runs of whole tile rows, [band[k], band[k + 1]).
+    std::vector<std::uint32_t> band{0};
+    const std::int64_t row_bytes = 4 * std::int64_t{fr.width};
+    for (std::uint32_t tj = 1; tj < g.tiles_y; ++tj)
+        if (std::int64_t{lay.y.hi(tl, tj) - lay.y.lo(tl, band.back()) + 1} * row_bytes > band_bytes)
+            band.push_back(tj);
+    band.push_back(g.tiles_y);
+    std::vector<float> corners(g.corner_count(lay));
+    const std::uint32_t corners_x = lay.x.count(cl) + 1, corners_y = lay.y.count(cl) + 1;
+    std::int64_t rows_done = 0;
+    std::vector<float> z;
+    auto read_band = [&](std::size_t k) {
+        const std::uint32_t r0 = lay.y.lo(tl, band[k]), r1 = lay.y.hi(tl, band[k + 1] - 1);
+        z = read(int(r0), int(r1) + 1);
+        assert(z.size() == std::size_t{r1 - r0 + 1} * fr.width);
+        rows_done += r1 - r0;
+        if (progress)
+            progress->update(rows_done);
+        GridRows rows;
+        rows.band = z.data();
+        rows.width = fr.width;
+        rows.r0 = r0;
+        rows.r1 = r1;
+        rows.keys = corners.data();
+        rows.layout = &lay;
+        rows.key_level = cl;
+        return rows;
+    };
+    for (std::size_t k = 0; k + 1 < band.size(); ++k) {
+        const GridRows rows = read_band(k);
+        for (std::uint32_t j = 0; j < corners_y; ++j) {
+            const std::uint32_t r = corner_at(lay.y, cl, j);
+            if (r >= rows.r0 && r <= rows.r1)
+                for (std::uint32_t i = 0; i < corners_x; ++i)
+                    corners[std::size_t{j} * corners_x + i] = rows.row(r)[corner_at(lay.x, cl, i)];
+        }
+    }
+
+    // The top tree per level; above the tile level, each node's own error as the bands show it.
+    const int top_levels = std::min(tl, levels - 2) + 1;
+    std::vector<std::vector<NodeBound>> top(std::size_t(std::max(top_levels, 0)));
+    std::vector<std::vector<double>> own(static_cast<std::size_t>(tl));
+    for (int d = 0; d < top_levels; ++d)
+        top[d].resize(lay.level_nodes(d));
+    for (int d = 0; d < tl; ++d)
+        own[d].assign(lay.level_nodes(d), 0.0);
+    write_atomically(path, [&](const std::string &tmp) {
+        StoreWriter out(fr, g, tmp, path);
+        std::vector<std::vector<std::uint8_t>> tiles(g.tiles_x);
+        for (std::size_t k = 0; k + 1 < band.size(); ++k) {
+            const GridRows rows = read_band(k);
+            for (std::uint32_t tj = band[k]; tj < band[k + 1]; ++tj) {
+                split_over_threads(g.tiles_x, [&](std::uint32_t a, std::uint32_t b) {
+                    for (std::uint32_t ti = a; ti < b; ++ti) {
+                        const NodeBound nb = band_tile(lay, g, rows, ti, tj, tiles[ti]);
+                        if (tl < top_levels)
+                            top[tl][std::size_t{tj} * g.tiles_x + ti] = nb;
+                    }
+                });
+                for (std::uint32_t ti = 0; ti < g.tiles_x; ++ti)
+                    out.tile(std::size_t{tj} * g.tiles_x + ti, tiles[ti]);
+            }
+            // Levels above the tiles: their nodes' own errors over the band's rows.
+            for (int d = 0; d < tl; ++d) {
+                const std::uint32_t nx = lay.x.count(d);
+                // The nodes with a cell in the band; one that meets it in a single row (its
+                // first or its last) has that row in the band before or after as well.
+                const std::uint32_t j0 = lay.y.interval_of(d, rows.r0);
+                const std::uint32_t j1 = lay.y.interval_of(d, rows.r1 - 1);
+                split_over_threads(nx, [&](std::uint32_t a, std::uint32_t b) {
+                    for (std::uint32_t j = j0; j <= j1; ++j)
+                        for (std::uint32_t i = a; i < b; ++i) {
+                            double &e = own[d][std::size_t{j} * nx + i];
+                            e = std::max(e, own_bound(rows, lay.x.lo(d, i), lay.x.hi(d, i),
+                                                      lay.y.lo(d, j), lay.y.hi(d, j), rows.r0,
+                                                      rows.r1, false)
+                                                .error);
+                        }
+                });
+            }
+        }
+        for (int d = tl - 1; d >= 0; --d)
+            for (std::uint32_t j = 0; j < lay.y.count(d); ++j)
+                for (std::uint32_t i = 0; i < lay.x.count(d); ++i) {
+                    OwnBound o;
+                    o.error = own[d][std::size_t{j} * lay.x.count(d) + i];
+                    top[d][std::size_t{j} * lay.x.count(d) + i] =
+                        node_bound(lay, d, i, j, o, [&](std::uint32_t ci, std::uint32_t cj) {
+                            return top[d + 1][std::size_t{cj} * lay.x.count(d + 1) + ci];
+                        });
+                }
+        std::vector<NodeBound> flat;
+        flat.reserve(g.top_nodes(lay));
+        for (const auto &level : top)
+            flat.insert(flat.end(), level.begin(), level.end());
+        out.finish(flat, corners);
+    });
+}
 bool is_store_file(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     char magic[8] = {};

@@ -41,6 +41,7 @@
 namespace tinlod {
 
 class QuadTree;
+class NodeSource;
 
 namespace erase {
 struct EraserState;    // the eraser's state (lib/src/erase/state.hpp)
@@ -218,6 +219,9 @@ struct DemEraseOptions {
     // grid.
     double budget_share = 8.0;
     const QuadTree *tree = nullptr; // the DEM's quad-tree when one is built already
+    // Or its store (a TileStore of this DEM), whose bounds the retrieval reads instead of building
+    // them; borrowed.
+    NodeSource *nodes = nullptr;
     // The vertical model with a bound (no budget): greedy insertion (greedy.hpp) to the bound
     // first, when a probe on a coarser lattice says it keeps few enough samples (about half or
     // less, where it is faster than the erase from the grid); should it still pass this share of

@@ -171,6 +171,7 @@ class QuadTreeLod {
   public:
     explicit QuadTreeLod(const QuadTree &tree);
     explicit QuadTreeLod(std::unique_ptr<NodeSource> source);
+    explicit QuadTreeLod(NodeSource &source); // borrowed: it outlives the traversal
     ~QuadTreeLod();
     QuadTreeLod(const QuadTreeLod &) = delete;
     QuadTreeLod &operator=(const QuadTreeLod &) = delete;

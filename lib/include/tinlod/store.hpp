@@ -13,6 +13,7 @@
 #include "tinlod/raster.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +28,19 @@ inline constexpr int k_store_tile_cells = 64; // tiles are the first level whose
 // Writes `tree` as a store at `path` through write_atomically. Throws Error naming the path when it
 // cannot be written. `progress` (optional) advances by samples written, out of width * height.
 void write_store(const QuadTree &tree, const std::string &path, Progress *progress = nullptr);
+
+// Rows [r0, r1) of a grid (row 0 south, as a Heightfield's), every column, row-major: how
+// write_store_by_rows reads a DEM (DemWindows::rows).
+using GridRowReader = std::function<std::vector<float>(int r0, int r1)>;
+
+// Writes the store of the grid `frame` describes, the same bytes as write_store of its QuadTree,
+// reading its rows through `read` a band at a time and never holding them all: bands of whole
+// tile rows, each of at most band_bytes of heights (one tile row however small that is). The
+// grid is read twice: first for the corner elevations, which the node bounds of the levels above
+// the tiles are made from, then for the tiles and every bound. `progress` (optional) advances by
+// rows read, out of 2 * (height - 1).
+void write_store_by_rows(const GridFrame &frame, const GridRowReader &read, std::int64_t band_bytes,
+                         const std::string &path, Progress *progress = nullptr);
 
 // Throws Error when `path` cannot take a store: check_writable's checks, and a store is written
 // with seeks, so not to a stream (is_stream: a device, a FIFO, the standard output).

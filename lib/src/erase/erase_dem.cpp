@@ -130,9 +130,14 @@ Mesh retrieved_tin(const Heightfield &hf, const Significance &model, const Erase
                    const DemEraseOptions &dem, DemEraseStats &out) {
     const View &eye = *model.view();
     std::optional<QuadTree> own;
-    if (!dem.tree)
+    if (!dem.tree && !dem.nodes)
         own.emplace(hf);
-    QuadTreeLod lod(dem.tree ? *dem.tree : *own);
+    std::optional<QuadTreeLod> traversal;
+    if (dem.nodes)
+        traversal.emplace(*dem.nodes);
+    else
+        traversal.emplace(dem.tree ? *dem.tree : *own);
+    QuadTreeLod &lod = *traversal;
     RetrieveOptions ro;
     ro.peripheral = &model.options();
     const double shared =
