@@ -38,8 +38,28 @@ class ErrorAccumulator {
         const int r0 = std::max(0, int(std::ceil(std::min({t[0].v, t[1].v, t[2].v}) - 1e-6)));
         const int r1 =
             std::min(hf_.height - 1, int(std::floor(std::max({t[0].v, t[1].v, t[2].v}) + 1e-6)));
-        for (int r = r0; r <= r1; ++r)
-            for (int c = c0; c <= c1; ++c) {
+        // Each edge function is affine in the column on a row, w = a + b c: the columns where it
+        // passes the test below lie on one side of -(a +- eps) / b. That side, a column wider for
+        // rounding, bounds the row's run; the test itself decides, as over the whole box.
+        const double s = area > 0 ? 1.0 : -1.0;
+        const std::array<double, 3> b = {s * (t[1].v - t[2].v), s * (t[2].v - t[0].v),
+                                         s * (t[0].v - t[1].v)};
+        for (int r = r0; r <= r1; ++r) {
+            const double w0_at0 = t[1].u * (t[2].v - r) - t[2].u * (t[1].v - r);
+            const double w1_at0 = t[2].u * (t[0].v - r) - t[0].u * (t[2].v - r);
+            const std::array<double, 3> a = {s * w0_at0, s * w1_at0,
+                                             s * (area - w0_at0 - w1_at0)};
+            double lo = c0, hi = c1;
+            for (int k = 0; k < 3; ++k) {
+                if (std::abs(b[k]) < 1e-3)
+                    continue; // nearly parallel to the row: the bound would amplify rounding
+                const double edge = (-eps - a[k]) / b[k];
+                if (b[k] > 0)
+                    lo = std::max(lo, std::ceil(edge) - 1.0);
+                else
+                    hi = std::min(hi, std::floor(edge) + 1.0);
+            }
+            for (int c = int(lo); c <= int(hi); ++c) {
                 // Barycentric weights from the three edge functions, scaled by the signed area.
                 const double w0 = (t[1].u - c) * (t[2].v - r) - (t[2].u - c) * (t[1].v - r);
                 const double w1 = (t[2].u - c) * (t[0].v - r) - (t[0].u - c) * (t[2].v - r);
@@ -55,6 +75,7 @@ class ErrorAccumulator {
                 sample(id, c, r,
                        TrianglePlane::interpolate(w0, w1, w2, t[0].z, t[1].z, t[2].z, area));
             }
+        }
     }
 
     TinError finish() {
