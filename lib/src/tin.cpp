@@ -163,10 +163,16 @@ Mesh live_copy(const Mesh &mesh) {
     Mesh out;
     const auto from = find_origin_property(mesh);
     const auto to = get_origin_property(out);
+    // One resize, then the points written in place (add_vertex grows every vertex property per
+    // vertex, as in grid_vertices).
     std::vector<std::uint32_t> map(mesh.n_vertices());
+    std::size_t live = 0;
+    for (auto v : mesh.vertices())
+        map[v.idx()] = std::uint32_t(live++);
+    out.resize(live, 0, 0);
     for (auto v : mesh.vertices()) {
-        const auto w = out.add_vertex(mesh.point(v));
-        map[v.idx()] = std::uint32_t(w.idx());
+        const Mesh::VertexHandle w{int(map[v.idx()])};
+        out.set_point(w, mesh.point(v));
         out.property(to, w) = from.is_valid() ? mesh.property(from, v) : v.idx();
     }
     std::vector<std::uint32_t> corners;
