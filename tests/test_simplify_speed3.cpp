@@ -72,23 +72,21 @@ TinError box_scan(const Heightfield &hf, const Mesh &tin, const View *view) {
             const auto &p = tin.point(v);
             t[std::size_t(i++)] = {snap(p[0] / hf.dx), snap(p[1] / hf.dy), p[2]};
         }
-        const double area = (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) -
-                            (t[2][0] - t[0][0]) * (t[1][1] - t[0][1]);
+        const double area =
+            (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (t[1][1] - t[0][1]);
         if (std::abs(area) < 1e-12)
             continue;
         const double eps = 1e-7 * std::abs(area);
         const int c0 = std::max(0, int(std::ceil(std::min({t[0][0], t[1][0], t[2][0]}) - 1e-6)));
-        const int c1 = std::min(hf.width - 1,
-                                int(std::floor(std::max({t[0][0], t[1][0], t[2][0]}) + 1e-6)));
+        const int c1 =
+            std::min(hf.width - 1, int(std::floor(std::max({t[0][0], t[1][0], t[2][0]}) + 1e-6)));
         const int r0 = std::max(0, int(std::ceil(std::min({t[0][1], t[1][1], t[2][1]}) - 1e-6)));
-        const int r1 = std::min(hf.height - 1,
-                                int(std::floor(std::max({t[0][1], t[1][1], t[2][1]}) + 1e-6)));
+        const int r1 =
+            std::min(hf.height - 1, int(std::floor(std::max({t[0][1], t[1][1], t[2][1]}) + 1e-6)));
         for (int r = r0; r <= r1; ++r)
             for (int c = c0; c <= c1; ++c) {
-                const double w0 =
-                    (t[1][0] - c) * (t[2][1] - r) - (t[2][0] - c) * (t[1][1] - r);
-                const double w1 =
-                    (t[2][0] - c) * (t[0][1] - r) - (t[0][0] - c) * (t[2][1] - r);
+                const double w0 = (t[1][0] - c) * (t[2][1] - r) - (t[2][0] - c) * (t[1][1] - r);
+                const double w1 = (t[2][0] - c) * (t[0][1] - r) - (t[0][0] - c) * (t[2][1] - r);
                 const double w2 = area - w0 - w1;
                 const bool inside = area > 0 ? (w0 >= -eps && w1 >= -eps && w2 >= -eps)
                                              : (w0 <= eps && w1 <= eps && w2 <= eps);
@@ -189,7 +187,7 @@ TEST(SimplifySpeed3, MeasureErrorIsTheBoxScans) {
                                p[1] < float((hf.height - 1) * hf.dy);
             if (inner) // the outline stays, so the TIN still covers the crop
                 shifted.set_point(v, p + Mesh::Point(jitter(rng) * float(hf.dx),
-                                                      jitter(rng) * float(hf.dy), 0.0f));
+                                                     jitter(rng) * float(hf.dy), 0.0f));
         }
         View view;
         view.eye = {-200.0, -300.0, 3000.0};
@@ -216,9 +214,9 @@ TEST(SimplifySpeed3, AddTrianglesRefusesADirectedEdgeUsedTwice) {
     Mesh points;
     for (int i = 0; i < 5; ++i)
         points.add_vertex(Mesh::Point(float(i % 3), float(i * i % 5), 0.0f));
-    for (const std::vector<std::uint32_t> &corners :
-         {std::vector<std::uint32_t>{0, 1, 2, 0, 1, 3}, {0, 1, 2, 1, 0, 3, 1, 0, 4},
-          {1, 0, 3, 0, 1, 2, 1, 0, 4}}) {
+    for (const std::vector<std::uint32_t> &corners : {std::vector<std::uint32_t>{0, 1, 2, 0, 1, 3},
+                                                      {0, 1, 2, 1, 0, 3, 1, 0, 4},
+                                                      {1, 0, 3, 0, 1, 2, 1, 0, 4}}) {
         Mesh m = points;
         EXPECT_THROW(add_triangles(m, corners), std::invalid_argument);
         EXPECT_EQ(m.n_faces(), 0u);

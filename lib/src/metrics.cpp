@@ -49,8 +49,7 @@ class ErrorAccumulator {
         for (int r = r0; r <= r1; ++r) {
             const double w0_at0 = t[1].u * (t[2].v - r) - t[2].u * (t[1].v - r);
             const double w1_at0 = t[2].u * (t[0].v - r) - t[0].u * (t[2].v - r);
-            const std::array<double, 3> a = {s * w0_at0, s * w1_at0,
-                                             s * (area - w0_at0 - w1_at0)};
+            const std::array<double, 3> a = {s * w0_at0, s * w1_at0, s * (area - w0_at0 - w1_at0)};
             double lo = c0, hi = c1;
             for (int k = 0; k < 3; ++k) {
                 if (std::abs(b[k]) < 1e-3)
