@@ -780,10 +780,12 @@ Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
         mesh.property(origin, v) = nodes[k];
     }
     // Vertices in sample order: the triangles' order by first vertex is to_lattice_mesh's. Each
-    // corner's vertex from a table by sample where it is small beside the nodes (a search of the
-    // sorted nodes per corner took a tenth of a fine simplify's first stage), else by a search.
+    // corner's vertex from a table by sample where that costs at most 256 bytes a node (a mesh
+    // vertex and its edges take more): a search of the sorted nodes per corner took a tenth of a
+    // fine simplify's first stage, and half of the conversion after a coarse one's. Else by a
+    // search.
     std::vector<std::uint32_t> t(retrieval.triangles.size());
-    if (std::size_t(hf.size()) <= 8 * nodes.size()) {
+    if (std::size_t(hf.size()) <= 64 * nodes.size()) {
         std::vector<std::uint32_t> vertex(std::size_t(hf.size()));
         for (std::size_t k = 0; k < nodes.size(); ++k)
             vertex[nodes[k]] = std::uint32_t(k);

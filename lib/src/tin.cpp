@@ -33,42 +33,53 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
     const std::size_t n = mesh.n_vertices(), sides = corners.size(), faces = sides / 3;
     if (sides >= std::size_t(std::numeric_limits<std::int32_t>::max()) / 2)
         throw std::invalid_argument("add_triangles: too many triangles");
-    // Side i of face i / 3 runs from corners[i] to the next corner of its face.
+    // Side i of face i / 3 runs from corners[i] to the next corner of its face; the loops over the
+    // sides go face by face, where that corner needs no division.
     const auto to = [&](std::size_t i) { return corners[i % 3 == 2 ? i - 2 : i + 1]; };
+    const auto for_each_side = [&](auto &&visit) {
+        for (std::size_t f = 0; f < sides; f += 3) {
+            visit(f, corners[f], corners[f + 1]);
+            visit(f + 1, corners[f + 1], corners[f + 2]);
+            visit(f + 2, corners[f + 2], corners[f]);
+        }
+    };
     // The sides leaving each vertex (counting sort by origin), to find each side's twin.
     std::vector<std::uint32_t> first(n + 1, 0);
-    for (std::size_t i = 0; i < sides; ++i) {
-        if (corners[i] >= n || corners[i] == to(i))
+    for_each_side([&](std::size_t, std::uint32_t a, std::uint32_t b) {
+        if (a >= n || a == b)
             throw std::invalid_argument("add_triangles: a corner out of range or repeated");
-        ++first[corners[i] + 1];
-    }
+        ++first[a + 1];
+    });
     for (std::size_t v = 0; v < n; ++v)
         first[v + 1] += first[v];
     std::vector<std::uint32_t> leaving(sides), ends(sides), fill(first.begin(), first.end() - 1);
-    for (std::size_t i = 0; i < sides; ++i) {
-        const std::uint32_t k = fill[corners[i]]++;
+    for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
+        const std::uint32_t k = fill[a]++;
         leaving[k] = std::uint32_t(i);
-        ends[k] = to(i);
-    }
+        ends[k] = b;
+    });
     // Each side's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the
-    // boundary half-edge running the other way when it has none).
+    // boundary half-edge running the other way when it has none). A directed edge used twice shows
+    // as a side with two twins, or as a twin met again after it was paired (or, with no side the
+    // other way, as two boundary half-edges leaving one vertex, refused below).
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> half(sides, none), twin_of(sides, none);
     std::vector<std::uint32_t> open; // sides without a twin, by edge
     std::uint32_t edges = 0;
-    for (std::size_t i = 0; i < sides; ++i) {
-        const std::uint32_t a = corners[i], b = to(i);
-        for (std::uint32_t k = first[a]; k < first[a + 1]; ++k)
-            if (ends[k] == b && leaving[k] != i)
-                throw std::invalid_argument("add_triangles: a directed edge used twice");
+    for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
         if (half[i] != none)
-            continue;
+            return;
         half[i] = 2 * edges;
         std::uint32_t twin = none;
         for (std::uint32_t k = first[b]; k < first[b + 1]; ++k)
-            if (ends[k] == a)
+            if (ends[k] == a) {
+                if (twin != none)
+                    throw std::invalid_argument("add_triangles: a directed edge used twice");
                 twin = leaving[k];
+            }
         if (twin != none) {
+            if (twin_of[twin] != none)
+                throw std::invalid_argument("add_triangles: a directed edge used twice");
             half[twin] = 2 * edges + 1;
             twin_of[i] = twin;
             twin_of[twin] = std::uint32_t(i);
@@ -76,7 +87,7 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
             open.push_back(std::uint32_t(i));
         }
         ++edges;
-    }
+    });
     // Each boundary vertex must have one boundary half-edge leaving it (checked before the mesh
     // changes, so a refused list leaves it as it was).
     std::vector<std::uint8_t> boundary_out(n, 0);
@@ -109,7 +120,7 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
         for (int k = 0; k < 3; ++k) {
             const std::size_t i = 3 * f + std::size_t(k);
             const HH h{int(half[i])};
-            mesh.set_vertex_handle(h, Mesh::VertexHandle(int(to(i))));
+            mesh.set_vertex_handle(h, Mesh::VertexHandle(int(corners[k == 2 ? i - 2 : i + 1])));
             mesh.set_face_handle(h, fh);
             mesh.set_next_halfedge_handle(h, HH(int(half[k == 2 ? i - 2 : i + 1])));
             mesh.set_halfedge_handle(Mesh::VertexHandle(int(corners[i])), h);
@@ -152,10 +163,16 @@ Mesh live_copy(const Mesh &mesh) {
     Mesh out;
     const auto from = find_origin_property(mesh);
     const auto to = get_origin_property(out);
+    // One resize, then the points written in place (add_vertex grows every vertex property per
+    // vertex, as in grid_vertices).
     std::vector<std::uint32_t> map(mesh.n_vertices());
+    std::size_t live = 0;
+    for (auto v : mesh.vertices())
+        map[v.idx()] = std::uint32_t(live++);
+    out.resize(live, 0, 0);
     for (auto v : mesh.vertices()) {
-        const auto w = out.add_vertex(mesh.point(v));
-        map[v.idx()] = std::uint32_t(w.idx());
+        const Mesh::VertexHandle w{int(map[v.idx()])};
+        out.set_point(w, mesh.point(v));
         out.property(to, w) = from.is_valid() ? mesh.property(from, v) : v.idx();
     }
     std::vector<std::uint32_t> corners;

@@ -18,32 +18,45 @@
 
 namespace tinlod {
 
-using erase::k_probe_share;
-using erase::k_probe_step;
+using erase::k_probe_margin;
+using erase::k_probe_window_min;
+using erase::k_probe_window_share;
+using erase::k_probe_windows;
 using erase::rounding_margin;
 
 namespace {
 
 // Whether greedy insertion to options.max_error likely ends under options.max_nodes and pays: the
-// insertion on every k_probe_step-th sample of each row and column keeps at most k_probe_share of
-// those samples. The insertion's cost grows with its nodes where the erase's grows with the
-// samples, so only a bound coarse enough for the terrain pays; a probe that misjudges costs the
-// insertion up to max_nodes (docs/decisions/019-erase-dem-first-stage.md).
+// insertion on k_probe_windows^2 windows of full-resolution samples keeps at most the cap's share
+// of them, and a margin. The insertion's cost grows with its nodes where the erase's grows with
+// the samples, so only a bound coarse enough for the terrain pays; a probe that misjudges costs the
+// insertion up to max_nodes (docs/decisions/019-erase-dem-first-stage.md, 027-simplify-speed-3.md).
 static bool greedy_pays(const Heightfield &hf, const GreedyOptions &options) {
-    Heightfield probe;
-    probe.width = (hf.width - 1) / k_probe_step + 1;
-    probe.height = (hf.height - 1) / k_probe_step + 1;
-    if (probe.width < 16 || probe.height < 16)
+    const int bw = std::max(k_probe_window_min, hf.width / k_probe_window_share),
+              bh = std::max(k_probe_window_min, hf.height / k_probe_window_share);
+    if (hf.width < k_probe_windows * bw || hf.height < k_probe_windows * bh)
         return true; // too small to tell, and cheap either way
-    probe.dx = hf.dx * k_probe_step;
-    probe.dy = hf.dy * k_probe_step;
-    probe.z.reserve(std::size_t(probe.size()));
-    for (int r = 0; r < probe.height; ++r)
-        for (int c = 0; c < probe.width; ++c)
-            probe.z.push_back(hf.at(c * k_probe_step, r * k_probe_step));
-    GreedyOptions po = options;
-    po.max_nodes = std::int64_t(k_probe_share * double(probe.size()));
-    return !greedy_tin(probe, po).stopped;
+    std::int64_t kept = 0, samples = 0;
+    for (int i = 0; i < k_probe_windows; ++i)
+        for (int j = 0; j < k_probe_windows; ++j) {
+            Heightfield window;
+            window.width = bw;
+            window.height = bh;
+            window.dx = hf.dx;
+            window.dy = hf.dy;
+            const int x0 = (hf.width - bw) * (2 * i + 1) / (2 * k_probe_windows),
+                      y0 = (hf.height - bh) * (2 * j + 1) / (2 * k_probe_windows);
+            window.z.reserve(std::size_t(window.size()));
+            for (int r = 0; r < bh; ++r)
+                for (int c = 0; c < bw; ++c)
+                    window.z.push_back(hf.at(x0 + c, y0 + r));
+            GreedyOptions wo = options;
+            wo.max_nodes = window.size();
+            kept += std::int64_t(greedy_tin(window, wo).tin.nodes.size());
+            samples += window.size();
+        }
+    const double cap = double(options.max_nodes) / double(hf.size());
+    return double(kept) <= (cap + k_probe_margin) * double(samples);
 }
 
 // The vertical model with a bound (no budget): greedy insertion to the bound, when the probe says

@@ -79,11 +79,15 @@ inline constexpr std::size_t k_ahead = 8;
 
 // ---- erase_dem (erase_dem.cpp) ----
 
-// greedy_pays: the probe runs the insertion on every k_probe_step-th sample of each row and
-// column, and the insertion pays when it keeps at most k_probe_share of them: between the bounds
-// where the insertion and the erase after it beat the erase from the grid and those where they did
-// not (docs/decisions/019-erase-dem-first-stage.md).
-inline constexpr int k_probe_step = 4;
-inline constexpr double k_probe_share = 0.92;
+// greedy_pays: the probe runs the insertion on k_probe_windows x k_probe_windows windows of the
+// full-resolution samples, each 1 / k_probe_window_share of the grid's side (at least
+// k_probe_window_min samples), spread over it; the insertion pays when it keeps at most
+// greedy_cap + k_probe_margin of their samples: the windows' share is the whole grid's within
+// 0.03 on the quick bench's inputs at 0.5-20 m, where a subsampled probe's was not (rough grids
+// keep more at full resolution: docs/decisions/027-simplify-speed-3.md).
+inline constexpr int k_probe_windows = 3;
+inline constexpr int k_probe_window_share = 12;
+inline constexpr int k_probe_window_min = 16;
+inline constexpr double k_probe_margin = 0.02;
 
 } // namespace tinlod::erase
