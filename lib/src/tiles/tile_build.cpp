@@ -689,16 +689,11 @@ Measure repair(const GeoLattice &g, const TileId &id, double bound, Assembly &a,
                 return tr[3 * t + k];
         return p;
     };
-    // Makes post (i, j) a vertex, from triangle t (the post's, which its rounded place may leave).
-    const GeoRect rect = tile_rect(id);
-    const auto insert = [&](std::int64_t i, std::int64_t j, const std::uint32_t own) {
-        std::uint32_t t = own;
-        const std::uint32_t n = std::uint32_t(a.vertices.size());
-        Vertex pv;
-        pv.u = int(std::llround(offset_units(g.lon0, g.dlon, i, rect.west, id.z)));
-        pv.v = int(std::llround(offset_units(g.lat0, g.dlat, j, rect.south, id.z)));
-        pv.h = std::floor(double(g.at(i, j)) / q.step + 0.5) * q.step;
-        a.vertices.push_back(pv);
+    // Makes vertex n (the last) a vertex of the triangulation at its place, from triangle t:
+    // the triangle that holds it splits in three, or the two on the edge it lies on in two each,
+    // then Lawson's flips round it. Returns false (and leaves the mesh as it was) when it lies on
+    // a vertex, `at`, or the walk from t does not reach it.
+    const auto place = [&](std::uint32_t n, std::uint32_t t, std::uint32_t &at) {
         std::array<std::int64_t, 3> o{};
         std::array<std::uint32_t, 3> c{};
         bool found = false;
@@ -719,28 +714,11 @@ Measure repair(const GeoLattice &g, const TileId &id, double bound, Assembly &a,
             t = it->second;
         }
         const int zeros = int(o[0] == 0) + int(o[1] == 0) + int(o[2] == 0);
-        if (found && zeros == 2) {
-            // The post rounds onto vertex `at` of a triangle next to its own: flip the edge between
-            // them, so that the post's triangle has the vertex, if the quadrilateral is convex.
-            a.vertices.pop_back();
-            const std::uint32_t at = *std::find_if(c.begin(), c.end(), [&](std::uint32_t k) {
-                return a.vertices[k].u == pv.u && a.vertices[k].v == pv.v;
-            });
-            for (std::size_t k = 0; k < 3; ++k) {
-                const std::uint32_t x = tr[3 * own + k], y = tr[3 * own + (k + 1) % 3],
-                                    w = tr[3 * own + (k + 2) % 3];
-                const auto it = owner.find(key(y, x));
-                if (it == owner.end() || third(it->second, x, y) != at || orient(x, at, w) <= 0 ||
-                    orient(at, y, w) <= 0)
-                    continue;
-                const std::uint32_t across = it->second;
-                set(own, x, at, w), set(across, at, y, w);
-                return true;
-            }
-            return false;
-        }
         if (!found || zeros > 1) {
-            a.vertices.pop_back();
+            for (const std::uint32_t k : c)
+                if (found && a.vertices[k].u == a.vertices[n].u &&
+                    a.vertices[k].v == a.vertices[n].v)
+                    at = k;
             return false;
         }
         // The edges round the new vertex, each (x, y) of a triangle (x, y, n).
@@ -756,17 +734,14 @@ Measure repair(const GeoLattice &g, const TileId &id, double bound, Assembly &a,
                 std::rotate(o.begin(), o.begin() + 1, o.end());
             }
             const auto it = owner.find(key(c[1], c[0]));
-            if (it == owner.end()) {
-                a.vertices.pop_back();
+            if (it == owner.end())
                 return false;
-            }
             const std::uint32_t u = it->second, d = third(u, c[0], c[1]);
             const std::uint32_t t1 = std::uint32_t(tr.size() / 3);
             set(t, c[2], c[0], n), set(u, c[0], d, n), set(t1, c[1], c[2], n),
                 set(t1 + 1, d, c[1], n);
             edges = {{c[2], c[0]}, {c[0], d}, {c[1], c[2]}, {d, c[1]}};
         }
-        q.codes.push_back(q.code(pv.h));
         while (!edges.empty()) {
             const auto [x, y] = edges.back();
             edges.pop_back();
@@ -780,6 +755,49 @@ Measure repair(const GeoLattice &g, const TileId &id, double bound, Assembly &a,
             edges.push_back({x, f}), edges.push_back({f, y});
         }
         return true;
+    };
+    // Makes post (i, j), under triangle `own`, a vertex: at its rounded place; or, when that is
+    // a vertex of the triangle next to its own, by flipping the edge between them (over a convex
+    // quadrilateral) so that its triangle has that vertex; or at another corner of the u/v cell
+    // round the post, the nearest free one.
+    const GeoRect rect = tile_rect(id);
+    const auto insert = [&](std::int64_t i, std::int64_t j, const std::uint32_t own) {
+        const double pu = offset_units(g.lon0, g.dlon, i, rect.west, id.z),
+                     pv = offset_units(g.lat0, g.dlat, j, rect.south, id.z);
+        std::array<std::array<int, 2>, 4> cell;
+        for (int k = 0; k < 4; ++k)
+            cell[std::size_t(k)] = {int(std::floor(pu)) + (k & 1), int(std::floor(pv)) + (k >> 1)};
+        std::stable_sort(cell.begin(), cell.end(), [&](const auto &p, const auto &r) {
+            return std::hypot(p[0] - pu, p[1] - pv) < std::hypot(r[0] - pu, r[1] - pv);
+        });
+        const std::uint32_t n = std::uint32_t(a.vertices.size());
+        const double h = std::floor(double(g.at(i, j)) / q.step + 0.5) * q.step;
+        for (std::size_t k = 0; k < cell.size(); ++k) {
+            const auto [u, v] = cell[k];
+            if (u < 1 || v < 1 || u >= k_quantized_max || v >= k_quantized_max)
+                continue;
+            a.vertices.push_back({u, v, h});
+            std::uint32_t at = n;
+            if (place(n, own, at)) {
+                q.codes.push_back(q.code(h));
+                return true;
+            }
+            a.vertices.pop_back();
+            if (k > 0 || at == n)
+                continue;
+            for (std::size_t e = 0; e < 3; ++e) {
+                const std::uint32_t x = tr[3 * own + e], y = tr[3 * own + (e + 1) % 3],
+                                    w = tr[3 * own + (e + 2) % 3];
+                const auto it = owner.find(key(y, x));
+                if (it == owner.end() || third(it->second, x, y) != at || orient(x, at, w) <= 0 ||
+                    orient(at, y, w) <= 0)
+                    continue;
+                const std::uint32_t across = it->second;
+                set(own, x, at, w), set(across, at, y, w);
+                return true;
+            }
+        }
+        return false;
     };
     std::size_t made = 0;
     for (int rounds = 0; rounds < k_max_rounds; ++rounds) {
