@@ -962,10 +962,10 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
     // into short edges makes a regular grid.
     const bool bare = !own.covered && std::all_of(edge_vertices.begin(), edge_vertices.end(),
                                                   [](const auto &ev) { return ev.size() == 2; });
-    // The interior's lattice, read once: a rebuild tightens the bound over the same posts.
+    // The interior's lattice at `stride`, read again only when a rebuild takes a finer one.
     AxisLines cols, rows;
     Heightfield win;
-    if (!bare) {
+    const auto read_interior = [&] {
         for (;;) {
             cols = interior_lines(g.lon0, g.dlon, g.width, rect.west, rect.east, z, stride);
             rows = interior_lines(g.lat0, g.dlat, g.height, rect.south, rect.north, z, stride);
@@ -985,7 +985,9 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         for (int r = 0; r < win.height; ++r)
             for (int c = 0; c < win.width; ++c)
                 win.at(c, r) = float(surface.at(cols.at(c), rows.at(r)));
-    }
+    };
+    if (!bare)
+        read_interior();
     TileMesh best;
     best.error_ratio = INFINITY;
     std::int64_t best_flipped = std::numeric_limits<std::int64_t>::max();
@@ -1088,8 +1090,19 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         best.builds = attempt + 1;
         if (m.flipped == 0 && ratio <= 1.0)
             break;
-        // A triangle turned over by rounding (or posts the repair could not reach): more nodes.
-        interior_bound *= 0.7;
+        // A triangle turned over by rounding (or posts the repair could not reach): more nodes (a
+        // tighter bound), and every other time a finer stride, only while the interior stays
+        // within k_max_posts_across (a tile's work in the memory budget: a coverage that meets the
+        // tile in a corner on coarse levels).
+        const auto finer_fits = [&](const AxisLines &l) {
+            return double(2 * l.count) <= k_max_posts_across;
+        };
+        if (attempt % 2 == 1 && stride > 1 && !bare && finer_fits(cols) && finer_fits(rows)) {
+            stride /= 2;
+            read_interior();
+        } else {
+            interior_bound *= 0.7;
+        }
     }
 
     // Edge lists in CesiumJS's order: west south to north, south east to west, east north to
