@@ -1,7 +1,7 @@
 // erase_dem at a fine vertical bound (docs/decisions/028-fewest-2.md): where the probe lets the
-// greedy insertion run and it keeps over 60 % of the samples (dem_srtm30 at 1 m keeps 3/4), the
-// erase starts from its TIN, not from the full grid, and leaves fewer triangles, every sample
-// within the bound as measure_error measures it.
+// greedy insertion run, it runs to the end (greedy_cap 1) and the erase starts from its TIN, not
+// from the full grid, and leaves fewer triangles, every sample within the bound as measure_error
+// measures it (crater_u16 at 1 m: the probe's windows keep about a third of their samples).
 #include "assets.hpp"
 
 #include "tinlod/decimate.hpp"
@@ -15,7 +15,9 @@
 using namespace tinlod;
 
 TEST(Fewest2, GreedyStartAtFineBoundsKeepsFewerTriangles) {
-    const Heightfield hf = load_heightfield(test::asset("dem_srtm30.tif"));
+    LoadOptions lo;
+    lo.cell = 1.0;
+    const Heightfield hf = load_heightfield(test::asset("crater_u16.png"), lo);
     EraseOptions options;
     options.tolerance = 1.0;
     DemEraseStats stats;
@@ -24,7 +26,6 @@ TEST(Fewest2, GreedyStartAtFineBoundsKeepsFewerTriangles) {
     from_grid.greedy_cap = 0.0;
     const Mesh grid = erase_dem(hf, Significance(), options, from_grid);
     EXPECT_EQ(stats.first_stage, FirstStage::greedy);
-    EXPECT_GT(stats.retrieved_nodes, hf.size() * 6 / 10);
     EXPECT_LT(greedy.n_faces(), grid.n_faces());
     const TinError error = measure_error(hf, greedy);
     EXPECT_LE(error.max_vertical, options.tolerance);

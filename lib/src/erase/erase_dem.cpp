@@ -19,6 +19,7 @@
 namespace tinlod {
 
 using erase::k_probe_margin;
+using erase::k_probe_share;
 using erase::k_probe_window_min;
 using erase::k_probe_window_share;
 using erase::k_probe_windows;
@@ -26,8 +27,8 @@ using erase::rounding_margin;
 
 namespace {
 
-// Whether greedy insertion to options.max_error likely ends under options.max_nodes and pays: the
-// insertion on k_probe_windows^2 windows of full-resolution samples keeps at most the cap's share
+// Whether greedy insertion to options.max_error likely pays: the
+// insertion on k_probe_windows^2 windows of full-resolution samples keeps at most k_probe_share
 // of them, and a margin. The insertion's cost grows with its nodes where the erase's grows with
 // the samples, so only a bound coarse enough for the terrain pays; a probe that misjudges costs the
 // insertion up to max_nodes (docs/decisions/019-erase-dem-first-stage.md, 027-simplify-speed-3.md).
@@ -55,8 +56,7 @@ static bool greedy_pays(const Heightfield &hf, const GreedyOptions &options) {
             kept += std::int64_t(greedy_tin(window, wo).tin.nodes.size());
             samples += window.size();
         }
-    const double cap = double(options.max_nodes) / double(hf.size());
-    return double(kept) <= (cap + k_probe_margin) * double(samples);
+    return double(kept) <= (k_probe_share + k_probe_margin) * double(samples);
 }
 
 // The vertical model with a bound (no budget): greedy insertion to the bound, when the probe says

@@ -82,12 +82,16 @@ inline constexpr std::size_t k_ahead = 8;
 // greedy_pays: the probe runs the insertion on k_probe_windows x k_probe_windows windows of the
 // full-resolution samples, each 1 / k_probe_window_share of the grid's side (at least
 // k_probe_window_min samples), spread over it; the insertion pays when it keeps at most
-// greedy_cap + k_probe_margin of their samples: the windows' share is the whole grid's within
+// k_probe_share + k_probe_margin of their samples: the windows' share is the whole grid's within
 // 0.03 on the quick bench's inputs at 0.5-20 m, where a subsampled probe's was not (rough grids
 // keep more at full resolution: docs/decisions/027-simplify-speed-3.md).
 inline constexpr int k_probe_windows = 3;
 inline constexpr int k_probe_window_share = 12;
 inline constexpr int k_probe_window_min = 16;
 inline constexpr double k_probe_margin = 0.02;
+// Past this share of the samples the insertion and the erase after it cost more than the erase from
+// the grid (docs/decisions/019-erase-dem-first-stage.md); the insertion itself, once it runs, goes
+// to DemEraseOptions::greedy_cap (decision 028).
+inline constexpr double k_probe_share = 0.6;
 
 } // namespace tinlod::erase
