@@ -14,7 +14,8 @@
 // u/v unit from the edges are a Heightfield, meshed by greedy insertion and then the node erase
 // (vertical model) to the bound; a strip of triangles joins its outline to the edge polylines, and
 // no post lies strictly inside that strip. The tile is then quantized, measured at every covered
-// post inside it as a decoder sees it, and rebuilt tighter in the rare case it is over the bound.
+// post inside it as a decoder sees it; where a post is over the bound it becomes a vertex (the
+// repair, in exact u/v) and the triangles round it are measured again.
 // A tile is a pure function of the lattice, its level and its address: built alone it is
 // byte-identical to the same tile built in a whole run.
 #pragma once
