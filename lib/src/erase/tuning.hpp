@@ -89,9 +89,9 @@ inline constexpr int k_probe_windows = 3;
 inline constexpr int k_probe_window_share = 12;
 inline constexpr int k_probe_window_min = 16;
 inline constexpr double k_probe_margin = 0.02;
-// Past this share of the samples the insertion and the erase after it cost more than the erase from
-// the grid (docs/decisions/019-erase-dem-first-stage.md); the insertion itself, once it runs, goes
-// to DemEraseOptions::greedy_cap (decision 028).
-inline constexpr double k_probe_share = 0.6;
+// Past this share of the samples the insertion to the end and the erase after it cost more than
+// the erase from the grid for too few fewer triangles (docs/decisions/028-fewest-2.md, "After the
+// merge"); once it runs, the insertion goes to DemEraseOptions::greedy_cap.
+inline constexpr double k_probe_share = 0.72;
 
 } // namespace tinlod::erase
