@@ -18,6 +18,7 @@
 #include <cassert>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -755,20 +756,20 @@ struct TileStore::Impl {
                   MADV_DONTNEED);
     }
 
-    // Drops the least recently used tiles until the cap holds (at the end of a retrieval, so the
-    // tiles of the view in progress stay mapped while it runs); their pages leave memory and are
-    // read and verified again if a later view needs them.
-    void evict() {
-        if (resident_bytes <= cap_bytes)
+    // Drops the least recently used tiles until at most `target` bytes stay (at the end of a
+    // retrieval, so the tiles of the view in progress stay mapped while it runs), never tile
+    // `keep`; their pages leave memory and are read and verified again if a later view needs them.
+    void evict(std::uint64_t target, std::size_t keep = SIZE_MAX) {
+        if (resident_bytes <= target)
             return;
         std::vector<std::size_t> order;
         for (std::size_t t = 0; t < tiles.size(); ++t)
-            if (tiles[t].resident)
+            if (tiles[t].resident && t != keep)
                 order.push_back(t);
         std::sort(order.begin(), order.end(),
                   [&](std::size_t a, std::size_t b) { return tiles[a].stamp < tiles[b].stamp; });
         for (std::size_t t : order) {
-            if (resident_bytes <= cap_bytes)
+            if (resident_bytes <= target)
                 break;
             Tile &tile = tiles[t];
             drop_pages(tile);
@@ -803,10 +804,21 @@ void TileStore::begin_retrieval() {
 }
 
 void TileStore::end_retrieval() {
-    impl_->evict();
+    impl_->evict(impl_->cap_bytes);
     impl_->total.tiles_read += impl_->last.tiles_read;
     impl_->total.bytes_read += impl_->last.bytes_read;
     impl_->total.tiles_evicted += impl_->last.tiles_evicted;
+}
+
+TileSamples TileStore::tile_samples(std::uint32_t i, std::uint32_t j) {
+    Impl &s = *impl_;
+    const int tl = s.g->tile_level;
+    const std::size_t t = std::size_t{j} * s.g->tiles_x + i;
+    ++s.retrieval; // a stamp per read: the least recently used go first
+    const float *z = reinterpret_cast<const float *>(s.tile_data(t));
+    if (s.resident_bytes > s.cap_bytes)
+        s.evict(s.cap_bytes / 4 * 3, t);
+    return {s.lay.x.lo(tl, i), s.lay.y.lo(tl, j), s.lay.x.hi(tl, i), s.lay.y.hi(tl, j), z};
 }
 
 int TileStore::tile_level() const { return impl_->g->tile_level; }
