@@ -2,11 +2,11 @@
 // quad-tree, node boxes first and tile samples where a box cannot pass whole.
 #include "tinlod/store_erase.hpp"
 
-#include "triangle_plane.hpp"
 #include "tinlod/error.hpp"
 #include "tinlod/quadtree.hpp"
 #include "tinlod/screen_weight.hpp"
 #include "tinlod/util.hpp"
+#include "triangle_plane.hpp"
 
 #include <algorithm>
 #include <array>
@@ -27,8 +27,7 @@ struct GridTriangle {
     std::uint32_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
 
     GridTriangle(const glm::dvec3 &a, const glm::dvec3 &b, const glm::dvec3 &c)
-        : t{a, b, c}, area((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)),
-          plane(a, b, c) {
+        : t{a, b, c}, area((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)), plane(a, b, c) {
         c0 = std::uint32_t(std::min({a.x, b.x, c.x}));
         c1 = std::uint32_t(std::max({a.x, b.x, c.x}));
         r0 = std::uint32_t(std::min({a.y, b.y, c.y}));
@@ -65,8 +64,10 @@ bool walk(TileStore &store, const GridTriangle &g, const Node &node, const Sampl
     const GridFrame &f = store.frame();
     const int tl = store.tile_level();
     const auto visit = [&](const auto &self, int d, std::uint32_t i, std::uint32_t j) -> bool {
-        const std::uint32_t u0 = std::max(lay.x.lo(d, i), g.c0), u1 = std::min(lay.x.hi(d, i), g.c1),
-                            v0 = std::max(lay.y.lo(d, j), g.r0), v1 = std::min(lay.y.hi(d, j), g.r1);
+        const std::uint32_t u0 = std::max(lay.x.lo(d, i), g.c0),
+                            u1 = std::min(lay.x.hi(d, i), g.c1),
+                            v0 = std::max(lay.y.lo(d, j), g.r0),
+                            v1 = std::min(lay.y.hi(d, j), g.r1);
         if (u0 > u1 || v0 > v1 || g.misses(u0, u1, v0, v1))
             return true;
         if (d + 1 < lay.levels()) { // one-cell nodes have no bound (a 2 x 2 grid's root)
@@ -85,8 +86,8 @@ bool walk(TileStore &store, const GridTriangle &g, const Node &node, const Sampl
         }
         if (d < tl) {
             const std::uint32_t ci = lay.x.first_child(d, i), cj = lay.y.first_child(d, j);
-            for (std::uint32_t a = ci; a < lay.x.count(d + 1) && lay.x.lo(d + 1, a) < lay.x.hi(d, i);
-                 ++a)
+            for (std::uint32_t a = ci;
+                 a < lay.x.count(d + 1) && lay.x.lo(d + 1, a) < lay.x.hi(d, i); ++a)
                 for (std::uint32_t b = cj;
                      b < lay.y.count(d + 1) && lay.y.lo(d + 1, b) < lay.y.hi(d, j); ++b)
                     if (!self(self, d + 1, a, b))
@@ -104,16 +105,30 @@ bool walk(TileStore &store, const GridTriangle &g, const Node &node, const Sampl
             }
         return true;
     };
-    return visit(visit, 0, 0, 0);
+    // From the deepest node whose box holds the triangle's: the walk reads no bound above it.
+    int d = 0;
+    std::uint32_t i = 0, j = 0;
+    while (d < tl) {
+        const std::uint32_t a = lay.x.interval_of(d + 1, g.c0), b = lay.y.interval_of(d + 1, g.r0);
+        if (lay.x.hi(d + 1, a) < g.c1 || lay.y.hi(d + 1, b) < g.r1)
+            break;
+        ++d;
+        i = a;
+        j = b;
+    }
+    return visit(visit, d, i, j);
 }
 
 // Whether every sample under g deviates from it by at most `limit` weighted (deviation times the
-// weight at the sample).
-bool within(TileStore &store, const GridTriangle &g, const Weigher &weigh, double limit) {
+// weight at the sample). A box passes on k over its distance to the eye when it can, which bounds
+// the weight without the peripheral factor's transcendental functions.
+bool within(TileStore &store, const GridTriangle &g, const Weigher &weigh, const glm::dvec3 &eye,
+            double k, double limit) {
     return walk(
         store, g,
         [&](double dev, const glm::dvec3 &lo, const glm::dvec3 &hi) {
-            return dev * weigh.bound(lo, hi) <= limit;
+            const double dist = glm::length(glm::clamp(eye, lo, hi) - eye);
+            return dev * k <= limit * dist || dev * weigh.bound(lo, hi) <= limit;
         },
         [&](double dev, const glm::dvec3 &p) { return dev == 0.0 || dev * weigh(p) <= limit; });
 }
@@ -134,8 +149,9 @@ constexpr int k_last_rounds = 4; // at most this many rounds at the tolerance it
 class StoreEraser {
   public:
     StoreEraser(TileStore &store, Mesh &mesh, const Significance &model)
-        : store_(store), mesh_(mesh), weigh_(model), origin_(get_origin_property(mesh)),
-          width_(std::uint32_t(store.frame().width)) {
+        : store_(store), mesh_(mesh), weigh_(model), eye_(model.view()->eye), k_(model.view()->k()),
+          origin_(get_origin_property(mesh)), width_(std::uint32_t(store.frame().width)),
+          dx_(store.frame().dx), dy_(store.frame().dy) {
         const std::uint64_t w = width_, h = std::uint64_t(store.frame().height);
         for (const Mesh::VertexHandle v : mesh_.vertices()) {
             const auto id = std::uint64_t(mesh_.property(origin_, v));
@@ -167,11 +183,10 @@ class StoreEraser {
         for (const Mesh::HalfedgeHandle h : mesh_.voh_range(v)) {
             if (border && !mesh_.is_boundary(mesh_.edge_handle(h)))
                 continue;
-            if (!mesh_.is_collapse_ok(h))
-                continue;
             ++evaluations;
+            // The topology last: OpenMesh's test costs more than most failing geometric ones.
             const Mesh::VertexHandle u = mesh_.to_vertex_handle(h);
-            if (collapse_keeps_bound(v, u, limit)) {
+            if (collapse_keeps_bound(v, u, limit) && mesh_.is_collapse_ok(h)) {
                 mesh_.collapse(h);
                 return true;
             }
@@ -196,8 +211,19 @@ class StoreEraser {
                 return false;
             fan_.push_back(g);
         }
+        // v is one of the samples under the fan, and its height is at hand: most collapses that
+        // fail, fail there, before any tile is read.
+        const glm::dvec3 pv = grid_corner(mesh_, origin_, v, width_);
+        const glm::dvec3 world(pv.x * dx_, pv.y * dy_, pv.z);
         for (const GridTriangle &g : fan_)
-            if (!within(store_, g, weigh_, limit))
+            if (g.covers(pv.x, pv.y)) {
+                const double dev = std::abs(pv.z - g.plane.height(pv.x, pv.y));
+                if (dev > 0.0 && !(dev * weigh_(world) <= limit))
+                    return false;
+                break;
+            }
+        for (const GridTriangle &g : fan_)
+            if (!within(store_, g, weigh_, eye_, k_, limit))
                 return false;
         return true;
     }
@@ -205,8 +231,11 @@ class StoreEraser {
     TileStore &store_;
     Mesh &mesh_;
     Weigher weigh_;
+    glm::dvec3 eye_;
+    double k_;
     OpenMesh::VPropHandleT<std::int64_t> origin_;
     std::uint32_t width_;
+    double dx_, dy_;
     std::vector<Mesh::VertexHandle> corners_;
     std::vector<GridTriangle> fan_;
 };
@@ -218,8 +247,8 @@ Mesh erase_store(TileStore &store, const Significance &model, double tolerance,
     if (model.model() != SpModel::screen)
         throw Error("erase_store", "needs the screen model");
     if (!(retrieve_share > 0.0 && retrieve_share <= 1.0))
-        throw Error("erase_store", "retrieve_share must be in (0, 1], not " +
-                                       std::to_string(retrieve_share));
+        throw Error("erase_store",
+                    "retrieve_share must be in (0, 1], not " + std::to_string(retrieve_share));
     DemEraseStats out;
     Stopwatch clock;
     Mesh mesh;

@@ -88,10 +88,10 @@ class TileStore final : public NodeSource {
     void begin_retrieval() override;
     void end_retrieval() override;
 
-    // The samples of node (tile_level(), i, j) through the cache, for reads outside a retrieval
-    // (erase_store): read and verified on a miss; past cache_mb of resident tiles, the least
-    // recently used others leave down to 3/4 of it (not one at a time: each eviction sorts the
-    // tiles). The samples stay readable after eviction (read from the file again).
+    // The samples of node (tile_level(), i, j), for reads outside a retrieval (erase_store):
+    // read and verified on a miss into a cache of samples, which with the mapped tiles holds
+    // cache_mb (the mapped ones leave at the first miss; past the cap the least recently used
+    // quarter of the cached tiles goes). Valid until the next call.
     TileSamples tile_samples(std::uint32_t i, std::uint32_t j);
 
     int tile_level() const;
