@@ -242,3 +242,14 @@ TEST(StoreMemory, SimplifyStoreWithTolHoldsTheRetrievedTinNotTheRaster) {
     const double bound_mb = 30.0 + cache_mb + 2.0 * retrieved / 1024.0;
     EXPECT_LT(peak_mb, bound_mb) << retrieved << " nodes retrieved";
 }
+
+// The bounded path checks the eye against the store's surface too, without reading it whole.
+TEST(StoreMemory, SimplifyStoreWithTolRefusesAnEyeUnderTheGround) {
+    const std::string store = temp_dir() + "/eye.tlq";
+    ASSERT_EQ(run_cli("build '" + asset("N42E001.hgt") + "' -o '" + store + "'").status, 0);
+    const RunResult r = run_cli("simplify '" + store +
+                                "' --eye 41000,50000,10 --at 41000,55000,980 --tol 1 -o " +
+                                temp_dir() + "/eye.ply");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("inside the terrain"), std::string::npos) << r.err;
+}
