@@ -247,9 +247,9 @@ TEST(StoreMemory, SimplifyStoreWithTolHoldsTheRetrievedTinNotTheRaster) {
 TEST(StoreMemory, SimplifyStoreWithTolRefusesAnEyeUnderTheGround) {
     const std::string store = temp_dir() + "/eye.tlq";
     ASSERT_EQ(run_cli("build '" + asset("N42E001.hgt") + "' -o '" + store + "'").status, 0);
-    const RunResult r = run_cli("simplify '" + store +
-                                "' --eye 41000,50000,10 --at 41000,55000,980 --tol 1 -o " +
-                                temp_dir() + "/eye.ply");
+    const RunResult r =
+        run_cli("simplify '" + store + "' --eye 41000,50000,10 --at 41000,55000,980 --tol 1 -o " +
+                temp_dir() + "/eye.ply");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("inside the terrain"), std::string::npos) << r.err;
 }
