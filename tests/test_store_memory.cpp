@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -258,4 +259,24 @@ TEST(StoreMemory, SimplifyStoreWithTolRefusesAnEyeUnderTheGround) {
                 temp_dir() + "/eye.ply");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("inside the terrain"), std::string::npos) << r.err;
+}
+
+// A tile whose bytes changed is refused on the bounded path too (every tile the erase or the
+// measure reads is verified), with no output file.
+TEST(StoreMemory, SimplifyStoreWithTolRefusesACorruptTile) {
+    const std::string store = temp_dir() + "/corrupt.tlq", out = temp_dir() + "/corrupt.ply";
+    ASSERT_EQ(run_cli("build '" + asset("N42E001.hgt") + "' -o '" + store + "'").status, 0);
+    std::string bytes = file_bytes(store);
+    // Tiles fill most of the file: one of these lands in a tile's samples or bounds.
+    for (const double at : {0.5, 0.6, 0.7})
+        bytes[std::size_t(at * double(bytes.size()))] ^= 0x5a;
+    {
+        std::ofstream f(store, std::ios::binary | std::ios::trunc);
+        f << bytes;
+    }
+    const RunResult r = run_cli("simplify '" + store +
+                                "' --eye 60000,-3000,1600 --at 60000,40000,800 --tol 1 -o " + out);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("corrupt tile"), std::string::npos) << r.err;
+    EXPECT_TRUE(file_bytes(out).empty());
 }
