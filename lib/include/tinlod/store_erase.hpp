@@ -22,8 +22,8 @@ namespace tinlod {
 // sample): the retrieval at retrieve_share * tolerance (in (0, 1]), then nodes erased by
 // half-edge collapses in rounds of rising thresholds (tolerance / 8, / 4, / 2, then tolerance
 // until a round erases none), each collapse kept only when every sample under its new triangles
-// is within the round's threshold. Keeps more nodes than erase_dem's NodeEraser on the same view
-// (no cost order, no ring re-triangulation). Its stats: first_stage quadtree, the retrieval's
+// is within the round's threshold. Not erase_dem's TIN (no cost order, no ring re-triangulation):
+// fewer nodes on the views of decision 031. Its stats: first_stage quadtree, the retrieval's
 // nodes and tolerance, and the erase's counts (erase.max_* are left 0: measure_store_error
 // measures). Throws Error when the model is not the screen one or retrieve_share is outside (0, 1].
 Mesh erase_store(TileStore &store, const Significance &model, double tolerance,
