@@ -12,6 +12,7 @@
 #include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/store.hpp"
+#include "tinlod/store_erase.hpp"
 #include "tinlod/util.hpp"
 
 #include <cmath>
@@ -93,7 +94,8 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             ->check(real_in(0.0, 1.0))
             ->capture_default_str();
     cmd.add_option("--cache-mb", args->cache_mb,
-                   "store input with a camera: store tiles the retrieval keeps in memory, MiB")
+                   "store input with a camera: store tiles the retrieval (and with --tol alone, "
+                   "the erase) keeps in memory, MiB")
         ->check(real_in(0.0, INFINITY))
         ->capture_default_str();
     args->camera.add(cmd, false);
@@ -137,21 +139,38 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         if (has_camera)
             view = args->camera.view();
 
+        // A store seen with a tolerance alone (screen model, a retrieval share) is never read
+        // whole: erase_store tests triangles through its quad-tree and tile cache
+        // (docs/decisions/031-bounded-store-erase.md). A budget, the paper model or
+        // --retrieve-share 0 read its heights whole, as a DEM's.
+        const bool bounded_store = !mesh_input && is_store_path(args->input) && has_camera &&
+                                   max_nodes->count() == 0 && args->model == "screen" &&
+                                   args->retrieve_share > 0.0;
         StageTimes times;
         std::optional<Heightfield> hf;
+        std::optional<TileStore> store;
         Mesh mesh;
-        if (mesh_input)
+        if (mesh_input) {
             mesh = read_mesh(args->input);
-        else
+        } else if (bounded_store) {
+            args->raster.check_store(args->input);
+            StoreOptions so;
+            so.cache_mb = args->cache_mb;
+            store.emplace(args->input, so);
+            check_eye_above(*store, view->eye, "--eye");
+        } else {
             hf = args->raster.load(args->input);
+        }
         if (hf && view)
             check_eye_above(*hf, view->eye, "--eye");
         times.lap("load");
         std::int64_t input_nodes = std::int64_t(mesh.n_vertices());
         std::int64_t input_triangles = std::int64_t(mesh.n_faces());
-        if (hf) {
-            input_nodes = hf->size();
-            input_triangles = 2 * std::int64_t(hf->width - 1) * (hf->height - 1);
+        if (hf || store) {
+            const std::int64_t w = hf ? hf->width : store->frame().width,
+                               h = hf ? hf->height : store->frame().height;
+            input_nodes = w * h;
+            input_triangles = 2 * (w - 1) * (h - 1);
         }
         EraseOptions options;
         options.max_nodes = args->max_nodes;
@@ -181,16 +200,23 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
             options.progress = [&bar](double done) { bar.update(std::int64_t(done * 1000.0)); };
             // A DEM goes through both methods (erase_dem): the quad-tree retrieval (or the greedy
             // insertion), then the node erase of its TIN over every sample of the grid.
-            if (hf) {
+            if (store) {
+                mesh = erase_store(*store, model, options.tolerance, args->retrieve_share, &dem);
+                erased = dem.erase;
+                // Its erase tests thresholds and keeps no maximum: the stats' bound_reached is
+                // null, the error below the measured one.
+                erased.max_weighted = NAN;
+                times.add("retrieve", dem.retrieve_ms);
+            } else if (hf) {
                 DemEraseOptions dem_options;
                 // A store holds the quad-tree's bounds: the retrieval reads them, tile by tile,
                 // instead of building them again from the heights.
-                std::optional<TileStore> store;
+                std::optional<TileStore> nodes;
                 if (is_store_path(args->input)) {
                     StoreOptions so;
                     so.cache_mb = args->cache_mb;
-                    store.emplace(args->input, so);
-                    dem_options.nodes = &*store;
+                    nodes.emplace(args->input, so);
+                    dem_options.nodes = &*nodes;
                 }
                 dem_options.retrieve_share = args->retrieve_share;
                 if (args->retrieve_share == 0.0) {
@@ -212,10 +238,11 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         // Against the DEM the error is measured exhaustively; for a mesh it is the decimater's own
         // bound over every swallowed input node.
         double max_screen = erased.max_screen_px, max_vertical = erased.max_vertical;
-        if (hf) {
+        if (hf || store) {
             ErrorOptions eo;
             eo.model = model;
-            const TinError measured = measure_error(*hf, mesh, eo);
+            const TinError measured =
+                hf ? measure_error(*hf, mesh, eo) : measure_store_error(*store, mesh, eo);
             max_screen = measured.max_screen_px;
             max_vertical = measured.max_vertical;
             times.lap("measure");
@@ -244,7 +271,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
               {"bound_reached", erased.max_weighted}}},
             {"peak_rss_mb", peak_rss_mb()}};
         // What the erase started from: a DEM's first stage (a mesh has none).
-        if (hf)
+        if (hf || store)
             stats["retrieve"] = {{"first_stage", first_stage_name(dem.first_stage)},
                                  {"tol", dem.retrieve_tol},
                                  {"nodes", dem.retrieved_nodes}};
@@ -255,7 +282,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         // it is a TIN (a node's distance to the surface otherwise, see EraseStats::max_vertical).
         StageTimes shown = times;
         shown.rename("retrieve", first_stage_name(dem.first_stage));
-        const char *deviation = hf ? "vertical error" : "deviation";
+        const char *deviation = hf || store ? "vertical error" : "deviation";
         char text[160];
         if (view)
             std::snprintf(text, sizeof text, "max error %.3g px on screen, max %s %.3g m",

@@ -54,6 +54,16 @@ struct StoreOptions {
                              // in progress stay resident until it ends
 };
 
+// The samples of one tile: an inclusive rectangle of the grid, row-major.
+struct TileSamples {
+    std::uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    const float *z = nullptr; // (x1 - x0 + 1) a row
+
+    float at(std::uint32_t c, std::uint32_t r) const {
+        return z[std::size_t{r - y0} * (x1 - x0 + 1) + (c - x0)];
+    }
+};
+
 struct StoreStats {
     std::int64_t tiles_read = 0; // tiles loaded and verified (cache misses)
     std::int64_t bytes_read = 0; // their bytes
@@ -77,6 +87,12 @@ class TileStore final : public NodeSource {
                    std::uint32_t r) override;
     void begin_retrieval() override;
     void end_retrieval() override;
+
+    // The samples of node (tile_level(), i, j), for reads outside a retrieval (erase_store):
+    // read and verified on a miss into a cache of samples, which with the mapped tiles holds
+    // cache_mb (the mapped ones leave at the first miss; past the cap the least recently used
+    // quarter of the cached tiles goes). Valid until the next call.
+    TileSamples tile_samples(std::uint32_t i, std::uint32_t j);
 
     int tile_level() const;
     std::int64_t tile_count() const;
