@@ -317,6 +317,40 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
 static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
                          std::size_t max_swallowed);
 
+// Whether evaluate tries the fans of the hole when the ears' triangulation exceeds the limit: a
+// one-off erase of a grid TIN at a screen bound without a budget. The Delaunay ears follow xy
+// alone; a fan from a ring node (a half-edge collapse's triangulation) may follow the terrain
+// (docs/decisions/033-node-erase-vs-collapses.md). A vertical bound has its min-max hole instead.
+static bool fans_tried(const EraserState &s) {
+    return s.input.xy && s.input.grid_w > 0 && !s.weights.unit_weights &&
+           s.input.options.max_nodes <= 0 && !s.input.history.shallow_history &&
+           s.follower == nullptr;
+}
+
+// Measures the fans of the interior hole in h (from each ring node in turn, those whose triangles
+// all turn counter-clockwise) and stops at the first within `limit`, left in h; false when none is.
+static bool first_fan_within(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
+                             std::size_t max_swallowed) {
+    Hole &h = s.scratch.hole;
+    const int n = h.n;
+    for (int i = 0; i < n; ++i) {
+        bool turns_left = true;
+        for (int k = 1; k <= n - 2 && turns_left; ++k) {
+            const int b = (i + k) % n, c = (i + k + 1) % n;
+            turns_left = orient(h.q[i], h.q[b], h.q[c]) > 0.0;
+            h.tri[std::size_t(k - 1)] = {std::uint8_t(i), std::uint8_t(b), std::uint8_t(c)};
+        }
+        if (!turns_left)
+            continue;
+        h.ntri = n - 2;
+        frame_triangles(h, true);
+        measure_hole(s, v, pv, limit, max_swallowed);
+        if (!h.deferred && h.sp <= limit)
+            return true;
+    }
+    return false;
+}
+
 bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     ++s.counters.evaluations;
     Hole &h = s.scratch.hole;
@@ -379,6 +413,15 @@ bool evaluate(EraserState &s, VH v, double limit, std::size_t max_swallowed) {
     if (h.sp > limit && !h.deferred && n > 3 && data_dependent(s) && min_max_hole(s, h, limit)) {
         frame_triangles(h, s.input.xy);
         measure_hole(s, v, pv, limit, max_swallowed);
+    } else if (h.sp > limit && !h.deferred && n > 3 && !h.boundary && fans_tried(s)) {
+        const std::array<RingTriangle, k_max_ring> ears = h.tri;
+        if (!first_fan_within(s, v, pv, limit, max_swallowed)) {
+            // The ears' cost stays the node's key, as without the fans.
+            h.tri = ears;
+            h.ntri = n - 2;
+            frame_triangles(h, true);
+            measure_hole(s, v, pv, limit, max_swallowed);
+        }
     }
     return true;
 }
