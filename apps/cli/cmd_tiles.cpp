@@ -121,6 +121,7 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                     "failed run leaves DIR as it was. Serve the .terrain files with "
                     "`Content-Encoding: gzip` (docs/tiles.md).");
     return [args, min_zoom, max_zoom] {
+        args->raster.refuse_max_memory("tiles");
         (void)min_zoom;
         if (max_zoom->count() > 0 && args->min_zoom > args->max_zoom)
             throw UsageError("--min-zoom", "is past --max-zoom");

@@ -313,8 +313,8 @@ constexpr std::size_t k_min_bands = 4;
 class BandData {
   public:
     explicit BandData(const std::vector<float> &z) : size_(z.size()) {
-        void *p =
-            mmap(nullptr, bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        void *p = mmap(nullptr, bytes(), PROT_READ | PROT_WRITE,
+                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
         if (p == MAP_FAILED)
             throw std::bad_alloc();
         data_ = static_cast<float *>(p);
