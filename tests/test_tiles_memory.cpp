@@ -300,3 +300,89 @@ TEST(TilesMemory, TilesLeftOverTheirBoundAreReported) {
             << r.err;
     }
 }
+
+// A coarse level through a cache far smaller than its tiles (bands of 16 rows, 4 held; a tile
+// spans some 65 of them): the four level-7 tiles round the corner at 11.25 E, 46.40625 N each
+// cross the DEM with two of their edges. A tile reads its edges and its first interior in one
+// pass over its bands and measures in another (the edges read along their lines, the interior
+// and the measure each read them once more before), so with no rebuild each band is read at most
+// twice for each tile over it (a band lies under 2 of the 4, or 4 at the corner's row, with the
+// rows beyond each tile's edge), and the tiles are the whole run's.
+TEST(TilesMemory, CoarseTilesReadEachBandAtMostTwicePerTile) {
+    const std::string dir = temp_dir();
+    const std::string dem = dir + "/corner.tif";
+    const unsigned side = 2049;
+    const double step = 1.0 / 3600.0, west = 11.25 - 1024 * step, north = 46.40625 + 1024 * step;
+    write_tiled_geotiff(dem, side, side, 256, west, north, step, [&](unsigned c, unsigned r) {
+        return terrain(west + c * step, north - r * step);
+    });
+    const std::string common =
+        "--threads 1 tiles '" + dem + "' --min-zoom 7 --max-zoom 7 --memory-mb 1 -o '";
+    const auto b = run_cli(common + dir + "/bounded' --stats '" + dir + "/bounded.json'");
+    ASSERT_EQ(b.status, 0) << b.err;
+    const auto w =
+        run_cli("--threads 1 tiles '" + dem + "' --min-zoom 7 --max-zoom 7 -o '" + dir + "/whole'");
+    ASSERT_EQ(w.status, 0) << w.err;
+    expect_same_files(dir + "/whole", dir + "/bounded", 3);
+    const nlohmann::json j = nlohmann::json::parse(file_bytes(dir + "/bounded.json"));
+    const std::int64_t bands = j["input"]["bands"].get<std::int64_t>();
+    EXPECT_GE(bands, std::int64_t(side / 16)) << "bands of 16 rows";
+    ASSERT_EQ(j["levels"].size(), 1u);
+    const nlohmann::json &level = j["levels"][0];
+    EXPECT_EQ(level["tiles"].get<std::int64_t>(), 4);
+    ASSERT_EQ(level["rebuilt"].get<std::int64_t>(), 0) << "a rebuild measures again";
+    // Each tile's bands, counted twice: 2 tiles over every band, and 4 over the corner's band and
+    // the one beyond each tile's edge.
+    const std::int64_t under_tiles = 2 * bands + 2 * 3;
+    EXPECT_LE(level["bands_read"].get<std::int64_t>(), 2 * under_tiles);
+    EXPECT_GE(j["input"]["bands_read"].get<std::int64_t>(),
+              level["bands_read"].get<std::int64_t>());
+}
+
+// The stats count the tiles the repair changed in place and the posts it made vertices, per level
+// and in all; on this rough DEM it repairs some (docs/tiles.md, step 6).
+TEST(TilesMemory, RepairedTilesAndPostsAreCounted) {
+    const std::string dem = temp_dir() + "/rough.tif", stats = temp_dir() + "/rough.json";
+    const unsigned n = 4097;
+    const double step = 1.0 / 3600.0;
+    write_tiled_geotiff(dem, n, n, 256, 10.0, 47.0, step, [&](unsigned c, unsigned r) {
+        return terrain(10.0 + c * step, 47.0 - r * step);
+    });
+    const auto r = run_cli("tiles '" + dem + "' --min-zoom 6 --max-zoom 8 -o '" + temp_dir() +
+                           "/rough' --stats '" + stats + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(file_bytes(stats));
+    std::int64_t tiles = 0, posts = 0;
+    for (const auto &level : j["levels"]) {
+        const auto t = level["repaired"].get<std::int64_t>();
+        const auto p = level["repaired_posts"].get<std::int64_t>();
+        EXPECT_LE(t, level["tiles"].get<std::int64_t>()) << "level " << level["z"];
+        EXPECT_GE(p, t) << "a repaired tile has a post made a vertex";
+        EXPECT_EQ(p > 0, t > 0);
+        tiles += t, posts += p;
+    }
+    EXPECT_GT(tiles, 0) << "this DEM's coarse tiles are repaired";
+    EXPECT_EQ(j["error"]["tiles_repaired"].get<std::int64_t>(), tiles);
+    EXPECT_EQ(j["error"]["posts_repaired"].get<std::int64_t>(), posts);
+}
+
+// tiles and build bound their memory with --memory-mb (read by windows past it); the whole-load
+// refusal --max-memory-mb is a usage error there, naming --memory-mb, and nothing is written.
+TEST(TilesMemory, MaxMemoryIsAUsageErrorOnCommandsThatReadByWindows) {
+    const std::string dir = temp_dir();
+    const auto t =
+        run_cli("tiles '" + asset("N42E001.hgt") + "' -o '" + dir + "/tiles' --max-memory-mb 4000");
+    EXPECT_EQ(t.status, 2) << t.err;
+    EXPECT_NE(t.err.find("--memory-mb"), std::string::npos) << t.err;
+    EXPECT_FALSE(fs::exists(dir + "/tiles/layer.json"));
+    const auto b =
+        run_cli("build '" + asset("N42E001.hgt") + "' -o '" + dir + "/s.tlq' --max-memory-mb 4000");
+    EXPECT_EQ(b.status, 2) << b.err;
+    EXPECT_NE(b.err.find("--memory-mb"), std::string::npos) << b.err;
+    EXPECT_FALSE(fs::exists(dir + "/s.tlq"));
+    // --memory-mb alone is the way, and a command that loads whole still takes the refusal.
+    EXPECT_EQ(run_cli("build '" + asset("N42E001.hgt") + "' -o '" + dir + "/s.tlq' --memory-mb 64")
+                  .status,
+              0);
+    EXPECT_EQ(run_cli("info '" + asset("N42E001.hgt") + "' --max-memory-mb 4000").status, 0);
+}

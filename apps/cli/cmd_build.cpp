@@ -60,6 +60,7 @@ static Register build("build", 20, [](CLI::App &cmd) {
     args->raster.add(cmd);
     declare_outputs(cmd, {{"--output", &args->output}, {"--stats", &args->stats}});
     return [args] {
+        args->raster.refuse_max_memory("build");
         if (is_mesh_path(args->output))
             throw UsageError(args->output, "a store is not a mesh file; name it .tlq");
         check_store_writable(args->output);

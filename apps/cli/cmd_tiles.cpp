@@ -121,6 +121,7 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                     "failed run leaves DIR as it was. Serve the .terrain files with "
                     "`Content-Encoding: gzip` (docs/tiles.md).");
     return [args, min_zoom, max_zoom] {
+        args->raster.refuse_max_memory("tiles");
         (void)min_zoom;
         if (max_zoom->count() > 0 && args->min_zoom > args->max_zoom)
             throw UsageError("--min-zoom", "is past --max-zoom");
@@ -179,12 +180,14 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
         times.lap("tiles");
 
         std::int64_t tiles = 0, triangles = 0, vertices = 0, bytes = 0, over_bound = 0;
+        std::int64_t repaired = 0, repaired_posts = 0;
         double worst = 0.0, max_error = 0.0;
         TileId worst_tile;
         nlohmann::json levels = nlohmann::json::array();
         for (const LevelStats &l : ps.levels) {
             tiles += l.tiles, triangles += l.triangles, vertices += l.vertices, bytes += l.bytes;
             over_bound += l.over_bound;
+            repaired += l.repaired, repaired_posts += l.repaired_posts;
             if (l.worst_ratio > worst)
                 worst = l.worst_ratio, worst_tile = l.worst_tile;
             max_error = std::max(max_error, l.max_error);
@@ -197,7 +200,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                               {"max_error_m", l.max_error},
                               {"worst_ratio", l.worst_ratio},
                               {"over_bound", l.over_bound},
-                              {"rebuilt", l.rebuilt}});
+                              {"rebuilt", l.rebuilt},
+                              {"repaired", l.repaired},
+                              {"repaired_posts", l.repaired_posts},
+                              {"bands_read", l.bands_read}});
         }
         if (!args->stats.empty())
             write_json(args->stats,
@@ -207,6 +213,10 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                           {"triangles", 2 * std::int64_t(lattice.width - 1) * (lattice.height - 1)},
                           {"covered", lattice.covered},
                           {"resampled", lattice.resampled},
+                          // By windows: the lattice's bands, and those made from the DEMs in
+                          // all (a band made again after its eviction counts again).
+                          {"bands", lattice.band_count()},
+                          {"bands_read", lattice.bands_read()},
                           {"spacing_deg", {lattice.dlon, lattice.dlat}}}},
                         {"output",
                          {{"dir", args->output},
@@ -223,6 +233,8 @@ static Register tiles("tiles", 75, [](CLI::App &cmd) {
                          {{"worst_ratio", worst},
                           {"max_error_m", max_error},
                           {"tiles_over_bound", over_bound},
+                          {"tiles_repaired", repaired},
+                          {"posts_repaired", repaired_posts},
                           {"max_screen_px", nullptr}}},
                         {"time_ms", times.json()},
                         {"tiles_per_s", double(tiles) / (ps.ms / 1000.0)},

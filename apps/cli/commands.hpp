@@ -82,9 +82,13 @@ struct RasterOptions {
     Heightfield load(const std::string &path) const;
     // Throws that usage error when one of them was given for the store at `path`.
     void check_store(const std::string &path) const;
+    // A command that reads a DEM by windows past --memory-mb (tiles, build) takes no
+    // --max-memory-mb: a usage error naming --memory-mb when it was given.
+    void refuse_max_memory(const std::string &command) const;
 
   private:
     std::vector<const CLI::Option *> given_; // the options above, to tell whether one was given
+    const CLI::Option *max_memory_ = nullptr;
 };
 
 // The stages a command ran, in order, with their wall times: the stats' time_ms and the summary's

@@ -135,10 +135,18 @@ void RasterOptions::add(CLI::App &cmd) {
     given_.push_back(
         cmd.add_flag("--terrain-rgb", terrain_rgb,
                      "decode an RGB image as Mapbox Terrain-RGB: (R*65536+G*256+B)/10-10000"));
-    cmd.add_option("--max-memory-mb", max_memory_mb,
-                   "refuse a DEM whose run would need more memory than this, MiB (default: this "
-                   "machine's physical memory)")
-        ->check(real_in(0.0, INFINITY, true));
+    max_memory_ = cmd.add_option("--max-memory-mb", max_memory_mb,
+                                 "refuse a DEM whose run would need more memory than this, MiB "
+                                 "(default: this machine's physical memory; not with --memory-mb's "
+                                 "commands, tiles and build)")
+                      ->check(real_in(0.0, INFINITY, true));
+}
+
+void RasterOptions::refuse_max_memory(const std::string &command) const {
+    if (max_memory_ && max_memory_->count() > 0)
+        throw UsageError("--max-memory-mb",
+                         command + " reads a DEM larger than its memory by windows: bound it with "
+                                   "--memory-mb");
 }
 
 bool is_store_path(const std::string &path) {

@@ -81,6 +81,10 @@ struct GeoLattice {
     }
     // Rows of posts that are best read together (a band; the whole lattice when it is held).
     int rows_together() const;
+    // Bands made from the DEMs so far (each a read of the DEMs' rows under it; 0 when the lattice
+    // is held whole), and the bands the lattice has.
+    std::int64_t bands_read() const;
+    std::int64_t band_count() const;
 
   private:
     float band_post(std::int64_t i, std::int64_t j) const;
@@ -134,8 +138,9 @@ struct TileMesh {
     // between Earth-centred vertices), and that over level_error(z).
     double max_error = 0.0;
     double error_ratio = 0.0;
-    std::int64_t samples = 0; // covered posts inside the tile (measured)
-    int builds = 0;           // meshes made (more than 1: rebuilt tighter after a measure)
+    std::int64_t samples = 0;  // covered posts inside the tile (measured)
+    int builds = 0;            // meshes made (more than 1: rebuilt tighter after a measure)
+    std::int64_t repaired = 0; // posts the repair made vertices in place (in the build kept)
 };
 
 // Heights of the posts a tile's surface depends on (those inside it and the next beyond each
@@ -179,6 +184,10 @@ struct LevelStats {
     // tile of the worst ratio.
     std::int64_t over_bound = 0;
     TileId worst_tile;
+    // Tiles whose kept build the repair changed, and the posts it made vertices in them.
+    std::int64_t repaired = 0, repaired_posts = 0;
+    // Bands of a lattice read by windows made while the level was built (0 when held whole).
+    std::int64_t bands_read = 0;
 };
 
 struct PyramidStats {

@@ -313,8 +313,8 @@ constexpr std::size_t k_min_bands = 4;
 class BandData {
   public:
     explicit BandData(const std::vector<float> &z) : size_(z.size()) {
-        void *p =
-            mmap(nullptr, bytes(), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        void *p = mmap(nullptr, bytes(), PROT_READ | PROT_WRITE,
+                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
         if (p == MAP_FAILED)
             throw std::bad_alloc();
         data_ = static_cast<float *>(p);
@@ -342,6 +342,8 @@ class LatticeBands {
           id_(next_id()) {}
 
     int rows() const { return rows_; }
+    std::int64_t reads() const { return reads_; }
+    std::int64_t count() const { return (height_ + rows_ - 1) / rows_; }
 
     float post(std::int64_t i, std::int64_t j) {
         // The band each thread read last, checked without the lock.
@@ -368,6 +370,7 @@ class LatticeBands {
             used_.splice(used_.begin(), used_, it->second);
             return it->second->second;
         }
+        ++reads_;
         auto data = std::make_shared<const BandData>(
             load_(b * rows_, std::min<std::int64_t>(height_, (b + 1) * rows_)));
         used_.emplace_front(b, data);
@@ -383,6 +386,7 @@ class LatticeBands {
 
     int width_, height_, rows_;
     std::size_t budget_, held_ = 0;
+    std::atomic<std::int64_t> reads_{0};
     Load load_;
     std::uint64_t id_;
     std::mutex lock_;
@@ -393,6 +397,10 @@ class LatticeBands {
 float GeoLattice::band_post(std::int64_t i, std::int64_t j) const { return bands->post(i, j); }
 
 int GeoLattice::rows_together() const { return bands ? bands->rows() : std::max(height, 1); }
+
+std::int64_t GeoLattice::bands_read() const { return bands ? bands->reads() : 0; }
+
+std::int64_t GeoLattice::band_count() const { return bands ? bands->count() : 1; }
 
 double default_memory_mb() {
     // Half of it: the rest is the system's and other programs'.

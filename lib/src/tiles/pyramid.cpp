@@ -175,6 +175,7 @@ build_level(const GeoLattice &g, const LevelRanges &lr, const PyramidOptions &op
         const auto it = lr.ranges.find({t.x, t.y});
         return it != lr.ranges.end() ? it->second : tile_height_range(g, t, options.tile);
     };
+    const std::int64_t bands_before = g.bands_read();
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
     std::atomic<std::int64_t> finished{0};
@@ -200,6 +201,8 @@ build_level(const GeoLattice &g, const LevelRanges &lr, const PyramidOptions &op
                 ls.rebuilt += m.builds > 1 ? 1 : 0;
                 ls.max_error = std::max(ls.max_error, m.max_error);
                 ls.over_bound += m.error_ratio > 1.0 ? 1 : 0;
+                ls.repaired += m.repaired > 0 ? 1 : 0;
+                ls.repaired_posts += m.repaired;
                 if (m.error_ratio > ls.worst_ratio || ls.tiles == 1) {
                     ls.worst_ratio = m.error_ratio;
                     ls.worst_tile = t;
@@ -239,6 +242,7 @@ build_level(const GeoLattice &g, const LevelRanges &lr, const PyramidOptions &op
         std::rethrow_exception(interrupted);
     if (failure)
         std::rethrow_exception(failure);
+    ls.bands_read = g.bands_read() - bands_before;
     return ls;
 }
 

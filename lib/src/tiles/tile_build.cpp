@@ -90,12 +90,91 @@ int range_exponent(const HeightRange &r, int z) {
     return best;
 }
 
+// Which way a thread's next pass over a tile's bands runs: north and south by turns, so that a
+// pass starts among the bands the last one left in the cache (a coarse tile's bands outnumber
+// what the cache holds: passes one way only would read every band again each time).
+thread_local bool t_southward = false;
+bool next_pass_southward() { return t_southward = !t_southward; }
+
+// Posts a tile reads before it meshes, gathered in one pass over its bands on a lattice read by
+// windows: the lattice columns under its vertical edges, the rows under its horizontal ones, and
+// its interior's lines at the first stride. Any other post is read from the lattice.
+class PostMemo {
+  public:
+    // Posts [i0, i1] x [j0, j1], clipped to the lattice.
+    PostMemo(const GeoLattice &g, std::int64_t i0, std::int64_t i1, std::int64_t j0,
+             std::int64_t j1)
+        : g_(g), i0_(std::max<std::int64_t>(i0, 0)), i1_(std::min<std::int64_t>(i1, g.width - 1)),
+          j0_(std::max<std::int64_t>(j0, 0)), j1_(std::min<std::int64_t>(j1, g.height - 1)) {}
+
+    void add_column(std::int64_t i) {
+        if (i >= i0_ && i <= i1_ && j0_ <= j1_)
+            columns_.emplace_back(i, std::vector<float>(std::size_t(j1_ - j0_ + 1)));
+    }
+    void add_row(std::int64_t j) {
+        if (j >= j0_ && j <= j1_ && i0_ <= i1_)
+            rows_.emplace_back(j, std::vector<float>(std::size_t(i1_ - i0_ + 1)));
+    }
+    // Columns first_c + k * stride (k < count_c) on rows first_r + k * stride (k < count_r).
+    void add_grid(std::int64_t first_c, std::int64_t count_c, std::int64_t first_r,
+                  std::int64_t count_r, std::int64_t stride) {
+        grid_c_ = first_c, grid_r_ = first_r, count_c_ = count_c, count_r_ = count_r;
+        stride_ = stride;
+        grid_.resize(std::size_t(count_c * count_r));
+    }
+
+    void gather(bool southward) {
+        for (std::int64_t n = 0; n <= j1_ - j0_; ++n) {
+            const std::int64_t j = southward ? j1_ - n : j0_ + n;
+            for (auto &[i, z] : columns_)
+                z[std::size_t(j - j0_)] = g_.at(i, j);
+            for (auto &[r, z] : rows_)
+                if (r == j)
+                    for (std::int64_t i = i0_; i <= i1_; ++i)
+                        z[std::size_t(i - i0_)] = g_.at(i, j);
+            const std::int64_t k = grid_index(j, grid_r_, count_r_);
+            for (std::int64_t c = 0; k >= 0 && c < count_c_; ++c)
+                grid_[std::size_t(k * count_c_ + c)] = g_.at(grid_c_ + c * stride_, j);
+        }
+    }
+
+    float at(std::int64_t i, std::int64_t j) const {
+        if (i >= i0_ && i <= i1_ && j >= j0_ && j <= j1_) {
+            const std::int64_t c = grid_index(i, grid_c_, count_c_),
+                               r = grid_index(j, grid_r_, count_r_);
+            if (c >= 0 && r >= 0)
+                return grid_[std::size_t(r * count_c_ + c)];
+            for (const auto &[col, z] : columns_)
+                if (col == i)
+                    return z[std::size_t(j - j0_)];
+            for (const auto &[row, z] : rows_)
+                if (row == j)
+                    return z[std::size_t(i - i0_)];
+        }
+        return g_.at(i, j);
+    }
+
+  private:
+    // The grid line x is on (first + k * stride), or -1.
+    std::int64_t grid_index(std::int64_t x, std::int64_t first, std::int64_t count) const {
+        const std::int64_t d = x - first;
+        return d >= 0 && d % stride_ == 0 && d / stride_ < count ? d / stride_ : -1;
+    }
+
+    const GeoLattice &g_;
+    std::int64_t i0_, i1_, j0_, j1_;
+    std::vector<std::pair<std::int64_t, std::vector<float>>> columns_, rows_;
+    std::int64_t grid_c_ = 0, grid_r_ = 0, count_c_ = 0, count_r_ = 0, stride_ = 1;
+    std::vector<float> grid_;
+};
+
 // A height of the lattice's surface: the post's, or the fill height outside the coverage.
 struct Surface {
     const GeoLattice &g;
     double fill;
+    const PostMemo *memo = nullptr;
     double at(std::int64_t i, std::int64_t j) const {
-        const float h = g.at(i, j);
+        const float h = memo ? memo->at(i, j) : g.at(i, j);
         return std::isnan(h) ? fill : double(h);
     }
 };
@@ -452,7 +531,8 @@ struct Measure {
     double max_drawn = 0.0;
     std::int64_t samples = 0;
     std::int64_t flipped = 0;
-    std::int64_t missed = 0; // covered posts inside the tile under no triangle
+    std::int64_t missed = 0;   // covered posts inside the tile under no triangle
+    std::int64_t inserted = 0; // posts the repair made vertices
 };
 // One triangle's posts: the largest of each error, and the worst post over the bound that the
 // repair can make a vertex (its u/v strictly inside the tile and on none of the triangle's
@@ -521,7 +601,9 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
     // By bands of rows, the lattice's (one when it is held whole): a lattice read by windows
     // then reads each band once, whatever the order of the triangles.
     const std::int64_t band = g.rows_together();
-    for (std::int64_t b = j0 / band; b <= j1 / band; ++b) {
+    const bool southward = next_pass_southward();
+    for (std::int64_t n_band = 0; n_band <= j1 / band - j0 / band; ++n_band) {
+        const std::int64_t b = southward ? j1 / band - n_band : j0 / band + n_band;
         const std::ptrdiff_t band_lo = std::max<std::ptrdiff_t>(0, b * band - j0),
                              band_hi = std::min<std::ptrdiff_t>(std::ptrdiff_t(pv.size()),
                                                                 (b + 1) * band - j0);
@@ -538,7 +620,7 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
             }
             const double area2 =
                 (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
-            if (area2 < 0.0 && b == j0 / band && all)
+            if (area2 < 0.0 && n_band == 0 && all)
                 ++m.flipped;
             if (area2 <= 0.0)
                 continue;
@@ -595,7 +677,11 @@ Measure measure(const GeoLattice &g, const TileId &id, const std::vector<Vertex>
                     te.error = std::max(te.error, vertical);
                     te.drawn = std::max(te.drawn, drawn);
                     const double worst = std::max(vertical, drawn);
-                    if (worst <= std::max(bound, te.over))
+                    if (worst <= bound || worst < te.over)
+                        continue;
+                    // Of posts equally over, the first from the south-west, whichever way the
+                    // bands run.
+                    if (worst == te.over && std::pair(j0 + jr, i0 + ir) > std::pair(te.j, te.i))
                         continue;
                     const std::int64_t ru = std::llround(x);
                     const auto at_vertex = [&](const glm::dvec3 &p) {
@@ -823,6 +909,7 @@ Measure repair(const GeoLattice &g, const TileId &id, double bound, Assembly &a,
         const Measure again = measure(g, id, a.vertices, q, tr, changed, bound, errors);
         m.max_error = again.max_error, m.max_drawn = again.max_drawn;
     }
+    m.inserted = std::int64_t(made);
     return m;
 }
 
@@ -923,7 +1010,46 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
     };
     const double bound = level_error(z);
     const GeoRect rect = tile_rect(id);
-    const Surface surface{g, options.fill_height};
+    const double u_per_lon = double(k_quantized_max) / tile_size(z);
+    std::int64_t stride = 1;
+    while (tile_size(z) / (double(stride) * std::min(g.dlon, g.dlat)) > k_max_posts_across)
+        stride *= 2;
+    // The interior's lattice lines at `stride`, a finer one while fewer than 2 fit.
+    AxisLines cols, rows;
+    const auto interior_axes = [&] {
+        for (;;) {
+            cols = interior_lines(g.lon0, g.dlon, g.width, rect.west, rect.east, z, stride);
+            rows = interior_lines(g.lat0, g.dlat, g.height, rect.south, rect.north, z, stride);
+            if ((cols.count >= 2 && rows.count >= 2) || stride == 1)
+                break;
+            stride /= 2;
+        }
+    };
+    interior_axes();
+    // On a lattice read by windows, what the edges and the first interior read, in one pass over
+    // the tile's bands (a coarse tile's bands do not stay in the cache from one pass to the next).
+    PostMemo memo(g, std::int64_t(std::floor((rect.west - g.lon0) / g.dlon)) - 2,
+                  std::int64_t(std::ceil((rect.east - g.lon0) / g.dlon)) + 2,
+                  std::int64_t(std::floor((rect.south - g.lat0) / g.dlat)) - 2,
+                  std::int64_t(std::ceil((rect.north - g.lat0) / g.dlat)) + 2);
+    if (g.bands) {
+        for (const double lon : {rect.west, rect.east}) {
+            const LineSpec c = line_spec(g.lon0, g.dlon, lon, z);
+            memo.add_column(c.i);
+            if (!c.snapped)
+                memo.add_column(c.i + 1);
+        }
+        for (const double lat : {rect.south, rect.north}) {
+            const LineSpec r = line_spec(g.lat0, g.dlat, lat, z);
+            memo.add_row(r.i);
+            if (!r.snapped)
+                memo.add_row(r.i + 1);
+        }
+        if (own.covered && cols.count >= 2 && rows.count >= 2)
+            memo.add_grid(cols.first, cols.count, rows.first, rows.count, stride);
+        memo.gather(next_pass_southward());
+    }
+    const Surface surface{g, options.fill_height, g.bands ? &memo : nullptr};
 
     // The four edges, from their own samples only: west and east run north, south and north east.
     struct EdgeDef {
@@ -952,10 +1078,6 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
                                          corner_step(d.start_corner), corner_step(d.end_corner));
     }
 
-    const double u_per_lon = double(k_quantized_max) / tile_size(z);
-    std::int64_t stride = 1;
-    while (tile_size(z) / (double(stride) * std::min(g.dlon, g.dlat)) > k_max_posts_across)
-        stride *= 2;
     double interior_bound = k_build_share * bound - step / 2.0;
 
     // A tile over no DEM (only level 0 writes one) is flat fill: its square, which the split
@@ -963,16 +1085,9 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
     const bool bare = !own.covered && std::all_of(edge_vertices.begin(), edge_vertices.end(),
                                                   [](const auto &ev) { return ev.size() == 2; });
     // The interior's lattice at `stride`, read again only when a rebuild takes a finer one.
-    AxisLines cols, rows;
     Heightfield win;
     const auto read_interior = [&] {
-        for (;;) {
-            cols = interior_lines(g.lon0, g.dlon, g.width, rect.west, rect.east, z, stride);
-            rows = interior_lines(g.lat0, g.dlat, g.height, rect.south, rect.north, z, stride);
-            if ((cols.count >= 2 && rows.count >= 2) || stride == 1)
-                break;
-            stride /= 2;
-        }
+        interior_axes();
         if (cols.count < 2 || rows.count < 2)
             throw Error(
                 "tile " + std::to_string(z) + "/" + std::to_string(id.x) + "/" +
@@ -982,9 +1097,12 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
         win.dx = double(stride) * g.dlon * u_per_lon;
         win.dy = double(stride) * g.dlat * u_per_lon;
         win.z.resize(std::size_t(win.width) * std::size_t(win.height));
-        for (int r = 0; r < win.height; ++r)
+        const bool southward = next_pass_southward();
+        for (int n = 0; n < win.height; ++n) {
+            const int r = southward ? win.height - 1 - n : n;
             for (int c = 0; c < win.width; ++c)
                 win.at(c, r) = float(surface.at(cols.at(c), rows.at(r)));
+        }
     };
     if (!bare)
         read_interior();
@@ -1085,6 +1203,7 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
             best.max_error = worst;
             best.error_ratio = ratio;
             best.samples = m.samples;
+            best.repaired = m.inserted;
             best_flipped = m.flipped;
         }
         best.builds = attempt + 1;
@@ -1128,12 +1247,14 @@ TileMesh build_tile(const GeoLattice &g, const TileId &id, const TileOptions &op
     std::sort(best.north.begin(), best.north.end(), by(best.u, true));
 
     if (options.normals) {
-        // From south to north: a lattice read by windows reads each band once.
+        // By rows of vertices, one way: a lattice read by windows reads each band once.
         std::vector<std::uint32_t> order(best.u.size());
         for (std::uint32_t k = 0; k < order.size(); ++k)
             order[k] = k;
-        std::stable_sort(order.begin(), order.end(),
-                         [&](std::uint32_t p, std::uint32_t q) { return best.v[p] < best.v[q]; });
+        const bool southward = next_pass_southward();
+        std::stable_sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) {
+            return southward ? best.v[p] > best.v[q] : best.v[p] < best.v[q];
+        });
         best.normals.resize(2 * best.u.size());
         for (const std::uint32_t k : order) {
             const double lon =
