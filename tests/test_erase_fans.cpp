@@ -3,6 +3,8 @@
 // by measure_error on the DEM, and the erase keeps no more nodes than the store's erase by
 // half-edge collapses (lib/src/store_erase.cpp, another algorithm) at the same view and bound.
 #include "assets.hpp"
+#include "erase_fixtures.hpp"
+#include "tinlod/decimate.hpp"
 #include "tinlod/mesh_io.hpp"
 #include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
@@ -59,4 +61,28 @@ TEST(EraseFans, KeepsNoMoreNodesThanCollapses) {
     const tinlod::Mesh erased = simplify(asset("N42E001.hgt"), oblique, "erased");
     const tinlod::Mesh collapsed = simplify(store, oblique, "collapsed");
     EXPECT_LE(double(erased.n_vertices()), 1.02 * double(collapsed.n_vertices()));
+}
+
+// In the library, on the corners of every bundled DEM: the fans keep fewer nodes than the ears
+// alone (EraseOptions::hole_fans false) at the same bound, measured at every sample.
+TEST(EraseFans, FewerNodesThanTheEarsAloneWithinTheBound) {
+    using tinlod::test::DemAsset;
+    const DemAsset dems[] = {
+        {"N42E001.hgt", false, 401}, {"dem_srtm30.tif", false, 0}, {"crater_u16.png", false, 401}};
+    for (const DemAsset &a : dems) {
+        const tinlod::Heightfield hf = tinlod::test::load_cropped(a);
+        const tinlod::View view = tinlod::test::corner_view(hf);
+        const tinlod::Significance screen = tinlod::Significance::screen(view);
+        tinlod::EraseOptions ears, fans;
+        ears.hole_fans = false;
+        const tinlod::Mesh by_ears = tinlod::erase_dem(hf, screen, ears);
+        const tinlod::Mesh by_fans = tinlod::erase_dem(hf, screen, fans);
+        EXPECT_LT(by_fans.n_vertices(), by_ears.n_vertices()) << a.file;
+        tinlod::ErrorOptions eo;
+        eo.model = screen;
+        const tinlod::TinError e = tinlod::measure_error(hf, by_fans, eo);
+        EXPECT_LE(e.max_screen_px, 1.0 + 1e-9) << a.file;
+        EXPECT_EQ(e.uncovered, 0) << a.file;
+        EXPECT_EQ(count_folded_faces(by_fans), 0) << a.file;
+    }
 }

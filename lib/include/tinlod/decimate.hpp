@@ -65,6 +65,10 @@ struct EraseOptions {
     Projection projection = Projection::automatic; // automatic: xy when every face is CCW in xy
     bool erase_boundary = true; // TINs: erase boundary nodes lying exactly on the outline's line
     int max_valence = 24;       // nodes with more neighbours stay (bounds the hole size)
+    // A grid TIN at a screen (or paper) bound without a budget: when a hole's Delaunay ears exceed
+    // the bound, try the fans from its ring nodes (docs/decisions/033-node-erase-vs-collapses.md).
+    // false: the ears alone, as a budget and the refiner's frames have them.
+    bool hole_fans = true;
     // A sparse grid TIN: the mesh's vertices are some of this lattice's samples (the origin
     // property names each, its point as grid_vertices has it), triangulated over the lattice's
     // whole rectangle; the samples it left out have no vertex (as with to_lattice_mesh) and stay

@@ -317,14 +317,15 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
 static void measure_hole(EraserState &s, VH v, const glm::dvec3 &pv, double limit,
                          std::size_t max_swallowed);
 
-// Whether evaluate tries the fans of the hole when the ears' triangulation exceeds the limit: a
-// one-off erase of a grid TIN at a screen bound without a budget. The Delaunay ears follow xy
-// alone; a fan from a ring node (a half-edge collapse's triangulation) may follow the terrain
-// (docs/decisions/033-node-erase-vs-collapses.md). A vertical bound has its min-max hole instead.
+// Whether evaluate tries the fans of the hole when the ears' triangulation exceeds the limit
+// (EraseOptions::hole_fans): a one-off erase of a grid TIN at a screen bound without a budget. The
+// Delaunay ears follow xy alone; a fan from a ring node (a half-edge collapse's triangulation) may
+// follow the terrain (docs/decisions/033-node-erase-vs-collapses.md). A vertical bound has its
+// min-max hole instead; a budget's keys are the ears' costs (its evaluations have no limit).
 static bool fans_tried(const EraserState &s) {
-    return s.input.xy && s.input.grid_w > 0 && !s.weights.unit_weights &&
-           s.input.options.max_nodes <= 0 && !s.input.history.shallow_history &&
-           s.follower == nullptr;
+    return s.input.options.hole_fans && s.input.xy && s.input.grid_w > 0 &&
+           !s.weights.unit_weights && s.input.options.max_nodes <= 0 &&
+           !s.input.history.shallow_history && s.follower == nullptr;
 }
 
 // Measures the fans of the interior hole in h (from each ring node in turn, those whose triangles
