@@ -75,6 +75,20 @@ bool near_plane(double s0, double s1, double s2, double za, double zb, double zc
     return std::abs(z * area - (za * s1 + zb * s2 + zc * s0)) <= stop * area;
 }
 
+// side[a][b]: twice the signed area of (node a, node b, the sample), lattice units, from the nodes'
+// columns rx and rows ry relative to the sample's; once per pair, as T (exact: lattice areas are
+// far under 2^53).
+template <class T> using SideAreas = std::array<std::array<T, k_max_ring>, k_max_ring>;
+template <class T>
+void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
+                const std::array<std::int64_t, k_max_ring> &ry, std::size_t n, SideAreas<T> &side) {
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = a + 1; b < n; ++b) {
+            side[a][b] = T(rx[a] * ry[b] - ry[a] * rx[b]);
+            side[b][a] = -side[a][b];
+        }
+}
+
 // The pass's state: the TIN, the lattice, and the scratch of one node's try.
 class Pass {
   public:
@@ -170,13 +184,8 @@ class Pass {
         // reach within the limit stays (most of the nodes left at a fine bound).
         if (z - hi > stop || lo - z > stop)
             return false;
-        // side[a][b]: twice the signed area of (node a, node b, the sample), lattice units.
-        std::array<std::array<double, k_max_ring>, k_max_ring> side;
-        for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a + 1; b < n; ++b) {
-                side[a][b] = double(rx[a] * ry[b] - ry[a] * rx[b]);
-                side[b][a] = -side[a][b];
-            }
+        SideAreas<double> side;
+        side_areas(rx, ry, n, side);
         for (std::size_t a = 0; a < n; ++a)
             for (std::size_t b = a + 1; b < n; ++b) {
                 if (side[a][b] < 0.0)
@@ -299,10 +308,8 @@ class Pass {
             rx[std::size_t(i)] = tin_.col[std::size_t(nodes[std::size_t(i)])] - xs;
             ry[std::size_t(i)] = tin_.row[std::size_t(nodes[std::size_t(i)])] - ys;
         }
-        const auto side = [&](int a, int b) {
-            return rx[std::size_t(a)] * ry[std::size_t(b)] -
-                   ry[std::size_t(a)] * rx[std::size_t(b)];
-        };
+        SideAreas<std::int64_t> side;
+        side_areas(rx, ry, std::size_t(n), side);
         // known[a][b]: 0 not tested yet, 1 a chord, 2 not (each tested once).
         std::array<std::array<std::uint8_t, k_max_ring>, k_max_ring> known;
         for (int a = 0; a < n; ++a)
@@ -316,10 +323,14 @@ class Pass {
             return k == 1;
         };
         for (int a = 0; a < n; ++a)
-            for (int b = a + 1; b < n; ++b)
+            for (int b = a + 1; b < n; ++b) {
+                const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)];
+                if (s0 < 0)
+                    continue;
                 for (int c = b + 1; c < n; ++c) {
-                    const std::int64_t s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
-                    if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                    const std::int64_t s1 = side[std::size_t(b)][std::size_t(c)],
+                                       s2 = side[std::size_t(c)][std::size_t(a)];
+                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
                         continue;
                     if (!near_plane(double(s0), double(s1), double(s2), p_[std::size_t(a)].z,
                                     p_[std::size_t(b)].z, p_[std::size_t(c)].z, z, stop))
@@ -337,6 +348,7 @@ class Pass {
                         cost(a, b, c, limit_) <= limit_)
                         return true;
                 }
+            }
         return false;
     }
 
