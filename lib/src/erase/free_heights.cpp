@@ -1,0 +1,549 @@
+// The free-heights pass after the flip pass (free_heights.hpp).
+#include "erase/free_heights.hpp"
+
+#include "erase/hole_geometry.hpp"
+#include "erase/ring_triangulation.hpp"
+#include "lattice_triangle.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace tinlod::erase {
+
+double chebyshev_fit(int n, std::span<const double> a, std::span<const double> b, double give_up,
+                     std::vector<double> &z, FitScratch &scratch) {
+    // The fit is min t subject to a_i . z - t <= b_i and -a_i . z - t <= -b_i. Its dual: min g . y
+    // over y >= 0 with sum_j y_j G_j = 0 on the z columns and sum_j y_j = 1, G_j = (+-a_i), g_j =
+    // +-b_i; its optimum is -t*, and -g . y bounds t* from below on the way. A tableau of n + 1
+    // rows, the real columns then one artificial per row (phase 1 starts from them).
+    const std::size_t m = b.size(), rows = std::size_t(n) + 1, real = 2 * m, cols = real + rows,
+                      width = cols + 1; // the last column: the right-hand side
+    std::vector<double> &T = scratch.tableau, &d = scratch.reduced, &g = scratch.cost;
+    std::vector<std::size_t> &basis = scratch.basis;
+    T.assign(rows * width, 0.0);
+    d.assign(width, 0.0);
+    g.assign(cols, 0.0);
+    basis.resize(rows);
+    for (std::size_t i = 0; i < m; ++i)
+        for (int s = 0; s < 2; ++s) {
+            const std::size_t j = 2 * i + std::size_t(s);
+            const double sign = s == 0 ? 1.0 : -1.0;
+            for (std::size_t k = 0; k < std::size_t(n); ++k)
+                T[k * width + j] = sign * a[i * std::size_t(n) + k];
+            T[std::size_t(n) * width + j] = 1.0;
+            g[j] = sign * b[i];
+        }
+    for (std::size_t r = 0; r < rows; ++r) {
+        T[r * width + real + r] = 1.0;
+        basis[r] = real + r;
+    }
+    T[std::size_t(n) * width + cols] = 1.0;
+    const double eps = 1e-11;
+    const auto pivot = [&](std::size_t r, std::size_t j) {
+        double *pr = &T[r * width];
+        const double p = pr[j];
+        for (std::size_t c = 0; c < width; ++c)
+            pr[c] /= p;
+        for (std::size_t o = 0; o < rows; ++o) {
+            double *po = &T[o * width];
+            const double f = po[j];
+            if (o == r || f == 0.0)
+                continue;
+            for (std::size_t c = 0; c < width; ++c)
+                po[c] -= f * pr[c];
+        }
+        const double f = d[j];
+        if (f != 0.0)
+            for (std::size_t c = 0; c < width; ++c)
+                d[c] -= f * pr[c];
+        basis[r] = j;
+    };
+    // Dantzig's rule over the columns below `enter` (the artificials never re-enter in phase 2);
+    // false when the method does not settle. `stop`: whether to give up at the current value.
+    const auto run = [&](std::size_t enter, auto stop) {
+        for (int it = 0; it < 50 * int(rows) + 200; ++it) {
+            if (stop())
+                return true;
+            std::size_t j = enter;
+            double most = -eps;
+            for (std::size_t c = 0; c < enter; ++c)
+                if (d[c] < most) {
+                    most = d[c];
+                    j = c;
+                }
+            if (j == enter)
+                return true;
+            std::size_t r = rows;
+            double ratio = INFINITY;
+            for (std::size_t o = 0; o < rows; ++o) {
+                const double e = T[o * width + j];
+                if (e > 1e-9) {
+                    const double q = T[o * width + cols] / e;
+                    if (q < ratio || (q == ratio && basis[o] < basis[r])) {
+                        ratio = q;
+                        r = o;
+                    }
+                }
+            }
+            if (r == rows)
+                return false; // unbounded: not for a feasible fit
+            pivot(r, j);
+        }
+        return false;
+    };
+    // Phase 1: the artificials' sum, from reduced costs -sum_r T[r][j] on the real columns.
+    for (std::size_t r = 0; r < rows; ++r)
+        for (std::size_t c = 0; c < real; ++c)
+            d[c] -= T[r * width + c];
+    d[cols] = -1.0;
+    if (!run(real, [] { return false; }) || d[cols] < -1e-9)
+        return INFINITY;
+    for (std::size_t r = 0; r < rows; ++r) {
+        if (basis[r] < real)
+            continue;
+        std::size_t j = real;
+        for (std::size_t c = 0; c < real && j == real; ++c)
+            if (std::abs(T[r * width + c]) > 1e-9)
+                j = c;
+        if (j == real)
+            return INFINITY; // a redundant row: no variable is free to move
+        pivot(r, j);
+    }
+    // Phase 2: d = g - g_B B^-1 A over every column; d[cols] = -g_B x_B = the bound on t*.
+    for (std::size_t c = 0; c < width; ++c) {
+        double s = c < cols ? g[c] : 0.0;
+        for (std::size_t r = 0; r < rows; ++r)
+            s -= g[basis[r]] * T[r * width + c];
+        d[c] = s;
+    }
+    if (!run(real, [&] { return d[cols] > give_up; }))
+        return INFINITY;
+    // The fit's z: the dual values of the z rows, minus the reduced costs of their artificials.
+    z.assign(std::size_t(n), 0.0);
+    for (std::size_t k = 0; k < std::size_t(n); ++k)
+        z[k] = -d[real + k];
+    double most = std::max(d[cols], 0.0);
+    for (std::size_t i = 0; i < m; ++i) {
+        double s = -b[i];
+        for (std::size_t k = 0; k < std::size_t(n); ++k)
+            s += a[i * std::size_t(n) + k] * z[k];
+        most = std::max(most, std::abs(s));
+    }
+    return most;
+}
+
+namespace {
+
+// The TIN as triangle arrays (as the flip pass has it): corner k of triangle t is corner[3t + k]
+// (counter-clockwise, -1 when t is free), the triangle across its edge k -> k + 1 across[3t + k]
+// (-1 on the outline), per node one of its triangles (-1 once erased), its height, and whether it
+// is on the outline.
+struct Tin {
+    std::vector<std::uint32_t> sample;
+    std::vector<std::int32_t> col, row;
+    std::vector<double> z;
+    std::vector<std::uint8_t> outline;
+    std::vector<std::int32_t> corner, across, fan;
+
+    int index_of(std::int32_t t, std::int32_t node) const {
+        return corner[3 * std::size_t(t)] == node ? 0 : corner[3 * std::size_t(t) + 1] == node ? 1 : 2;
+    }
+    std::int32_t at(std::int32_t t, int k) const { return corner[3 * std::size_t(t) + std::size_t(k)]; }
+};
+
+Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
+    Tin tin;
+    const auto origin = find_origin_property(mesh);
+    const std::size_t nodes = mesh.n_vertices();
+    tin.sample.resize(nodes);
+    tin.col.resize(nodes);
+    tin.row.resize(nodes);
+    tin.z.resize(nodes);
+    tin.outline.assign(nodes, 0);
+    tin.fan.assign(nodes, -1);
+    for (const auto v : mesh.vertices()) {
+        const std::size_t i = std::size_t(v.idx());
+        tin.sample[i] = std::uint32_t(mesh.property(origin, v));
+        tin.col[i] = std::int32_t(tin.sample[i] % std::uint32_t(hf.width));
+        tin.row[i] = std::int32_t(tin.sample[i] / std::uint32_t(hf.width));
+        tin.z[i] = double(mesh.point(v)[2]);
+    }
+    tin.corner.resize(3 * mesh.n_faces());
+    tin.across.resize(3 * mesh.n_faces());
+    for (const auto f : mesh.faces()) {
+        Mesh::HalfedgeHandle h = mesh.halfedge_handle(f);
+        for (int k = 0; k < 3; ++k, h = mesh.next_halfedge_handle(h)) {
+            const std::size_t i = std::size_t(3 * f.idx() + k);
+            tin.corner[i] = mesh.from_vertex_handle(h).idx();
+            const Mesh::FaceHandle o = mesh.opposite_face_handle(h);
+            tin.across[i] = o.is_valid() ? o.idx() : -1;
+            tin.fan[std::size_t(tin.corner[i])] = f.idx();
+            if (!o.is_valid()) {
+                tin.outline[std::size_t(mesh.from_vertex_handle(h).idx())] = 1;
+                tin.outline[std::size_t(mesh.to_vertex_handle(h).idx())] = 1;
+            }
+        }
+    }
+    return tin;
+}
+
+// A triangle of the try: its corner nodes and their variables (-1: a fixed height).
+struct Corners {
+    std::array<std::int32_t, 3> node;
+    std::array<int, 3> var;
+};
+
+class Pass {
+  public:
+    Pass(Tin &tin, const Heightfield &hf, double limit, int max_ring)
+        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
+
+    // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
+    // nodes whose neighbourhood changed in touched() and returns true.
+    bool erase(std::int32_t v) {
+        if (tin_.outline[std::size_t(v)] || !gather(v))
+            return false;
+        const int n = int(ring_.size());
+        for (int i = 0; i < n; ++i)
+            q_[std::size_t(i)] = {double(tin_.col[std::size_t(ring_[std::size_t(i)])]),
+                                  double(tin_.row[std::size_t(ring_[std::size_t(i)])])};
+        const int count = min_max_triangulation(
+            q_.data(), n, INFINITY,
+            [this](int a, int b, int c, double stop) {
+                return deviation({ring_[std::size_t(a)], ring_[std::size_t(b)],
+                                  ring_[std::size_t(c)]},
+                                 stop);
+            },
+            tri_.data());
+        if (count != n - 2)
+            return false;
+        // The variables: the ring's interior nodes.
+        vars_.clear();
+        for (const std::int32_t r : ring_)
+            if (!tin_.outline[std::size_t(r)])
+                vars_.push_back(r);
+        // The triangles whose planes move: the new ones, and those around a variable node but v's.
+        tris_.clear();
+        for (int j = 0; j < count; ++j)
+            tris_.push_back(corners({ring_[tri_[std::size_t(j)].a], ring_[tri_[std::size_t(j)].b],
+                                     ring_[tri_[std::size_t(j)].c]}));
+        around_.clear();
+        for (const std::int32_t r : vars_) {
+            std::int32_t t = tin_.fan[std::size_t(r)];
+            const std::int32_t first = t;
+            do {
+                const int k = tin_.index_of(t, r);
+                if (tin_.at(t, 0) != v && tin_.at(t, 1) != v && tin_.at(t, 2) != v)
+                    around_.push_back(t);
+                t = tin_.across[3 * std::size_t(t) + std::size_t((k + 2) % 3)];
+            } while (t != first && t >= 0);
+        }
+        std::sort(around_.begin(), around_.end());
+        around_.erase(std::unique(around_.begin(), around_.end()), around_.end());
+        for (const std::int32_t t : around_)
+            tris_.push_back(corners({tin_.at(t, 0), tin_.at(t, 1), tin_.at(t, 2)}));
+        if (!fit())
+            return false;
+        if (!holds()) {
+            for (std::size_t k = 0; k < vars_.size(); ++k)
+                tin_.z[std::size_t(vars_[k])] = old_z_[k];
+            return false;
+        }
+        rewrite(v, count);
+        touched_.clear();
+        for (const Corners &c : tris_)
+            touched_.insert(touched_.end(), c.node.begin(), c.node.end());
+        return true;
+    }
+
+    const std::vector<std::int32_t> &touched() const { return touched_; }
+    std::int64_t moved() const { return moved_; }
+
+  private:
+    // v's ring (counter-clockwise), its star's triangles and in each the index of its ring edge;
+    // false when v is on the outline or its ring is over max_ring_.
+    bool gather(std::int32_t v) {
+        ring_.clear();
+        star_.clear();
+        edge_.clear();
+        const std::int32_t first = tin_.fan[std::size_t(v)];
+        if (first < 0)
+            return false;
+        std::int32_t t = first;
+        do {
+            const int k = tin_.index_of(t, v);
+            ring_.push_back(tin_.at(t, (k + 1) % 3));
+            star_.push_back(t);
+            edge_.push_back((k + 1) % 3);
+            t = tin_.across[3 * std::size_t(t) + std::size_t((k + 2) % 3)];
+            if (t < 0 || int(ring_.size()) > max_ring_)
+                return false;
+        } while (t != first);
+        return true;
+    }
+
+    Corners corners(std::array<std::int32_t, 3> node) const {
+        Corners c{node, {-1, -1, -1}};
+        for (int k = 0; k < 3; ++k) {
+            const auto it = std::find(vars_.begin(), vars_.end(), node[std::size_t(k)]);
+            if (it != vars_.end())
+                c.var[std::size_t(k)] = int(it - vars_.begin());
+        }
+        return c;
+    }
+
+    // The samples of the closed lattice triangle over nodes c (counter-clockwise) but its corners:
+    // visit(x, y, sa, sb, sc), with sa, sb, sc the doubled lattice areas that weigh the corners
+    // (their sum: twice the triangle's area); false when a visit stopped the scan.
+    template <class Visit> bool scan(const std::array<std::int32_t, 3> &c, const Visit &visit) const {
+        std::int64_t x[3], y[3];
+        for (int k = 0; k < 3; ++k) {
+            x[k] = tin_.col[std::size_t(c[std::size_t(k)])];
+            y[k] = tin_.row[std::size_t(c[std::size_t(k)])];
+        }
+        return visit_box(x, y, [&](std::int64_t px, std::int64_t py) {
+            if ((px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
+                (px == x[2] && py == y[2]))
+                return true;
+            const std::int64_t sa = (x[1] - px) * (y[2] - py) - (y[1] - py) * (x[2] - px),
+                               sb = (x[2] - px) * (y[0] - py) - (y[2] - py) * (x[0] - px),
+                               sc = (x[0] - px) * (y[1] - py) - (y[0] - py) * (x[1] - px);
+            return visit(px, py, double(sa), double(sb), double(sc));
+        });
+    }
+
+    // The largest deviation of the samples in the triangle over nodes c at the heights they have,
+    // exactly up to `stop`, beyond it some value over it.
+    double deviation(const std::array<std::int32_t, 3> &c, double stop) const {
+        const double za = tin_.z[std::size_t(c[0])], zb = tin_.z[std::size_t(c[1])],
+                     zc = tin_.z[std::size_t(c[2])];
+        double most = 0.0;
+        scan(c, [&](std::int64_t x, std::int64_t y, double sa, double sb, double sc) {
+            const double h = (sa * za + sb * zb + sc * zc) / (sa + sb + sc);
+            most = std::max(most, std::abs(double(hf_.at(int(x), int(y))) - h));
+            return most <= stop;
+        });
+        return most;
+    }
+
+    // The linear programme over the variables' height changes: each sample of tris_ (and each
+    // variable node's own sample) within the limit of the plane over it. Sets the heights it finds
+    // (as floats), keeping the old ones in old_z_; false when none keeps within the limit.
+    bool fit() {
+        const std::size_t nv = vars_.size();
+        a_.clear();
+        b_.clear();
+        double fixed = 0.0; // the largest deviation no variable changes
+        // Each variable's own sample keeps its change within [low, high]: a row whose weighted
+        // range misses its own [r - limit, r + limit] rules the erase out before the programme.
+        low_.resize(nv);
+        high_.resize(nv);
+        for (std::size_t k = 0; k < nv; ++k) {
+            const std::size_t s = std::size_t(vars_[k]);
+            const double off = double(hf_.at(tin_.col[s], tin_.row[s])) - tin_.z[s];
+            low_[k] = off - limit_;
+            high_[k] = off + limit_;
+        }
+        for (const Corners &c : tris_) {
+            const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
+                         zc = tin_.z[std::size_t(c.node[2])];
+            const bool moves = c.var[0] >= 0 || c.var[1] >= 0 || c.var[2] >= 0;
+            const bool ok = scan(c.node, [&](std::int64_t x, std::int64_t y, double sa, double sb,
+                                             double sc) {
+                const double area = sa + sb + sc;
+                const double r =
+                    double(hf_.at(int(x), int(y))) - (sa * za + sb * zb + sc * zc) / area;
+                if (!moves) {
+                    fixed = std::max(fixed, std::abs(r));
+                    return fixed <= limit_;
+                }
+                const std::size_t at = a_.size();
+                a_.resize(at + nv, 0.0);
+                const double w[3] = {sa / area, sb / area, sc / area};
+                double lo = 0.0, hi = 0.0;
+                for (int k = 0; k < 3; ++k) {
+                    const int u = c.var[std::size_t(k)];
+                    if (u < 0)
+                        continue;
+                    a_[at + std::size_t(u)] += w[k];
+                    lo += w[k] * low_[std::size_t(u)];
+                    hi += w[k] * high_[std::size_t(u)];
+                }
+                if (lo > r + limit_ || hi < r - limit_)
+                    return false;
+                b_.push_back(r);
+                return b_.size() <= k_max_rows;
+            });
+            if (!ok)
+                return false;
+        }
+        for (std::size_t k = 0; k < nv; ++k) {
+            const std::size_t at = a_.size();
+            a_.resize(at + nv, 0.0);
+            a_[at + k] = 1.0;
+            const std::size_t s = std::size_t(vars_[k]);
+            b_.push_back(double(hf_.at(tin_.col[s], tin_.row[s])) - tin_.z[s]);
+        }
+        old_z_.resize(nv);
+        for (std::size_t k = 0; k < nv; ++k)
+            old_z_[k] = tin_.z[std::size_t(vars_[k])];
+        if (nv == 0)
+            return true;
+        const double t = chebyshev_fit(int(nv), a_, b_, limit_, dz_, scratch_);
+        if (!(t <= limit_))
+            return false;
+        for (std::size_t k = 0; k < nv; ++k)
+            tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
+        return true;
+    }
+
+    // Whether every sample of tris_ (corners included) lies within the limit of the triangle over
+    // it at the heights set, as the erase measures (the flip pass's cost): the plane's rounding
+    // margin at each sample, and at the corners the margin a steep triangle's float corner needs.
+    bool holds() const {
+        for (const Corners &c : tris_) {
+            std::array<glm::dvec3, 3> p;
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t s = std::size_t(c.node[std::size_t(k)]);
+                const Mesh::Point g = grid_point(hf_, tin_.col[s], tin_.row[s]);
+                p[std::size_t(k)] = {double(g[0]), double(g[1]), tin_.z[s]};
+            }
+            const TrianglePlane plane(p[0], p[1], p[2]);
+            const double margin = plane.margin_over(p[0], p[1], p[2]);
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t s = std::size_t(c.node[std::size_t(k)]);
+                const glm::dvec3 &q = p[std::size_t(k)];
+                const double h = double(hf_.at(tin_.col[s], tin_.row[s]));
+                if (std::max(rounding_margin(std::max(std::abs(q.x), std::abs(q.y)), plane.slope()),
+                             plane.deviation(q.x, q.y, h, margin)) > limit_)
+                    return false;
+            }
+            const bool ok = scan(c.node, [&](std::int64_t x, std::int64_t y, double, double, double) {
+                const Mesh::Point g = grid_point(hf_, int(x), int(y));
+                return plane.deviation(g[0], g[1], g[2], margin) <= limit_;
+            });
+            if (!ok)
+                return false;
+        }
+        return true;
+    }
+
+    // Replaces v's star by the new triangles tri_ over its ring.
+    void rewrite(std::int32_t v, int count) {
+        const std::size_t n = ring_.size();
+        // The triangle outside each ring edge ring[i] -> ring[i + 1] (-1 on the outline).
+        outside_.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            outside_[i] = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
+        tin_.fan[std::size_t(v)] = -1;
+        for (std::size_t i = std::size_t(count); i < n; ++i)
+            tin_.corner[3 * std::size_t(star_[i])] = -1;
+        for (int j = 0; j < count; ++j) {
+            const std::int32_t t = star_[std::size_t(j)];
+            const std::uint8_t c[3] = {tri_[std::size_t(j)].a, tri_[std::size_t(j)].b,
+                                       tri_[std::size_t(j)].c};
+            for (int k = 0; k < 3; ++k) {
+                tin_.corner[3 * std::size_t(t) + std::size_t(k)] = ring_[c[k]];
+                tin_.fan[std::size_t(ring_[c[k]])] = t;
+            }
+        }
+        for (int j = 0; j < count; ++j) {
+            const std::int32_t t = star_[std::size_t(j)];
+            const std::uint8_t c[3] = {tri_[std::size_t(j)].a, tri_[std::size_t(j)].b,
+                                       tri_[std::size_t(j)].c};
+            for (int k = 0; k < 3; ++k) {
+                const std::uint8_t a = c[k], b = c[(k + 1) % 3];
+                std::int32_t &link = tin_.across[3 * std::size_t(t) + std::size_t(k)];
+                if (std::size_t(b) == (std::size_t(a) + 1) % n) {
+                    link = outside_[a];
+                    if (link >= 0)
+                        tin_.across[3 * std::size_t(link) +
+                                    std::size_t(tin_.index_of(link, ring_[b]))] = t;
+                    continue;
+                }
+                for (int o = 0; o < count; ++o) {
+                    const std::uint8_t d[3] = {tri_[std::size_t(o)].a, tri_[std::size_t(o)].b,
+                                               tri_[std::size_t(o)].c};
+                    for (int e = 0; e < 3; ++e)
+                        if (d[e] == b && d[(e + 1) % 3] == a)
+                            link = star_[std::size_t(o)];
+                }
+            }
+        }
+        for (std::size_t k = 0; k < vars_.size(); ++k)
+            moved_ += tin_.z[std::size_t(vars_[k])] != old_z_[k];
+    }
+
+    // A linear programme over more samples than this is not tried (coarse bounds' large holes).
+    static constexpr std::size_t k_max_rows = 4096;
+
+    Tin &tin_;
+    const Heightfield &hf_;
+    const double limit_;
+    const int max_ring_;
+    std::vector<std::int32_t> ring_, star_, vars_, around_, outside_, touched_;
+    std::vector<int> edge_;
+    std::array<glm::dvec2, k_max_ring> q_;
+    std::array<RingTriangle, k_max_ring> tri_;
+    std::vector<Corners> tris_;
+    std::vector<double> a_, b_, dz_, old_z_, low_, high_;
+    FitScratch scratch_;
+    std::int64_t moved_ = 0;
+};
+
+} // namespace
+
+Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max_valence,
+                  FreeHeightsStats *stats) {
+    Tin tin = tin_arrays(mesh, hf);
+    Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
+    FreeHeightsStats out;
+    // Every node once in storage order, then those near the erases made, until none goes.
+    const std::size_t nodes = tin.sample.size();
+    std::vector<std::int32_t> work, next;
+    work.reserve(nodes);
+    for (std::size_t v = 0; v < nodes; ++v)
+        work.push_back(std::int32_t(v));
+    std::vector<std::uint8_t> queued(nodes, 1);
+    while (!work.empty()) {
+        for (const std::int32_t v : work) {
+            queued[std::size_t(v)] = 0;
+            if (!pass.erase(v))
+                continue;
+            ++out.erased;
+            for (const std::int32_t x : pass.touched())
+                if (!queued[std::size_t(x)] && tin.fan[std::size_t(x)] >= 0) {
+                    queued[std::size_t(x)] = 1;
+                    next.push_back(x);
+                }
+        }
+        work.swap(next);
+        next.clear();
+    }
+    out.moved = pass.moved();
+    // The nodes left in their order (the sample order erase_dem promises) at their heights.
+    Mesh left;
+    const auto origin = get_origin_property(left);
+    std::vector<std::uint32_t> vertex(nodes), corners;
+    for (std::size_t v = 0; v < nodes; ++v)
+        if (tin.fan[v] >= 0) {
+            Mesh::Point p = mesh.point(Mesh::VertexHandle(int(v)));
+            p[2] = float(tin.z[v]);
+            const Mesh::VertexHandle h = left.add_vertex(p);
+            left.property(origin, h) = tin.sample[v];
+            vertex[v] = std::uint32_t(h.idx());
+        }
+    corners.reserve(tin.corner.size());
+    for (std::size_t i = 0; i < tin.corner.size(); i += 3)
+        if (tin.corner[i] >= 0)
+            for (std::size_t k = 0; k < 3; ++k)
+                corners.push_back(vertex[std::size_t(tin.corner[i + k])]);
+    add_triangles(left, corners);
+    if (stats)
+        *stats = out;
+    return left;
+}
+
+} // namespace tinlod::erase
