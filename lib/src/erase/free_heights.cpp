@@ -209,12 +209,16 @@ class Pass {
         for (int i = 0; i < n; ++i)
             q_[std::size_t(i)] = {double(tin_.col[std::size_t(ring_[std::size_t(i)])]),
                                   double(tin_.row[std::size_t(ring_[std::size_t(i)])])};
+        own_x_ = tin_.col[std::size_t(v)];
+        own_y_ = tin_.row[std::size_t(v)];
+        if (!within_reach())
+            return false;
+        // The triangulation that keeps its samples farthest within reach of the limit.
         const int count = min_max_triangulation(
-            q_.data(), n, INFINITY,
+            q_.data(), n, limit_,
             [this](int a, int b, int c, double stop) {
-                return deviation({ring_[std::size_t(a)], ring_[std::size_t(b)],
-                                  ring_[std::size_t(c)]},
-                                 stop);
+                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
+                             stop);
             },
             tri_.data());
         if (count != n - 2)
@@ -314,15 +318,80 @@ class Pass {
         });
     }
 
-    // The largest deviation of the samples in the triangle over nodes c at the heights they have,
-    // exactly up to `stop`, beyond it some value over it.
-    double deviation(const std::array<std::int32_t, 3> &c, double stop) const {
-        const double za = tin_.z[std::size_t(c[0])], zb = tin_.z[std::size_t(c[1])],
-                     zc = tin_.z[std::size_t(c[2])];
+    // Whether v's sample is within reach (reach) of some triangle over three ring nodes whose
+    // closed lattice triangle holds it: else no triangulation of the hole can keep it (most of
+    // the nodes fail here, at a few operations each).
+    bool within_reach() const {
+        const std::size_t n = ring_.size();
+        const double z = double(hf_.at(int(own_x_), int(own_y_)));
+        std::array<std::int64_t, k_max_ring> rx, ry;
+        std::array<double, k_max_ring> lo, hi;
+        double low = INFINITY, high = -INFINITY;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t u = std::size_t(ring_[i]);
+            rx[i] = tin_.col[u] - own_x_;
+            ry[i] = tin_.row[u] - own_y_;
+            const double h = double(hf_.at(tin_.col[u], tin_.row[u])),
+                         m = tin_.outline[u] ? 0.0 : limit_;
+            lo[i] = h - m - limit_;
+            hi[i] = h + m + limit_;
+            low = std::min(low, lo[i]);
+            high = std::max(high, hi[i]);
+        }
+        if (z < low || z > high)
+            return false;
+        for (std::size_t a = 0; a < n; ++a)
+            for (std::size_t b = a + 1; b < n; ++b) {
+                const std::int64_t s0 = rx[a] * ry[b] - ry[a] * rx[b];
+                if (s0 < 0)
+                    continue;
+                for (std::size_t c = b + 1; c < n; ++c) {
+                    const std::int64_t s1 = rx[b] * ry[c] - ry[b] * rx[c],
+                                       s2 = rx[c] * ry[a] - ry[c] * rx[a];
+                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                        continue;
+                    // Weights: s1 on a, s2 on b, s0 on c.
+                    const double area = double(s0 + s1 + s2);
+                    if (z * area >= lo[a] * double(s1) + lo[b] * double(s2) + lo[c] * double(s0) &&
+                        z * area <= hi[a] * double(s1) + hi[b] * double(s2) + hi[c] * double(s0))
+                        return true;
+                }
+            }
+        return false;
+    }
+
+    // How far the samples of the triangle over nodes c miss the limit with each interior corner
+    // moved as far as its own sample lets it: the largest of |h - p| - limit * m over them, p the
+    // plane through the corners' samples at the sample, m the weight of the corners that may move
+    // (the outline's stay). Over the limit, no heights keep the sample within it. Exactly up to
+    // `stop`, beyond it some value over it; v's sample (the one most often out of reach) first.
+    double reach(const std::array<std::int32_t, 3> &c, double stop) const {
+        std::array<double, 3> h, free;
+        std::int64_t x[3], y[3];
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t u = std::size_t(c[std::size_t(k)]);
+            x[k] = tin_.col[u];
+            y[k] = tin_.row[u];
+            h[std::size_t(k)] = double(hf_.at(tin_.col[u], tin_.row[u]));
+            free[std::size_t(k)] = tin_.outline[u] ? 0.0 : limit_;
+        }
+        const auto miss = [&](std::int64_t px, std::int64_t py, double sa, double sb, double sc) {
+            const double area = sa + sb + sc;
+            const double p = (sa * h[0] + sb * h[1] + sc * h[2]) / area,
+                         m = (sa * free[0] + sb * free[1] + sc * free[2]) / area;
+            return std::abs(double(hf_.at(int(px), int(py))) - p) - m;
+        };
+        const std::int64_t sa = (x[1] - own_x_) * (y[2] - own_y_) - (y[1] - own_y_) * (x[2] - own_x_),
+                           sb = (x[2] - own_x_) * (y[0] - own_y_) - (y[2] - own_y_) * (x[0] - own_x_),
+                           sc = (x[0] - own_x_) * (y[1] - own_y_) - (y[0] - own_y_) * (x[1] - own_x_);
         double most = 0.0;
-        scan(c, [&](std::int64_t x, std::int64_t y, double sa, double sb, double sc) {
-            const double h = (sa * za + sb * zb + sc * zc) / (sa + sb + sc);
-            most = std::max(most, std::abs(double(hf_.at(int(x), int(y))) - h));
+        if (sa >= 0 && sb >= 0 && sc >= 0) {
+            most = miss(own_x_, own_y_, double(sa), double(sb), double(sc));
+            if (most > stop)
+                return most;
+        }
+        scan(c, [&](std::int64_t px, std::int64_t py, double wa, double wb, double wc) {
+            most = std::max(most, miss(px, py, wa, wb, wc));
             return most <= stop;
         });
         return most;
@@ -490,7 +559,7 @@ class Pass {
     std::vector<Corners> tris_;
     std::vector<double> a_, b_, dz_, old_z_, low_, high_;
     FitScratch scratch_;
-    std::int64_t moved_ = 0;
+    std::int64_t moved_ = 0, own_x_ = 0, own_y_ = 0;
 };
 
 } // namespace
