@@ -442,6 +442,12 @@ class Pass {
                 }
                 if (lo > r + limit_ || hi < r - limit_)
                     return false;
+                // A row the box keeps within the limit needs no place in the programme: a fit
+                // within the limit keeps every variable in its box.
+                if (lo >= r - limit_ && hi <= r + limit_) {
+                    a_.resize(at);
+                    return true;
+                }
                 b_.push_back(r);
                 return b_.size() <= k_max_rows;
             });
