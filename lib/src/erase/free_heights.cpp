@@ -233,6 +233,7 @@ class Pass {
         for (int j = 0; j < count; ++j)
             tris_.push_back(corners({ring_[tri_[std::size_t(j)].a], ring_[tri_[std::size_t(j)].b],
                                      ring_[tri_[std::size_t(j)].c]}));
+        new_tris_ = tris_.size();
         around_.clear();
         for (const std::int32_t r : vars_) {
             std::int32_t t = tin_.fan[std::size_t(r)];
@@ -397,13 +398,27 @@ class Pass {
         return most;
     }
 
+    // One row of the programme: |sum_k w[k] dz[var[k]] - r| <= limit (var -1: none), and how far
+    // the variables' boxes reach past it.
+    struct Row {
+        std::array<int, 3> var;
+        std::array<double, 3> w;
+        double r, excess;
+        double miss(const std::vector<double> &dz) const {
+            double s = -r;
+            for (int k = 0; k < 3; ++k)
+                if (var[std::size_t(k)] >= 0)
+                    s += w[std::size_t(k)] * dz[std::size_t(var[std::size_t(k)])];
+            return std::abs(s);
+        }
+    };
+
     // The linear programme over the variables' height changes: each sample of tris_ (and each
     // variable node's own sample) within the limit of the plane over it. Sets the heights it finds
     // (as floats), keeping the old ones in old_z_; false when none keeps within the limit.
     bool fit() {
         const std::size_t nv = vars_.size();
-        a_.clear();
-        b_.clear();
+        rows_.clear();
         double fixed = 0.0; // the largest deviation no variable changes
         // Each variable's own sample keeps its change within [low, high]: a row whose weighted
         // range misses its own [r - limit, r + limit] rules the erase out before the programme.
@@ -414,8 +429,14 @@ class Pass {
             const double off = double(hf_.at(tin_.col[s], tin_.row[s])) - tin_.z[s];
             low_[k] = off - limit_;
             high_[k] = off + limit_;
+            rows_.push_back({{int(k), -1, -1}, {1.0, 0.0, 0.0}, off, INFINITY});
         }
-        for (const Corners &c : tris_) {
+        for (std::size_t t = 0; t < tris_.size(); ++t) {
+            // The new triangles' rows alone first: a hole they rule out costs no scan of the
+            // triangles around it (most holes at a coarse bound).
+            if (t == new_tris_ && nv > 0 && t < tris_.size() && !solve(nv))
+                return false;
+            const Corners &c = tris_[t];
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
                          zc = tin_.z[std::size_t(c.node[2])];
             const bool moves = c.var[0] >= 0 || c.var[1] >= 0 || c.var[2] >= 0;
@@ -428,50 +449,72 @@ class Pass {
                     fixed = std::max(fixed, std::abs(r));
                     return fixed <= limit_;
                 }
-                const std::size_t at = a_.size();
-                a_.resize(at + nv, 0.0);
-                const double w[3] = {sa / area, sb / area, sc / area};
+                Row row{c.var, {sa / area, sb / area, sc / area}, r, 0.0};
                 double lo = 0.0, hi = 0.0;
-                for (int k = 0; k < 3; ++k) {
-                    const int u = c.var[std::size_t(k)];
-                    if (u < 0)
-                        continue;
-                    a_[at + std::size_t(u)] += w[k];
-                    lo += w[k] * low_[std::size_t(u)];
-                    hi += w[k] * high_[std::size_t(u)];
-                }
+                for (std::size_t k = 0; k < 3; ++k)
+                    if (row.var[k] >= 0) {
+                        lo += row.w[k] * low_[std::size_t(row.var[k])];
+                        hi += row.w[k] * high_[std::size_t(row.var[k])];
+                    }
                 if (lo > r + limit_ || hi < r - limit_)
                     return false;
                 // A row the box keeps within the limit needs no place in the programme: a fit
                 // within the limit keeps every variable in its box.
-                if (lo >= r - limit_ && hi <= r + limit_) {
-                    a_.resize(at);
+                if (lo >= r - limit_ && hi <= r + limit_)
                     return true;
-                }
-                b_.push_back(r);
-                return b_.size() <= k_max_rows;
+                row.excess = std::max(hi - r, r - lo);
+                rows_.push_back(row);
+                return rows_.size() <= k_max_rows;
             });
             if (!ok)
                 return false;
-        }
-        for (std::size_t k = 0; k < nv; ++k) {
-            const std::size_t at = a_.size();
-            a_.resize(at + nv, 0.0);
-            a_[at + k] = 1.0;
-            const std::size_t s = std::size_t(vars_[k]);
-            b_.push_back(double(hf_.at(tin_.col[s], tin_.row[s])) - tin_.z[s]);
         }
         old_z_.resize(nv);
         for (std::size_t k = 0; k < nv; ++k)
             old_z_[k] = tin_.z[std::size_t(vars_[k])];
         if (nv == 0)
             return true;
-        const double t = chebyshev_fit(int(nv), a_, b_, limit_, dz_, scratch_);
-        if (!(t <= limit_))
+        if (!solve(nv))
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
         return true;
+    }
+
+    // Heights within the limit of rows_ in dz_: the programme on the rows whose boxes' reach most
+    // exceeds the limit (the variables' own rows first), then with the rows its fit misses, until
+    // it misses none (the fit rests on about as many rows as variables, of up to thousands at a
+    // coarse bound). False when a programme on some of the rows finds none.
+    bool solve(std::size_t nv) {
+        const std::size_t m = rows_.size(), first = std::min(m, 3 * nv + 4);
+        std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1), rows_.end(),
+                         [](const Row &i, const Row &j) { return i.excess > j.excess; });
+        picked_.assign(m, 0);
+        std::fill_n(picked_.begin(), first, std::uint8_t(1));
+        for (int round = 0; round < 32; ++round) {
+            sub_a_.clear();
+            sub_b_.clear();
+            for (std::size_t i = 0; i < m; ++i)
+                if (picked_[i]) {
+                    sub_a_.resize(sub_a_.size() + nv, 0.0);
+                    double *a = &sub_a_[sub_a_.size() - nv];
+                    for (std::size_t k = 0; k < 3; ++k)
+                        if (rows_[i].var[k] >= 0)
+                            a[rows_[i].var[k]] += rows_[i].w[k];
+                    sub_b_.push_back(rows_[i].r);
+                }
+            if (!(chebyshev_fit(int(nv), sub_a_, sub_b_, limit_, dz_, scratch_) <= limit_))
+                return false;
+            bool missed = false;
+            for (std::size_t i = 0; i < m; ++i)
+                if (!picked_[i] && rows_[i].miss(dz_) > limit_) {
+                    picked_[i] = 1;
+                    missed = true;
+                }
+            if (!missed)
+                return true;
+        }
+        return false;
     }
 
     // Whether every sample of tris_ (corners included) lies within the limit of the triangle over
@@ -563,7 +606,10 @@ class Pass {
     std::array<glm::dvec2, k_max_ring> q_;
     std::array<RingTriangle, k_max_ring> tri_;
     std::vector<Corners> tris_;
-    std::vector<double> a_, b_, dz_, old_z_, low_, high_;
+    std::vector<Row> rows_;
+    std::size_t new_tris_ = 0;
+    std::vector<double> sub_a_, sub_b_, dz_, old_z_, low_, high_;
+    std::vector<std::uint8_t> picked_;
     FitScratch scratch_;
     std::int64_t moved_ = 0, own_x_ = 0, own_y_ = 0;
 };
