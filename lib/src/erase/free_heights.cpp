@@ -12,126 +12,143 @@
 
 namespace tinlod::erase {
 
-double chebyshev_fit(int n, std::span<const double> a, std::span<const double> b, double give_up,
-                     std::vector<double> &z, FitScratch &scratch) {
-    // The fit is min t subject to a_i . z - t <= b_i and -a_i . z - t <= -b_i. Its dual: min g . y
-    // over y >= 0 with sum_j y_j G_j = 0 on the z columns and sum_j y_j = 1, G_j = (+-a_i), g_j =
-    // +-b_i; its optimum is -t*, and -g . y bounds t* from below on the way. A tableau of n + 1
-    // rows, the real columns then one artificial per row (phase 1 starts from them).
-    const std::size_t m = b.size(), rows = std::size_t(n) + 1, real = 2 * m, cols = real + rows,
-                      width = cols + 1; // the last column: the right-hand side
-    std::vector<double> &T = scratch.tableau, &d = scratch.reduced, &g = scratch.cost;
-    std::vector<std::size_t> &basis = scratch.basis;
-    T.assign(rows * width, 0.0);
-    d.assign(width, 0.0);
-    g.assign(cols, 0.0);
-    basis.resize(rows);
-    for (std::size_t i = 0; i < m; ++i)
-        for (int s = 0; s < 2; ++s) {
-            const std::size_t j = 2 * i + std::size_t(s);
-            const double sign = s == 0 ? 1.0 : -1.0;
-            for (std::size_t k = 0; k < std::size_t(n); ++k)
-                T[k * width + j] = sign * a[i * std::size_t(n) + k];
-            T[std::size_t(n) * width + j] = 1.0;
-            g[j] = sign * b[i];
-        }
-    for (std::size_t r = 0; r < rows; ++r) {
-        T[r * width + real + r] = 1.0;
-        basis[r] = real + r;
-    }
-    T[std::size_t(n) * width + cols] = 1.0;
-    const double eps = 1e-11;
-    const auto pivot = [&](std::size_t r, std::size_t j) {
-        double *pr = &T[r * width];
-        const double p = pr[j];
-        for (std::size_t c = 0; c < width; ++c)
-            pr[c] /= p;
-        for (std::size_t o = 0; o < rows; ++o) {
-            double *po = &T[o * width];
-            const double f = po[j];
-            if (o == r || f == 0.0)
+// The fit is min t subject to a_i . z - t <= b_i and -a_i . z - t <= -b_i. Its dual: min g . y over
+// y >= 0 with sum_j y_j G_j = 0 on the z rows and sum_j y_j = 1, G_j = +-a_i, g_j = +-b_i; its
+// optimum is -t*, and -g . y bounds t* from below on the way. Phase 1 starts from one artificial
+// column per row; their columns hold B^-1 from then on, which is what a later row's columns need.
+void ChebyshevFit::reset(int n) {
+    n_ = std::size_t(n);
+    rows_ = n_ + 1;
+    col_.assign(rows_ * rows_, 0.0);
+    for (std::size_t r = 0; r < rows_; ++r)
+        col_[r * rows_ + r] = 1.0;
+    g_.assign(rows_, 0.0);
+    d_.assign(rows_, 0.0);
+    rhs_.assign(rows_, 0.0);
+    rhs_[n_] = 1.0;
+    basis_.resize(rows_);
+    for (std::size_t r = 0; r < rows_; ++r)
+        basis_[r] = r;
+    started_ = false;
+}
+
+void ChebyshevFit::add_row(const double *a, double b) {
+    for (const double sign : {1.0, -1.0}) {
+        const std::size_t at = col_.size();
+        col_.resize(at + rows_, 0.0);
+        double *c = &col_[at];
+        double d = sign * b;
+        for (std::size_t k = 0; k <= n_; ++k) {
+            const double raw = k < n_ ? sign * a[k] : 1.0;
+            if (raw == 0.0)
                 continue;
-            for (std::size_t c = 0; c < width; ++c)
-                po[c] -= f * pr[c];
+            // B^-1 times the raw column, and its reduced cost g - c_B B^-1 column.
+            const double *inverse = &col_[k * rows_];
+            for (std::size_t r = 0; r < rows_; ++r)
+                c[r] += raw * inverse[r];
+            d += raw * d_[k];
         }
-        const double f = d[j];
-        if (f != 0.0)
-            for (std::size_t c = 0; c < width; ++c)
-                d[c] -= f * pr[c];
-        basis[r] = j;
+        g_.push_back(sign * b);
+        d_.push_back(started_ ? d : 0.0);
+    }
+}
+
+void ChebyshevFit::pivot(std::size_t r, std::size_t j) {
+    entering_.assign(col_.begin() + std::ptrdiff_t(j * rows_),
+                     col_.begin() + std::ptrdiff_t((j + 1) * rows_));
+    const double p = entering_[r], dj = d_[j];
+    const auto update = [&](double *c, double &d) {
+        const double x = c[r] / p;
+        if (x == 0.0)
+            return;
+        for (std::size_t o = 0; o < rows_; ++o)
+            c[o] -= entering_[o] * x;
+        c[r] = x;
+        d -= dj * x;
     };
-    // Dantzig's rule over the columns below `enter` (the artificials never re-enter in phase 2);
-    // false when the method does not settle. `stop`: whether to give up at the current value.
-    const auto run = [&](std::size_t enter, auto stop) {
-        for (int it = 0; it < 50 * int(rows) + 200; ++it) {
-            if (stop())
-                return true;
-            std::size_t j = enter;
-            double most = -eps;
-            for (std::size_t c = 0; c < enter; ++c)
-                if (d[c] < most) {
-                    most = d[c];
-                    j = c;
-                }
-            if (j == enter)
-                return true;
-            std::size_t r = rows;
-            double ratio = INFINITY;
-            for (std::size_t o = 0; o < rows; ++o) {
-                const double e = T[o * width + j];
-                if (e > 1e-9) {
-                    const double q = T[o * width + cols] / e;
-                    if (q < ratio || (q == ratio && basis[o] < basis[r])) {
-                        ratio = q;
-                        r = o;
-                    }
+    const std::size_t columns = g_.size();
+    for (std::size_t c = 0; c < columns; ++c)
+        update(&col_[c * rows_], d_[c]);
+    update(rhs_.data(), d_rhs_);
+    basis_[r] = j;
+}
+
+bool ChebyshevFit::run(double give_up) {
+    const double eps = 1e-11;
+    for (int it = 0; it < 50 * int(rows_) + 200; ++it) {
+        if (d_rhs_ > give_up)
+            return true;
+        const std::size_t columns = g_.size();
+        std::size_t j = columns;
+        double most = -eps;
+        for (std::size_t c = rows_; c < columns; ++c)
+            if (d_[c] < most) {
+                most = d_[c];
+                j = c;
+            }
+        if (j == columns)
+            return true;
+        const double *e = &col_[j * rows_];
+        std::size_t r = rows_;
+        double ratio = INFINITY;
+        for (std::size_t o = 0; o < rows_; ++o)
+            if (e[o] > 1e-9) {
+                const double q = rhs_[o] / e[o];
+                if (q < ratio || (q == ratio && basis_[o] < basis_[r])) {
+                    ratio = q;
+                    r = o;
                 }
             }
-            if (r == rows)
-                return false; // unbounded: not for a feasible fit
-            pivot(r, j);
-        }
-        return false;
-    };
-    // Phase 1: the artificials' sum, from reduced costs -sum_r T[r][j] on the real columns.
-    for (std::size_t r = 0; r < rows; ++r)
-        for (std::size_t c = 0; c < real; ++c)
-            d[c] -= T[r * width + c];
-    d[cols] = -1.0;
-    if (!run(real, [] { return false; }) || d[cols] < -1e-9)
-        return INFINITY;
-    for (std::size_t r = 0; r < rows; ++r) {
-        if (basis[r] < real)
-            continue;
-        std::size_t j = real;
-        for (std::size_t c = 0; c < real && j == real; ++c)
-            if (std::abs(T[r * width + c]) > 1e-9)
-                j = c;
-        if (j == real)
-            return INFINITY; // a redundant row: no variable is free to move
+        if (r == rows_)
+            return false; // unbounded: not for a feasible fit
         pivot(r, j);
     }
-    // Phase 2: d = g - g_B B^-1 A over every column; d[cols] = -g_B x_B = the bound on t*.
-    for (std::size_t c = 0; c < width; ++c) {
-        double s = c < cols ? g[c] : 0.0;
-        for (std::size_t r = 0; r < rows; ++r)
-            s -= g[basis[r]] * T[r * width + c];
-        d[c] = s;
+    return false;
+}
+
+double ChebyshevFit::solve(double give_up, std::vector<double> &z) {
+    const std::size_t columns = g_.size();
+    if (!started_) {
+        // Phase 1: the artificials' sum, from reduced costs -sum_r T[r][c] on the real columns.
+        for (std::size_t c = rows_; c < columns; ++c) {
+            double s = 0.0;
+            for (std::size_t r = 0; r < rows_; ++r)
+                s -= col_[c * rows_ + r];
+            d_[c] = s;
+        }
+        d_rhs_ = -1.0;
+        if (!run(INFINITY) || d_rhs_ < -1e-9)
+            return INFINITY;
+        for (std::size_t r = 0; r < rows_; ++r) {
+            if (basis_[r] >= rows_)
+                continue;
+            std::size_t j = columns;
+            for (std::size_t c = rows_; c < columns && j == columns; ++c)
+                if (std::abs(col_[c * rows_ + r]) > 1e-9)
+                    j = c;
+            if (j == columns)
+                return INFINITY; // a redundant row: no variable is free to move
+            pivot(r, j);
+        }
+        // Phase 2: d = g - g_B B^-1 A over every column (the artificials' cost 0).
+        for (std::size_t c = 0; c < columns; ++c) {
+            double s = g_[c];
+            for (std::size_t r = 0; r < rows_; ++r)
+                s -= g_[basis_[r]] * col_[c * rows_ + r];
+            d_[c] = s;
+        }
+        d_rhs_ = 0.0;
+        for (std::size_t r = 0; r < rows_; ++r)
+            d_rhs_ -= g_[basis_[r]] * rhs_[r];
+        started_ = true;
     }
-    if (!run(real, [&] { return d[cols] > give_up; }))
+    if (!run(give_up))
         return INFINITY;
     // The fit's z: the dual values of the z rows, minus the reduced costs of their artificials.
-    z.assign(std::size_t(n), 0.0);
-    for (std::size_t k = 0; k < std::size_t(n); ++k)
-        z[k] = -d[real + k];
-    double most = std::max(d[cols], 0.0);
-    for (std::size_t i = 0; i < m; ++i) {
-        double s = -b[i];
-        for (std::size_t k = 0; k < std::size_t(n); ++k)
-            s += a[i * std::size_t(n) + k] * z[k];
-        most = std::max(most, std::abs(s));
-    }
-    return most;
+    z.resize(n_);
+    for (std::size_t k = 0; k < n_; ++k)
+        z[k] = -d_[k];
+    return std::max(d_rhs_, 0.0);
 }
 
 namespace {
@@ -434,7 +451,7 @@ class Pass {
         for (std::size_t t = 0; t < tris_.size(); ++t) {
             // The new triangles' rows alone first: a hole they rule out costs no scan of the
             // triangles around it (most holes at a coarse bound).
-            if (t == new_tris_ && nv > 0 && t < tris_.size() && !solve(nv))
+            if (t == new_tris_ && nv > 0 && !solve(nv, true))
                 return false;
             const Corners &c = tris_[t];
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
@@ -474,7 +491,7 @@ class Pass {
             old_z_[k] = tin_.z[std::size_t(vars_[k])];
         if (nv == 0)
             return true;
-        if (!solve(nv))
+        if (!solve(nv, new_tris_ == tris_.size()))
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
@@ -484,37 +501,47 @@ class Pass {
     // Heights within the limit of rows_ in dz_: the programme on the rows whose boxes' reach most
     // exceeds the limit (the variables' own rows first), then with the rows its fit misses, until
     // it misses none (the fit rests on about as many rows as variables, of up to thousands at a
-    // coarse bound). False when a programme on some of the rows finds none.
-    bool solve(std::size_t nv) {
-        const std::size_t m = rows_.size(), first = std::min(m, 3 * nv + 4);
-        std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1), rows_.end(),
-                         [](const Row &i, const Row &j) { return i.excess > j.excess; });
-        picked_.assign(m, 0);
-        std::fill_n(picked_.begin(), first, std::uint8_t(1));
+    // coarse bound). `fresh`: a new programme; else the last one's, with the rows added since.
+    // False when a programme on some of the rows finds none.
+    bool solve(std::size_t nv, bool fresh) {
+        const std::size_t m = rows_.size();
+        if (fresh) {
+            const std::size_t first = std::min(m, 3 * nv + 4);
+            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1),
+                             rows_.end(),
+                             [](const Row &i, const Row &j) { return i.excess > j.excess; });
+            picked_.assign(m, 0);
+            fit_.reset(int(nv));
+            for (std::size_t i = 0; i < first; ++i)
+                add(i, nv);
+        } else {
+            picked_.resize(m, 0);
+        }
         for (int round = 0; round < 32; ++round) {
-            sub_a_.clear();
-            sub_b_.clear();
-            for (std::size_t i = 0; i < m; ++i)
-                if (picked_[i]) {
-                    sub_a_.resize(sub_a_.size() + nv, 0.0);
-                    double *a = &sub_a_[sub_a_.size() - nv];
-                    for (std::size_t k = 0; k < 3; ++k)
-                        if (rows_[i].var[k] >= 0)
-                            a[rows_[i].var[k]] += rows_[i].w[k];
-                    sub_b_.push_back(rows_[i].r);
-                }
-            if (!(chebyshev_fit(int(nv), sub_a_, sub_b_, limit_, dz_, scratch_) <= limit_))
-                return false;
+            if (fresh || round > 0) {
+                if (!(fit_.solve(limit_, dz_) <= limit_))
+                    return false;
+            }
             bool missed = false;
             for (std::size_t i = 0; i < m; ++i)
                 if (!picked_[i] && rows_[i].miss(dz_) > limit_) {
-                    picked_[i] = 1;
+                    add(i, nv);
                     missed = true;
                 }
             if (!missed)
                 return true;
         }
         return false;
+    }
+
+    // Adds row i to the programme.
+    void add(std::size_t i, std::size_t nv) {
+        picked_[i] = 1;
+        dense_.assign(nv, 0.0);
+        for (std::size_t k = 0; k < 3; ++k)
+            if (rows_[i].var[k] >= 0)
+                dense_[std::size_t(rows_[i].var[k])] += rows_[i].w[k];
+        fit_.add_row(dense_.data(), rows_[i].r);
     }
 
     // Whether every sample of tris_ (corners included) lies within the limit of the triangle over
@@ -608,9 +635,9 @@ class Pass {
     std::vector<Corners> tris_;
     std::vector<Row> rows_;
     std::size_t new_tris_ = 0;
-    std::vector<double> sub_a_, sub_b_, dz_, old_z_, low_, high_;
+    std::vector<double> dense_, dz_, old_z_, low_, high_;
     std::vector<std::uint8_t> picked_;
-    FitScratch scratch_;
+    ChebyshevFit fit_;
     std::int64_t moved_ = 0, own_x_ = 0, own_y_ = 0;
 };
 

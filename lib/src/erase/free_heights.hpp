@@ -11,7 +11,6 @@
 #include "tinlod/tin.hpp"
 
 #include <cstdint>
-#include <span>
 #include <vector>
 
 namespace tinlod::erase {
@@ -29,18 +28,32 @@ struct FreeHeightsStats {
 Mesh free_heights(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
                   FreeHeightsStats *stats = nullptr);
 
-// chebyshev_fit's scratch, kept from call to call (a fresh tableau each call cost as much as the
-// method).
-struct FitScratch {
-    std::vector<double> tableau, cost, reduced;
-    std::vector<std::size_t> basis;
-};
+// The least L-infinity fit: z (n values) minimising max_i |a_i . z - b_i| over rows a_i added one
+// at a time, by the simplex method on its dual (n + 1 equality rows, two columns a row). A solve
+// after more rows are added goes on from the last one's basis (rows a fit misses come in a few at
+// a time), and the tableau's memory is kept from fit to fit.
+class ChebyshevFit {
+  public:
+    // A fit of n variables, no rows yet.
+    void reset(int n);
+    // Adds the row (a: n values, b).
+    void add_row(const double *a, double b);
+    // The least maximum over the rows added, its z in `z`; stops early with a value over
+    // `give_up` once the least is known to exceed it; +inf when the method does not settle.
+    double solve(double give_up, std::vector<double> &z);
 
-// The least L-infinity fit: z (n values) minimising max_i |a_i . z - b_i| over the rows a_i
-// (row-major, a.size() == n * b.size()), by the simplex method on its dual (n + 1 equality rows).
-// Returns that maximum at the z it leaves in `z`; stops early with a value over `give_up` once the
-// optimum is known to exceed it, and returns +inf when the method does not settle.
-double chebyshev_fit(int n, std::span<const double> a, std::span<const double> b, double give_up,
-                     std::vector<double> &z, FitScratch &scratch);
+  private:
+    void pivot(std::size_t r, std::size_t j);
+    // Dantzig's rule over the real columns; false when it does not settle.
+    bool run(double give_up);
+
+    std::size_t n_ = 0, rows_ = 0; // rows_ = n + 1: the z rows, then sum y = 1
+    // Column-major tableau: the rows_ artificial columns (B^-1), then two a row; the right-hand
+    // side and the reduced costs apart (d_rhs_: minus the objective, the bound on the fit).
+    std::vector<double> col_, g_, d_, rhs_, entering_;
+    std::vector<std::size_t> basis_;
+    double d_rhs_ = 0.0;
+    bool started_ = false; // phase 1 done: later rows join phase 2
+};
 
 } // namespace tinlod::erase
