@@ -52,10 +52,9 @@ struct Case {
 } // namespace
 
 TEST(FreeHeights, FewerTrianglesWithinTheBoundOnRealCrops) {
-    for (const Case &c : {Case{"dem_srtm30.tif", 150, 120, 96, 0.5},
-                          Case{"N42E001.hgt", 300, 700, 96, 0.5},
-                          Case{"dem_srtm30.tif", 40, 60, 96, 2.0},
-                          Case{"N42E001.hgt", 500, 200, 96, 2.0}}) {
+    for (const Case &c :
+         {Case{"dem_srtm30.tif", 150, 120, 96, 0.5}, Case{"N42E001.hgt", 300, 700, 96, 0.5},
+          Case{"dem_srtm30.tif", 40, 60, 96, 2.0}, Case{"N42E001.hgt", 500, 200, 96, 2.0}}) {
         SCOPED_TRACE(std::string(c.file) + " at " + std::to_string(c.bound));
         const Heightfield hf =
             test::crop(load_heightfield(test::asset(c.file)), c.x0, c.y0, c.side, c.side);
@@ -115,9 +114,9 @@ TEST(FreeHeights, OnlyAtAVerticalBoundWithoutABudget) {
 TEST(FreeHeights, CliFlagKeepsSampleHeights) {
     const std::string dir = test::temp_dir(), dem = test::asset("dem_srtm30.tif");
     const auto run = [&](const std::string &name, const std::string &flag) {
-        const test::RunResult r = test::run_cli("simplify '" + dem + "' --max-error 0.5 -o '" +
-                                                dir + "/" + name + ".ply' --stats '" + dir + "/" +
-                                                name + ".json'" + flag);
+        const test::RunResult r =
+            test::run_cli("simplify '" + dem + "' --max-error 0.5 -o '" + dir + "/" + name +
+                          ".ply' --stats '" + dir + "/" + name + ".json'" + flag);
         EXPECT_EQ(r.status, 0) << r.err;
         return nlohmann::json::parse(std::ifstream(dir + "/" + name + ".json"));
     };

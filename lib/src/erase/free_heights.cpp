@@ -165,9 +165,13 @@ struct Tin {
     std::vector<std::int32_t> corner, across, fan;
 
     int index_of(std::int32_t t, std::int32_t node) const {
-        return corner[3 * std::size_t(t)] == node ? 0 : corner[3 * std::size_t(t) + 1] == node ? 1 : 2;
+        return corner[3 * std::size_t(t)] == node       ? 0
+               : corner[3 * std::size_t(t) + 1] == node ? 1
+                                                        : 2;
     }
-    std::int32_t at(std::int32_t t, int k) const { return corner[3 * std::size_t(t) + std::size_t(k)]; }
+    std::int32_t at(std::int32_t t, int k) const {
+        return corner[3 * std::size_t(t) + std::size_t(k)];
+    }
 };
 
 Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
@@ -319,7 +323,8 @@ class Pass {
     // The samples of the closed lattice triangle over nodes c (counter-clockwise) but its corners:
     // visit(x, y, sa, sb, sc), with sa, sb, sc the doubled lattice areas that weigh the corners
     // (their sum: twice the triangle's area); false when a visit stopped the scan.
-    template <class Visit> bool scan(const std::array<std::int32_t, 3> &c, const Visit &visit) const {
+    template <class Visit>
+    bool scan(const std::array<std::int32_t, 3> &c, const Visit &visit) const {
         std::int64_t x[3], y[3];
         for (int k = 0; k < 3; ++k) {
             x[k] = tin_.col[std::size_t(c[std::size_t(k)])];
@@ -399,9 +404,12 @@ class Pass {
                          m = (sa * free[0] + sb * free[1] + sc * free[2]) / area;
             return std::abs(double(hf_.at(int(px), int(py))) - p) - m;
         };
-        const std::int64_t sa = (x[1] - own_x_) * (y[2] - own_y_) - (y[1] - own_y_) * (x[2] - own_x_),
-                           sb = (x[2] - own_x_) * (y[0] - own_y_) - (y[2] - own_y_) * (x[0] - own_x_),
-                           sc = (x[0] - own_x_) * (y[1] - own_y_) - (y[0] - own_y_) * (x[1] - own_x_);
+        const std::int64_t sa = (x[1] - own_x_) * (y[2] - own_y_) -
+                                (y[1] - own_y_) * (x[2] - own_x_),
+                           sb = (x[2] - own_x_) * (y[0] - own_y_) -
+                                (y[2] - own_y_) * (x[0] - own_x_),
+                           sc = (x[0] - own_x_) * (y[1] - own_y_) -
+                                (y[0] - own_y_) * (x[1] - own_x_);
         double most = 0.0;
         if (sa >= 0 && sb >= 0 && sc >= 0) {
             most = miss(own_x_, own_y_, double(sa), double(sb), double(sc));
@@ -457,32 +465,32 @@ class Pass {
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
                          zc = tin_.z[std::size_t(c.node[2])];
             const bool moves = c.var[0] >= 0 || c.var[1] >= 0 || c.var[2] >= 0;
-            const bool ok = scan(c.node, [&](std::int64_t x, std::int64_t y, double sa, double sb,
-                                             double sc) {
-                const double area = sa + sb + sc;
-                const double r =
-                    double(hf_.at(int(x), int(y))) - (sa * za + sb * zb + sc * zc) / area;
-                if (!moves) {
-                    fixed = std::max(fixed, std::abs(r));
-                    return fixed <= limit_;
-                }
-                Row row{c.var, {sa / area, sb / area, sc / area}, r, 0.0};
-                double lo = 0.0, hi = 0.0;
-                for (std::size_t k = 0; k < 3; ++k)
-                    if (row.var[k] >= 0) {
-                        lo += row.w[k] * low_[std::size_t(row.var[k])];
-                        hi += row.w[k] * high_[std::size_t(row.var[k])];
+            const bool ok =
+                scan(c.node, [&](std::int64_t x, std::int64_t y, double sa, double sb, double sc) {
+                    const double area = sa + sb + sc;
+                    const double r =
+                        double(hf_.at(int(x), int(y))) - (sa * za + sb * zb + sc * zc) / area;
+                    if (!moves) {
+                        fixed = std::max(fixed, std::abs(r));
+                        return fixed <= limit_;
                     }
-                if (lo > r + limit_ || hi < r - limit_)
-                    return false;
-                // A row the box keeps within the limit needs no place in the programme: a fit
-                // within the limit keeps every variable in its box.
-                if (lo >= r - limit_ && hi <= r + limit_)
-                    return true;
-                row.excess = std::max(hi - r, r - lo);
-                rows_.push_back(row);
-                return rows_.size() <= k_max_rows;
-            });
+                    Row row{c.var, {sa / area, sb / area, sc / area}, r, 0.0};
+                    double lo = 0.0, hi = 0.0;
+                    for (std::size_t k = 0; k < 3; ++k)
+                        if (row.var[k] >= 0) {
+                            lo += row.w[k] * low_[std::size_t(row.var[k])];
+                            hi += row.w[k] * high_[std::size_t(row.var[k])];
+                        }
+                    if (lo > r + limit_ || hi < r - limit_)
+                        return false;
+                    // A row the box keeps within the limit needs no place in the programme: a fit
+                    // within the limit keeps every variable in its box.
+                    if (lo >= r - limit_ && hi <= r + limit_)
+                        return true;
+                    row.excess = std::max(hi - r, r - lo);
+                    rows_.push_back(row);
+                    return rows_.size() <= k_max_rows;
+                });
             if (!ok)
                 return false;
         }
@@ -507,8 +515,7 @@ class Pass {
         const std::size_t m = rows_.size();
         if (fresh) {
             const std::size_t first = std::min(m, 3 * nv + 4);
-            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1),
-                             rows_.end(),
+            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1), rows_.end(),
                              [](const Row &i, const Row &j) { return i.excess > j.excess; });
             picked_.assign(m, 0);
             fit_.reset(int(nv));
@@ -565,10 +572,11 @@ class Pass {
                              plane.deviation(q.x, q.y, h, margin)) > limit_)
                     return false;
             }
-            const bool ok = scan(c.node, [&](std::int64_t x, std::int64_t y, double, double, double) {
-                const Mesh::Point g = grid_point(hf_, int(x), int(y));
-                return plane.deviation(g[0], g[1], g[2], margin) <= limit_;
-            });
+            const bool ok =
+                scan(c.node, [&](std::int64_t x, std::int64_t y, double, double, double) {
+                    const Mesh::Point g = grid_point(hf_, int(x), int(y));
+                    return plane.deviation(g[0], g[1], g[2], margin) <= limit_;
+                });
             if (!ok)
                 return false;
         }
