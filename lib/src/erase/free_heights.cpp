@@ -285,7 +285,6 @@ class Pass {
     }
 
     const std::vector<std::int32_t> &touched() const { return touched_; }
-    std::int64_t moved() const { return moved_; }
 
   private:
     // v's ring (counter-clockwise), its star's triangles and in each the index of its ring edge;
@@ -625,8 +624,6 @@ class Pass {
                 }
             }
         }
-        for (std::size_t k = 0; k < vars_.size(); ++k)
-            moved_ += tin_.z[std::size_t(vars_[k])] != old_z_[k];
     }
 
     // A linear programme over more samples than this is not tried (coarse bounds' large holes).
@@ -646,7 +643,7 @@ class Pass {
     std::vector<double> dense_, dz_, old_z_, low_, high_;
     std::vector<std::uint8_t> picked_;
     ChebyshevFit fit_;
-    std::int64_t moved_ = 0, own_x_ = 0, own_y_ = 0;
+    std::int64_t own_x_ = 0, own_y_ = 0;
 };
 
 } // namespace
@@ -678,7 +675,6 @@ Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max
         work.swap(next);
         next.clear();
     }
-    out.moved = pass.moved();
     // The nodes left in their order (the sample order erase_dem promises) at their heights.
     Mesh left;
     const auto origin = get_origin_property(left);
