@@ -20,6 +20,7 @@
 //                        [--core N] [--command TEXT]
 #include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
+#include "tinlod/tin.hpp"
 #include "tinlod/util.hpp"
 
 #include "common.hpp"
@@ -106,8 +107,10 @@ void make_png(Input &in, const Heightfield &dem) {
 
 // The triangles of a binary STL written over the grid of `hf` (x = column, y = row from the south,
 // as both programs write a --cell 1 grid) as sample ids, counter-clockwise; *dz receives the
-// largest |z - the sample's height| of its corners (both programs write the PNG's heights).
-std::vector<std::uint32_t> read_stl(const std::string &path, const Heightfield &hf, double *dz) {
+// largest |z - the sample's height| of its corners (hmm writes the PNG's heights, tinlod moves
+// interior nodes within the bound: decisions/034), `heights` each node's written z by sample id.
+std::vector<std::uint32_t> read_stl(const std::string &path, const Heightfield &hf, double *dz,
+                                    std::vector<float> &heights) {
     std::ifstream in(path, std::ios::binary);
     char header[84];
     if (!in.read(header, sizeof header))
@@ -119,6 +122,7 @@ std::vector<std::uint32_t> read_stl(const std::string &path, const Heightfield &
         throw std::runtime_error(path + ": truncated STL");
     std::vector<std::uint32_t> ids(std::size_t(n) * 3);
     *dz = 0.0;
+    heights.assign(std::size_t(hf.size()), NAN);
     for (std::size_t t = 0; t < n; ++t)
         for (int k = 0; k < 3; ++k) {
             float p[3];
@@ -127,15 +131,27 @@ std::vector<std::uint32_t> read_stl(const std::string &path, const Heightfield &
             if (c < 0 || c >= hf.width || r < 0 || r >= hf.height || c != p[0] || r != p[1])
                 throw std::runtime_error(path + ": a vertex off the grid");
             ids[t * 3 + k] = std::uint32_t(r * hf.width + c);
+            heights[ids[t * 3 + k]] = p[2];
             *dz = std::max(*dz, std::abs(double(p[2]) - hf.at(int(c), int(r))));
         }
     bench::orient_ccw(hf, ids);
     return ids;
 }
 
-// The exhaustive measurement of a TIN over the grid, into row `r`.
-void measure(json &r, const Heightfield &hf, const std::vector<std::uint32_t> &tris) {
-    const TinError e = measure_error(hf, tris);
+// The exhaustive measurement of a TIN over the grid, into row `r`: at its nodes' written heights
+// when given (by sample id), else at their samples'.
+void measure(json &r, const Heightfield &hf, const std::vector<std::uint32_t> &tris,
+             const std::vector<float> *heights = nullptr) {
+    TinError e;
+    if (heights) {
+        Mesh tin = tin_from_indices(hf, tris);
+        const auto origin = find_origin_property(tin);
+        for (const auto v : tin.vertices())
+            tin.point(v)[2] = (*heights)[std::size_t(tin.property(origin, v))];
+        e = measure_error(hf, tin);
+    } else {
+        e = measure_error(hf, tris);
+    }
     r["tris"] = std::int64_t(tris.size() / 3);
     r["nodes"] = std::int64_t(std::set<std::uint32_t>(tris.begin(), tris.end()).size());
     r["max_vertical"] = e.max_vertical;
@@ -246,9 +262,11 @@ struct Bench {
         }
         json tr = timed_row("tinlod", in, bound, t), hr = timed_row("hmm", in, bound, h);
         double dz = 0.0;
-        measure(tr, in.hf, read_stl(t_out, in.hf, &dz));
+        std::vector<float> heights;
+        measure(tr, in.hf, read_stl(t_out, in.hf, &dz, heights), &heights);
         tr["z_mismatch"] = dz;
-        measure(hr, in.hf, read_stl(h_out, in.hf, &dz));
+        // hmm at its samples' heights: it writes them through floats of its own scale (z_mismatch).
+        measure(hr, in.hf, read_stl(h_out, in.hf, &dz, heights));
         hr["z_mismatch"] = dz;
         for (const auto &[stage, ms] : t.stats["time_ms"].items())
             tr["stage_" + stage] = ms;

@@ -50,6 +50,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         std::int64_t max_nodes = 0, max_triangles = 0;
         double retrieve_share = DemEraseOptions{}.retrieve_share;
         double cache_mb = StoreOptions{}.cache_mb;
+        bool sample_heights = false;
         CameraOptions camera;
         RasterOptions raster;
     };
@@ -93,6 +94,9 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                        "the terrain)")
             ->check(real_in(0.0, 1.0))
             ->capture_default_str();
+    cmd.add_flag("--sample-heights", args->sample_heights,
+                 "DEM with --max-error alone: keep every node on its sample's height (by default "
+                 "the last pass moves interior nodes' heights within the bound to erase more)");
     cmd.add_option("--cache-mb", args->cache_mb,
                    "store input with a camera: store tiles the retrieval (and with --tol alone, "
                    "the erase) keeps in memory, MiB")
@@ -219,6 +223,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                     dem_options.nodes = &*nodes;
                 }
                 dem_options.retrieve_share = args->retrieve_share;
+                dem_options.sample_heights = args->sample_heights;
                 if (args->retrieve_share == 0.0) {
                     dem_options.budget_share = 0.0;
                     dem_options.greedy_cap = 0.0;

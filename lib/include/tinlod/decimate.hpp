@@ -233,6 +233,10 @@ struct DemEraseOptions {
     // All of them by default: an insertion the probe let through that ends keeps fewer triangles
     // than the grid's erase for about its time (docs/decisions/028-fewest-2.md).
     double greedy_cap = 1.0;
+    // The vertical model with a bound (no budget): true keeps every node on its sample's height;
+    // false lets the last pass move interior nodes' heights within the bound to erase more
+    // (docs/decisions/034-free-heights.md).
+    bool sample_heights = false;
 };
 
 // What the erase of erase_dem started from.

@@ -1,0 +1,59 @@
+// After the flip pass at a vertical bound on a DEM: a node's height need not be its sample's, only
+// every sample within the bound of the TIN over it. Each interior node still standing is tried
+// again, its hole triangulated (the min-max triangulation of how far its samples miss the limit
+// with the ring's interior nodes moved as far as their own samples let them), with those nodes
+// free to move: a small linear programme says whether heights exist that keep every sample of the
+// new triangles and of every triangle around a moved node within the limit.
+// The outline's nodes keep their heights (a neighbouring tile meets them). The nodes near an erase
+// are tried again, until none goes (docs/decisions/034-free-heights.md).
+#pragma once
+
+#include "tinlod/raster.hpp"
+#include "tinlod/tin.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace tinlod::erase {
+
+struct FreeHeightsStats {
+    std::int64_t erased = 0; // nodes erased by the pass
+};
+
+// The pass on `tin` (a TIN over hf's samples, origin = sample id, as erase_dem returns it), each
+// sample within `limit` (vertically) of the triangle over it, checked exactly at the heights
+// written (floats). Returns the TIN it leaves (the nodes left in tin's order, origin = sample id,
+// xy unchanged), and its counts in `stats` when given. Runs last: the flip pass and the erase
+// take a node's height to be its sample's.
+Mesh free_heights(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
+                  FreeHeightsStats *stats = nullptr);
+
+// The least L-infinity fit: z (n values) minimising max_i |a_i . z - b_i| over rows a_i added one
+// at a time, by the simplex method on its dual (n + 1 equality rows, two columns a row). A solve
+// after more rows are added goes on from the last one's basis (rows a fit misses come in a few at
+// a time), and the tableau's memory is kept from fit to fit.
+class ChebyshevFit {
+  public:
+    // A fit of n variables, no rows yet.
+    void reset(int n);
+    // Adds the row (a: n values, b).
+    void add_row(const double *a, double b);
+    // The least maximum over the rows added, its z in `z`; stops early with a value over
+    // `give_up` once the least is known to exceed it; +inf when the method does not settle.
+    double solve(double give_up, std::vector<double> &z);
+
+  private:
+    void pivot(std::size_t r, std::size_t j);
+    // Dantzig's rule over the real columns; false when it does not settle.
+    bool run(double give_up);
+
+    std::size_t n_ = 0, rows_ = 0; // rows_ = n + 1: the z rows, then sum y = 1
+    // Column-major tableau: the rows_ artificial columns (B^-1), then two a row; the right-hand
+    // side and the reduced costs apart (d_rhs_: minus the objective, the bound on the fit).
+    std::vector<double> col_, g_, d_, rhs_, entering_;
+    std::vector<std::size_t> basis_;
+    double d_rhs_ = 0.0;
+    bool started_ = false; // phase 1 done: later rows join phase 2
+};
+
+} // namespace tinlod::erase
