@@ -3,6 +3,7 @@
 
 #include "erase/hole_geometry.hpp"
 #include "erase/ring_triangulation.hpp"
+#include "erase/tin_arrays.hpp"
 #include "lattice_triangle.hpp"
 #include "tinlod/significance.hpp"
 
@@ -19,50 +20,6 @@ bool flip_pass_applies(const Significance &model, const EraseOptions &options) {
 }
 
 namespace {
-
-// A TIN over the lattice as triangle arrays: corner k of triangle t is corner[3t + k]
-// (counter-clockwise, -1 when t is free), the triangle across its edge k -> k + 1 across[3t + k]
-// (-1 on the outline), and per node one of its triangles (-1 once erased).
-struct Tin {
-    std::vector<std::uint32_t> sample;  // node -> lattice sample
-    std::vector<std::int32_t> col, row; // node -> its sample's column and row
-    std::vector<double> z;              // node -> its sample's height
-    std::vector<std::int32_t> corner, across, fan;
-
-    int index_of(std::int32_t t, std::int32_t node) const {
-        return corner[3 * t] == node ? 0 : corner[3 * t + 1] == node ? 1 : 2;
-    }
-};
-
-Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
-    Tin tin;
-    const auto origin = find_origin_property(mesh);
-    tin.sample.resize(mesh.n_vertices());
-    tin.fan.assign(mesh.n_vertices(), -1);
-    tin.col.resize(mesh.n_vertices());
-    tin.row.resize(mesh.n_vertices());
-    tin.z.resize(mesh.n_vertices());
-    for (const auto v : mesh.vertices()) {
-        const std::size_t i = std::size_t(v.idx());
-        tin.sample[i] = std::uint32_t(mesh.property(origin, v));
-        tin.col[i] = std::int32_t(tin.sample[i] % std::uint32_t(hf.width));
-        tin.row[i] = std::int32_t(tin.sample[i] / std::uint32_t(hf.width));
-        tin.z[i] = double(mesh.point(v)[2]);
-    }
-    tin.corner.resize(3 * mesh.n_faces());
-    tin.across.resize(3 * mesh.n_faces());
-    for (const auto f : mesh.faces()) {
-        Mesh::HalfedgeHandle h = mesh.halfedge_handle(f);
-        for (int k = 0; k < 3; ++k, h = mesh.next_halfedge_handle(h)) {
-            const std::size_t i = std::size_t(3 * f.idx() + k);
-            tin.corner[i] = mesh.from_vertex_handle(h).idx();
-            const Mesh::FaceHandle o = mesh.opposite_face_handle(h);
-            tin.across[i] = o.is_valid() ? o.idx() : -1;
-            tin.fan[std::size_t(tin.corner[i])] = f.idx();
-        }
-    }
-    return tin;
-}
 
 // Whether height z lies within `stop` of the plane over corner heights za, zb, zc at a point
 // whose doubled lattice areas against the sides (a, b), (b, c), (c, a) are s0, s1, s2 (each >= 0,
@@ -92,7 +49,7 @@ void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
 // The pass's state: the TIN, the lattice, and the scratch of one node's try.
 class Pass {
   public:
-    Pass(Tin &tin, const Heightfield &hf, double limit, int max_ring)
+    Pass(TinArrays &tin, const Heightfield &hf, double limit, int max_ring)
         : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
 
     // Tries to erase `v` (an interior node) with its hole widened by the triangle across each ring
@@ -138,27 +95,7 @@ class Pass {
     const std::vector<std::int32_t> &outline() const { return outline_; }
 
   private:
-    // v's ring (counter-clockwise), its star's triangles and in each the index of its ring edge;
-    // false on the outline.
-    bool gather(std::int32_t v) {
-        ring_.clear();
-        star_.clear();
-        edge_.clear();
-        const std::int32_t first = tin_.fan[std::size_t(v)];
-        if (first < 0)
-            return false;
-        std::int32_t t = first;
-        do {
-            const int k = tin_.index_of(t, v);
-            ring_.push_back(tin_.corner[std::size_t(3 * t + (k + 1) % 3)]);
-            star_.push_back(t);
-            edge_.push_back((k + 1) % 3);
-            t = tin_.across[std::size_t(3 * t + (k + 2) % 3)];
-            if (t < 0 || int(ring_.size()) > k_max_ring)
-                return false;
-        } while (t != first);
-        return true;
-    }
+    bool gather(std::int32_t v) { return tin_.star(v, k_max_ring, ring_, star_, edge_); }
 
     // Whether v's sample lies within the limit (a hair over counts) of some triangle over three of
     // the polygon's nodes (counter-clockwise) whose closed lattice triangle holds it: else no
@@ -407,7 +344,7 @@ class Pass {
         outline_ = nodes;
     }
 
-    Tin &tin_;
+    TinArrays &tin_;
     const Heightfield &hf_;
     const double limit_;
     const int max_ring_;
@@ -426,7 +363,7 @@ class Pass {
 
 Mesh flip_pass(const Mesh &mesh, const Heightfield &hf, double limit, int max_valence,
                FlipPassStats *stats) {
-    Tin tin = tin_arrays(mesh, hf);
+    TinArrays tin = tin_arrays(mesh, hf);
     Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
     FlipPassStats out;
     // Every node once in storage order (spatially coherent), then the outlines of the erases made,
@@ -457,22 +394,7 @@ Mesh flip_pass(const Mesh &mesh, const Heightfield &hf, double limit, int max_va
         work.swap(next);
         next.clear();
     }
-    // The nodes left in their order (the sample order erase_dem promises), their triangles.
-    Mesh left;
-    const auto origin = get_origin_property(left);
-    std::vector<std::uint32_t> vertex(nodes), corners;
-    for (std::size_t v = 0; v < nodes; ++v)
-        if (tin.fan[v] >= 0) {
-            const Mesh::VertexHandle h = left.add_vertex(mesh.point(Mesh::VertexHandle(int(v))));
-            left.property(origin, h) = tin.sample[v];
-            vertex[v] = std::uint32_t(h.idx());
-        }
-    corners.reserve(tin.corner.size());
-    for (std::size_t i = 0; i < tin.corner.size(); i += 3)
-        if (tin.corner[i] >= 0)
-            for (std::size_t k = 0; k < 3; ++k)
-                corners.push_back(vertex[std::size_t(tin.corner[i + k])]);
-    add_triangles(left, corners);
+    Mesh left = nodes_left(tin, mesh);
     if (stats)
         *stats = out;
     return left;

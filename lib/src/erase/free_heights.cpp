@@ -3,6 +3,7 @@
 
 #include "erase/hole_geometry.hpp"
 #include "erase/ring_triangulation.hpp"
+#include "erase/tin_arrays.hpp"
 #include "lattice_triangle.hpp"
 
 #include <algorithm>
@@ -153,63 +154,6 @@ double ChebyshevFit::solve(double give_up, std::vector<double> &z) {
 
 namespace {
 
-// The TIN as triangle arrays (as the flip pass has it): corner k of triangle t is corner[3t + k]
-// (counter-clockwise, -1 when t is free), the triangle across its edge k -> k + 1 across[3t + k]
-// (-1 on the outline), per node one of its triangles (-1 once erased), its height, and whether it
-// is on the outline.
-struct Tin {
-    std::vector<std::uint32_t> sample;
-    std::vector<std::int32_t> col, row;
-    std::vector<double> z;
-    std::vector<std::uint8_t> outline;
-    std::vector<std::int32_t> corner, across, fan;
-
-    int index_of(std::int32_t t, std::int32_t node) const {
-        return corner[3 * std::size_t(t)] == node       ? 0
-               : corner[3 * std::size_t(t) + 1] == node ? 1
-                                                        : 2;
-    }
-    std::int32_t at(std::int32_t t, int k) const {
-        return corner[3 * std::size_t(t) + std::size_t(k)];
-    }
-};
-
-Tin tin_arrays(const Mesh &mesh, const Heightfield &hf) {
-    Tin tin;
-    const auto origin = find_origin_property(mesh);
-    const std::size_t nodes = mesh.n_vertices();
-    tin.sample.resize(nodes);
-    tin.col.resize(nodes);
-    tin.row.resize(nodes);
-    tin.z.resize(nodes);
-    tin.outline.assign(nodes, 0);
-    tin.fan.assign(nodes, -1);
-    for (const auto v : mesh.vertices()) {
-        const std::size_t i = std::size_t(v.idx());
-        tin.sample[i] = std::uint32_t(mesh.property(origin, v));
-        tin.col[i] = std::int32_t(tin.sample[i] % std::uint32_t(hf.width));
-        tin.row[i] = std::int32_t(tin.sample[i] / std::uint32_t(hf.width));
-        tin.z[i] = double(mesh.point(v)[2]);
-    }
-    tin.corner.resize(3 * mesh.n_faces());
-    tin.across.resize(3 * mesh.n_faces());
-    for (const auto f : mesh.faces()) {
-        Mesh::HalfedgeHandle h = mesh.halfedge_handle(f);
-        for (int k = 0; k < 3; ++k, h = mesh.next_halfedge_handle(h)) {
-            const std::size_t i = std::size_t(3 * f.idx() + k);
-            tin.corner[i] = mesh.from_vertex_handle(h).idx();
-            const Mesh::FaceHandle o = mesh.opposite_face_handle(h);
-            tin.across[i] = o.is_valid() ? o.idx() : -1;
-            tin.fan[std::size_t(tin.corner[i])] = f.idx();
-            if (!o.is_valid()) {
-                tin.outline[std::size_t(mesh.from_vertex_handle(h).idx())] = 1;
-                tin.outline[std::size_t(mesh.to_vertex_handle(h).idx())] = 1;
-            }
-        }
-    }
-    return tin;
-}
-
 // A triangle of the try: its corner nodes and their variables (-1: a fixed height).
 struct Corners {
     std::array<std::int32_t, 3> node;
@@ -218,7 +162,7 @@ struct Corners {
 
 class Pass {
   public:
-    Pass(Tin &tin, const Heightfield &hf, double limit, int max_ring)
+    Pass(TinArrays &tin, const Heightfield &hf, double limit, int max_ring)
         : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
@@ -287,27 +231,7 @@ class Pass {
     const std::vector<std::int32_t> &touched() const { return touched_; }
 
   private:
-    // v's ring (counter-clockwise), its star's triangles and in each the index of its ring edge;
-    // false when v is on the outline or its ring is over max_ring_.
-    bool gather(std::int32_t v) {
-        ring_.clear();
-        star_.clear();
-        edge_.clear();
-        const std::int32_t first = tin_.fan[std::size_t(v)];
-        if (first < 0)
-            return false;
-        std::int32_t t = first;
-        do {
-            const int k = tin_.index_of(t, v);
-            ring_.push_back(tin_.at(t, (k + 1) % 3));
-            star_.push_back(t);
-            edge_.push_back((k + 1) % 3);
-            t = tin_.across[3 * std::size_t(t) + std::size_t((k + 2) % 3)];
-            if (t < 0 || int(ring_.size()) > max_ring_)
-                return false;
-        } while (t != first);
-        return true;
-    }
+    bool gather(std::int32_t v) { return tin_.star(v, max_ring_, ring_, star_, edge_); }
 
     Corners corners(std::array<std::int32_t, 3> node) const {
         Corners c{node, {-1, -1, -1}};
@@ -629,7 +553,7 @@ class Pass {
     // A linear programme over more samples than this is not tried (coarse bounds' large holes).
     static constexpr std::size_t k_max_rows = 4096;
 
-    Tin &tin_;
+    TinArrays &tin_;
     const Heightfield &hf_;
     const double limit_;
     const int max_ring_;
@@ -650,7 +574,7 @@ class Pass {
 
 Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max_valence,
                   FreeHeightsStats *stats) {
-    Tin tin = tin_arrays(mesh, hf);
+    TinArrays tin = tin_arrays(mesh, hf);
     Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
     FreeHeightsStats out;
     // Every node once in storage order, then those near the erases made, until none goes.
@@ -675,24 +599,7 @@ Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max
         work.swap(next);
         next.clear();
     }
-    // The nodes left in their order (the sample order erase_dem promises) at their heights.
-    Mesh left;
-    const auto origin = get_origin_property(left);
-    std::vector<std::uint32_t> vertex(nodes), corners;
-    for (std::size_t v = 0; v < nodes; ++v)
-        if (tin.fan[v] >= 0) {
-            Mesh::Point p = mesh.point(Mesh::VertexHandle(int(v)));
-            p[2] = float(tin.z[v]);
-            const Mesh::VertexHandle h = left.add_vertex(p);
-            left.property(origin, h) = tin.sample[v];
-            vertex[v] = std::uint32_t(h.idx());
-        }
-    corners.reserve(tin.corner.size());
-    for (std::size_t i = 0; i < tin.corner.size(); i += 3)
-        if (tin.corner[i] >= 0)
-            for (std::size_t k = 0; k < 3; ++k)
-                corners.push_back(vertex[std::size_t(tin.corner[i + k])]);
-    add_triangles(left, corners);
+    Mesh left = nodes_left(tin, mesh);
     if (stats)
         *stats = out;
     return left;
