@@ -366,34 +366,21 @@ Mesh flip_pass(const Mesh &mesh, const Heightfield &hf, double limit, int max_va
     TinArrays tin = tin_arrays(mesh, hf);
     Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
     FlipPassStats out;
-    // Every node once in storage order (spatially coherent), then the outlines of the erases made,
-    // until none goes. changed: the node's ring changed since the erase (or its last try).
-    const std::size_t nodes = tin.sample.size();
-    std::vector<std::int32_t> work, next;
-    work.reserve(nodes);
-    for (std::size_t v = 0; v < nodes; ++v)
-        work.push_back(std::int32_t(v));
-    std::vector<std::uint8_t> queued(nodes, 1), changed(nodes, 0);
-    while (!work.empty()) {
-        for (const std::int32_t v : work) {
-            queued[std::size_t(v)] = 0;
-            const int made = pass.erase(v, !changed[std::size_t(v)]);
-            changed[std::size_t(v)] = 0;
-            if (made == 0)
-                continue;
-            ++out.erased;
-            out.widened += made == 2;
-            for (const std::int32_t x : pass.outline()) {
-                changed[std::size_t(x)] = 1;
-                if (!queued[std::size_t(x)]) {
-                    queued[std::size_t(x)] = 1;
-                    next.push_back(x);
-                }
-            }
-        }
-        work.swap(next);
-        next.clear();
-    }
+    // The outlines of the erases made are tried again. changed: the node's ring changed since the
+    // erase (or its last try).
+    std::vector<std::uint8_t> changed(tin.sample.size(), 0);
+    const std::vector<std::int32_t> none;
+    until_none_goes(tin.sample.size(), [&](std::int32_t v) -> const std::vector<std::int32_t> & {
+        const int made = pass.erase(v, !changed[std::size_t(v)]);
+        changed[std::size_t(v)] = 0;
+        if (made == 0)
+            return none;
+        ++out.erased;
+        out.widened += made == 2;
+        for (const std::int32_t x : pass.outline())
+            changed[std::size_t(x)] = 1;
+        return pass.outline();
+    });
     Mesh left = nodes_left(tin, mesh);
     if (stats)
         *stats = out;

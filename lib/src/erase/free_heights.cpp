@@ -577,28 +577,14 @@ Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max
     TinArrays tin = tin_arrays(mesh, hf);
     Pass pass(tin, hf, limit, std::min(max_valence, k_max_ring));
     FreeHeightsStats out;
-    // Every node once in storage order, then those near the erases made, until none goes.
-    const std::size_t nodes = tin.sample.size();
-    std::vector<std::int32_t> work, next;
-    work.reserve(nodes);
-    for (std::size_t v = 0; v < nodes; ++v)
-        work.push_back(std::int32_t(v));
-    std::vector<std::uint8_t> queued(nodes, 1);
-    while (!work.empty()) {
-        for (const std::int32_t v : work) {
-            queued[std::size_t(v)] = 0;
-            if (!pass.erase(v))
-                continue;
-            ++out.erased;
-            for (const std::int32_t x : pass.touched())
-                if (!queued[std::size_t(x)] && tin.fan[std::size_t(x)] >= 0) {
-                    queued[std::size_t(x)] = 1;
-                    next.push_back(x);
-                }
-        }
-        work.swap(next);
-        next.clear();
-    }
+    // The nodes near each erase are tried again.
+    const std::vector<std::int32_t> none;
+    until_none_goes(tin.sample.size(), [&](std::int32_t v) -> const std::vector<std::int32_t> & {
+        if (!pass.erase(v))
+            return none;
+        ++out.erased;
+        return pass.touched();
+    });
     Mesh left = nodes_left(tin, mesh);
     if (stats)
         *stats = out;

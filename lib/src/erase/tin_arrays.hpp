@@ -39,6 +39,28 @@ struct TinArrays {
 // `mesh` (a TIN over hf's samples, origin = sample id) as arrays.
 TinArrays tin_arrays(const Mesh &mesh, const Heightfield &hf);
 
+// Tries every node once in storage order (spatially coherent), then the nodes each success names,
+// until none goes: try_node(v) returns the nodes to try again (empty when v stays).
+template <class TryNode> void until_none_goes(std::size_t nodes, TryNode &&try_node) {
+    std::vector<std::int32_t> work, next;
+    work.reserve(nodes);
+    for (std::size_t v = 0; v < nodes; ++v)
+        work.push_back(std::int32_t(v));
+    std::vector<std::uint8_t> queued(nodes, 1);
+    while (!work.empty()) {
+        for (const std::int32_t v : work) {
+            queued[std::size_t(v)] = 0;
+            for (const std::int32_t x : try_node(v))
+                if (!queued[std::size_t(x)]) {
+                    queued[std::size_t(x)] = 1;
+                    next.push_back(x);
+                }
+        }
+        work.swap(next);
+        next.clear();
+    }
+}
+
 // The nodes left in their order (the sample order erase_dem promises), at their heights in `tin`,
 // xy from `source` (the mesh tin_arrays read), origin = sample id; their triangles.
 Mesh nodes_left(const TinArrays &tin, const Mesh &source);
