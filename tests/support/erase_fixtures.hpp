@@ -4,9 +4,12 @@
 
 #include "assets.hpp"
 
+#include "tinlod/metrics.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/tin.hpp"
 #include "tinlod/view.hpp"
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
@@ -95,5 +98,19 @@ struct CornerCrop {
     Mesh input = grid_tin(hf);
     std::vector<Triangle> triangles = triangle_set(input);
 };
+
+// A pass after the erase took `before` to `after` on hf: every sample within `bound` (measured by
+// measure_error, not the pass), none uncovered, no fold, the same outline, fewer triangles, and
+// two triangles gone with each interior node.
+inline void expect_fewer_within(const Heightfield &hf, const Mesh &before, const Mesh &after,
+                                double bound) {
+    const TinError error = measure_error(hf, after);
+    EXPECT_LE(error.max_vertical, bound);
+    EXPECT_EQ(error.uncovered, 0);
+    EXPECT_EQ(count_folded_faces(after), 0);
+    EXPECT_NEAR(xy_area(after), xy_area(before), 1e-6 * xy_area(before));
+    EXPECT_LT(after.n_faces(), before.n_faces());
+    EXPECT_EQ(before.n_faces() - after.n_faces(), 2 * (before.n_vertices() - after.n_vertices()));
+}
 
 } // namespace tinlod::test
