@@ -28,7 +28,9 @@ class ErrorAccumulator {
             k_ = options.model.view()->k();
     }
 
-    void triangle(const std::array<Corner, 3> &t) {
+    // The corners by value: a local copy stays in registers across the byte stores to covered_,
+    // which may alias a reference.
+    void triangle(const std::array<Corner, 3> t) {
         const double area =
             (t[1].u - t[0].u) * (t[2].v - t[0].v) - (t[2].u - t[0].u) * (t[1].v - t[0].v);
         if (std::abs(area) < 1e-12)
