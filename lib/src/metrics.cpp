@@ -28,7 +28,9 @@ class ErrorAccumulator {
             k_ = options.model.view()->k();
     }
 
-    void triangle(const std::array<Corner, 3> &t) {
+    // The corners by value: a local copy stays in registers across the byte stores to covered_,
+    // which may alias a reference.
+    void triangle(const std::array<Corner, 3> t) {
         const double area =
             (t[1].u - t[0].u) * (t[2].v - t[0].v) - (t[2].u - t[0].u) * (t[1].v - t[0].v);
         if (std::abs(area) < 1e-12)
@@ -133,14 +135,19 @@ double snap(double g) {
 TinError measure_error(const Heightfield &hf, const Mesh &tin, const ErrorOptions &options) {
     assert(hf.width >= 2 && hf.height >= 2);
     ErrorAccumulator acc(hf, options);
+    // Each vertex's corner once, not once per face round it (about six).
+    std::vector<Corner> corners(tin.n_vertices());
+    for (std::size_t v = 0; v < corners.size(); ++v) {
+        const auto &p = tin.point(Mesh::VertexHandle(int(v)));
+        corners[v] = {snap(p[0] / hf.dx), snap(p[1] / hf.dy), p[2]};
+    }
     for (auto f : tin.faces()) {
-        std::array<Corner, 3> t;
-        int i = 0;
-        for (auto v : f.vertices()) {
-            const auto &p = tin.point(v);
-            t[i++] = {snap(p[0] / hf.dx), snap(p[1] / hf.dy), p[2]};
-        }
-        acc.triangle(t);
+        // The corners in the order of f.vertices(): the face's half-edge's end, then onwards.
+        const auto h0 = tin.halfedge_handle(f), h1 = tin.next_halfedge_handle(h0),
+                   h2 = tin.next_halfedge_handle(h1);
+        acc.triangle({corners[std::size_t(tin.to_vertex_handle(h0).idx())],
+                      corners[std::size_t(tin.to_vertex_handle(h1).idx())],
+                      corners[std::size_t(tin.to_vertex_handle(h2).idx())]});
     }
     return acc.finish();
 }

@@ -33,14 +33,25 @@ namespace {
 // of them, and a margin. The insertion's cost grows with its nodes where the erase's grows with
 // the samples, so only a bound coarse enough for the terrain pays; a probe that misjudges costs the
 // insertion up to max_nodes (docs/decisions/019-erase-dem-first-stage.md, 027-simplify-speed-3.md).
+// It stops as soon as the windows left cannot change the answer: when they would pass even keeping
+// all their samples, and within a window once it keeps more than the limit leaves
+// (docs/decisions/036-simplify-speed-6.md).
 static bool greedy_pays(const Heightfield &hf, const GreedyOptions &options) {
     const int bw = std::max(k_probe_window_min, hf.width / k_probe_window_share),
               bh = std::max(k_probe_window_min, hf.height / k_probe_window_share);
     if (hf.width < k_probe_windows * bw || hf.height < k_probe_windows * bh)
         return true; // too small to tell, and cheap either way
-    std::int64_t kept = 0, samples = 0;
+    const std::int64_t window_size = std::int64_t(bw) * bh,
+                       samples = k_probe_windows * k_probe_windows * window_size;
+    // The most nodes the windows may keep in all: an integer count is within the share exactly
+    // when it is within this.
+    const std::int64_t most =
+        std::int64_t(std::floor((k_probe_share + k_probe_margin) * double(samples)));
+    std::int64_t kept = 0, left = samples;
     for (int i = 0; i < k_probe_windows; ++i)
         for (int j = 0; j < k_probe_windows; ++j) {
+            if (kept + left <= most)
+                return true;
             Heightfield window;
             window.width = bw;
             window.height = bh;
@@ -52,12 +63,16 @@ static bool greedy_pays(const Heightfield &hf, const GreedyOptions &options) {
             for (int r = 0; r < bh; ++r)
                 for (int c = 0; c < bw; ++c)
                     window.z.push_back(hf.at(x0 + c, y0 + r));
+            // The insertion's order does not depend on max_nodes: stopped at most - kept + 1
+            // nodes, the window keeps at least that many.
             GreedyOptions wo = options;
-            wo.max_nodes = window.size();
+            wo.max_nodes = std::min(window_size, most - kept + 1);
             kept += std::int64_t(greedy_tin(window, wo).tin.nodes.size());
-            samples += window.size();
+            left -= window_size;
+            if (kept > most)
+                return false;
         }
-    return double(kept) <= (k_probe_share + k_probe_margin) * double(samples);
+    return true;
 }
 
 // The vertical model with a bound (no budget): greedy insertion to the bound, when the probe says
