@@ -110,7 +110,10 @@ TEST(SimplifySpeed6, MeshMeasureIsTheMeasureOfItsFaces) {
     GreedyOptions go;
     go.max_error = 3.0;
     const Mesh greedy = to_sparse_lattice_mesh(greedy_tin(hf, go).tin, hf);
-    const Mesh erased = erase_dem(hf, Significance::vertical(), bound(3.0));
+    // On its samples' heights, which the faces given as sample ids stand for.
+    DemEraseOptions on_samples;
+    on_samples.sample_heights = true;
+    const Mesh erased = erase_dem(hf, Significance::vertical(), bound(3.0), on_samples);
     for (const Mesh *m : {&greedy, &erased}) {
         ASSERT_GT(m->n_faces(), 100u);
         const TinError by_mesh = measure_error(hf, *m);
