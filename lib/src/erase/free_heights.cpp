@@ -166,38 +166,84 @@ class Pass {
         : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
-    // nodes whose neighbourhood changed in touched() and returns true.
+    // nodes whose neighbourhood changed in touched() and returns true. The hole is v's star, else
+    // (no heights keep it) v's star with the triangle across one ring edge, whose far corner joins
+    // the ring: a triangle on that corner may reach v's sample where none over the ring does.
     bool erase(std::int32_t v) {
         if (tin_.outline[std::size_t(v)] || !gather(v))
             return false;
-        const int n = int(ring_.size());
-        for (int i = 0; i < n; ++i)
-            q_[std::size_t(i)] = {double(tin_.col[std::size_t(ring_[std::size_t(i)])]),
-                                  double(tin_.row[std::size_t(ring_[std::size_t(i)])])};
         own_x_ = tin_.col[std::size_t(v)];
         own_y_ = tin_.row[std::size_t(v)];
+        const std::size_t n = ring_.size();
+        const auto star_hole = [&] {
+            hole_ = ring_;
+            slots_ = star_;
+            outside_.resize(n);
+            for (std::size_t e = 0; e < n; ++e)
+                outside_[e] = tin_.across[3 * std::size_t(star_[e]) + std::size_t(edge_[e])];
+            widened_ = -1;
+        };
+        star_hole();
+        if (try_hole(v))
+            return true;
+        if (int(n) + 1 > max_ring_)
+            return false;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::int32_t o = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
+            if (o < 0)
+                continue;
+            const int k = tin_.index_of(o, ring_[i]);
+            const std::int32_t d = tin_.at(o, (k + 1) % 3);
+            if (std::find(ring_.begin(), ring_.end(), d) != ring_.end())
+                continue;
+            star_hole();
+            hole_.insert(hole_.begin() + std::ptrdiff_t(i + 1), d);
+            slots_.push_back(o);
+            outside_[i] = tin_.across[3 * std::size_t(o) + std::size_t(k)];
+            outside_.insert(outside_.begin() + std::ptrdiff_t(i + 1),
+                            tin_.across[3 * std::size_t(o) + std::size_t((k + 1) % 3)]);
+            widened_ = o;
+            if (try_hole(v))
+                return true;
+        }
+        return false;
+    }
+
+    const std::vector<std::int32_t> &touched() const { return touched_; }
+    // Whether the last erase took a widened hole.
+    bool widened() const { return widened_ >= 0; }
+
+  private:
+    // Tries the hole hole_ that v leaves (slots_: its triangles; outside_: the triangle outside
+    // each of its edges, -1 on the outline), as erase does.
+    bool try_hole(std::int32_t v) {
+        const int n = int(hole_.size());
         if (!within_reach())
             return false;
+        for (int i = 0; i < n; ++i)
+            q_[std::size_t(i)] = {double(tin_.col[std::size_t(hole_[std::size_t(i)])]),
+                                  double(tin_.row[std::size_t(hole_[std::size_t(i)])])};
         // The triangulation that keeps its samples farthest within reach of the limit.
         const int count = min_max_triangulation(
             q_.data(), n, limit_,
             [this](int a, int b, int c, double stop) {
-                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
+                return reach({hole_[std::size_t(a)], hole_[std::size_t(b)], hole_[std::size_t(c)]},
                              stop);
             },
             tri_.data());
         if (count != n - 2)
             return false;
-        // The variables: the ring's interior nodes.
+        // The variables: the hole's interior nodes.
         vars_.clear();
-        for (const std::int32_t r : ring_)
+        for (const std::int32_t r : hole_)
             if (!tin_.outline[std::size_t(r)])
                 vars_.push_back(r);
-        // The triangles whose planes move: the new ones, and those around a variable node but v's.
+        // The triangles whose planes move: the new ones, and those around a variable node outside
+        // the hole.
         tris_.clear();
         for (int j = 0; j < count; ++j)
-            tris_.push_back(corners({ring_[tri_[std::size_t(j)].a], ring_[tri_[std::size_t(j)].b],
-                                     ring_[tri_[std::size_t(j)].c]}));
+            tris_.push_back(corners({hole_[tri_[std::size_t(j)].a], hole_[tri_[std::size_t(j)].b],
+                                     hole_[tri_[std::size_t(j)].c]}));
         new_tris_ = tris_.size();
         around_.clear();
         for (const std::int32_t r : vars_) {
@@ -205,7 +251,7 @@ class Pass {
             const std::int32_t first = t;
             do {
                 const int k = tin_.index_of(t, r);
-                if (tin_.at(t, 0) != v && tin_.at(t, 1) != v && tin_.at(t, 2) != v)
+                if (t != widened_ && tin_.at(t, 0) != v && tin_.at(t, 1) != v && tin_.at(t, 2) != v)
                     around_.push_back(t);
                 t = tin_.across[3 * std::size_t(t) + std::size_t((k + 2) % 3)];
             } while (t != first && t >= 0);
@@ -228,9 +274,6 @@ class Pass {
         return true;
     }
 
-    const std::vector<std::int32_t> &touched() const { return touched_; }
-
-  private:
     bool gather(std::int32_t v) { return tin_.star(v, max_ring_, ring_, star_, edge_); }
 
     Corners corners(std::array<std::int32_t, 3> node) const {
@@ -268,13 +311,13 @@ class Pass {
     // closed lattice triangle holds it: else no triangulation of the hole can keep it (most of
     // the nodes fail here, at a few operations each).
     bool within_reach() const {
-        const std::size_t n = ring_.size();
+        const std::size_t n = hole_.size();
         const double z = double(hf_.at(int(own_x_), int(own_y_)));
         std::array<std::int64_t, k_max_ring> rx, ry;
         std::array<double, k_max_ring> lo, hi;
         double low = INFINITY, high = -INFINITY;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t u = std::size_t(ring_[i]);
+            const std::size_t u = std::size_t(hole_[i]);
             rx[i] = tin_.col[u] - own_x_;
             ry[i] = tin_.row[u] - own_y_;
             const double h = double(hf_.at(tin_.col[u], tin_.row[u])),
@@ -506,27 +549,23 @@ class Pass {
         return true;
     }
 
-    // Replaces v's star by the new triangles tri_ over its ring.
+    // Replaces the hole's triangles by the new triangles tri_ over its ring.
     void rewrite(std::int32_t v, int count) {
-        const std::size_t n = ring_.size();
-        // The triangle outside each ring edge ring[i] -> ring[i + 1] (-1 on the outline).
-        outside_.resize(n);
-        for (std::size_t i = 0; i < n; ++i)
-            outside_[i] = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
+        const std::size_t n = hole_.size();
         tin_.fan[std::size_t(v)] = -1;
-        for (std::size_t i = std::size_t(count); i < n; ++i)
-            tin_.corner[3 * std::size_t(star_[i])] = -1;
+        for (std::size_t i = std::size_t(count); i < slots_.size(); ++i)
+            tin_.corner[3 * std::size_t(slots_[i])] = -1;
         for (int j = 0; j < count; ++j) {
-            const std::int32_t t = star_[std::size_t(j)];
+            const std::int32_t t = slots_[std::size_t(j)];
             const std::uint8_t c[3] = {tri_[std::size_t(j)].a, tri_[std::size_t(j)].b,
                                        tri_[std::size_t(j)].c};
             for (int k = 0; k < 3; ++k) {
-                tin_.corner[3 * std::size_t(t) + std::size_t(k)] = ring_[c[k]];
-                tin_.fan[std::size_t(ring_[c[k]])] = t;
+                tin_.corner[3 * std::size_t(t) + std::size_t(k)] = hole_[c[k]];
+                tin_.fan[std::size_t(hole_[c[k]])] = t;
             }
         }
         for (int j = 0; j < count; ++j) {
-            const std::int32_t t = star_[std::size_t(j)];
+            const std::int32_t t = slots_[std::size_t(j)];
             const std::uint8_t c[3] = {tri_[std::size_t(j)].a, tri_[std::size_t(j)].b,
                                        tri_[std::size_t(j)].c};
             for (int k = 0; k < 3; ++k) {
@@ -536,7 +575,7 @@ class Pass {
                     link = outside_[a];
                     if (link >= 0)
                         tin_.across[3 * std::size_t(link) +
-                                    std::size_t(tin_.index_of(link, ring_[b]))] = t;
+                                    std::size_t(tin_.index_of(link, hole_[b]))] = t;
                     continue;
                 }
                 for (int o = 0; o < count; ++o) {
@@ -544,7 +583,7 @@ class Pass {
                                                tri_[std::size_t(o)].c};
                     for (int e = 0; e < 3; ++e)
                         if (d[e] == b && d[(e + 1) % 3] == a)
-                            link = star_[std::size_t(o)];
+                            link = slots_[std::size_t(o)];
                 }
             }
         }
@@ -557,7 +596,8 @@ class Pass {
     const Heightfield &hf_;
     const double limit_;
     const int max_ring_;
-    std::vector<std::int32_t> ring_, star_, vars_, around_, outside_, touched_;
+    std::vector<std::int32_t> ring_, star_, hole_, slots_, vars_, around_, outside_, touched_;
+    std::int32_t widened_ = -1; // the triangle across a ring edge in the hole, -1: none
     std::vector<int> edge_;
     std::array<glm::dvec2, k_max_ring> q_;
     std::array<RingTriangle, k_max_ring> tri_;
@@ -583,6 +623,7 @@ Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max
         if (!pass.erase(v))
             return none;
         ++out.erased;
+        out.widened += pass.widened();
         return pass.touched();
     });
     Mesh left = nodes_left(tin, mesh);
