@@ -163,7 +163,8 @@ struct Corners {
 class Pass {
   public:
     Pass(TinArrays &tin, const Heightfield &hf, double limit, int max_ring)
-        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
+        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring),
+          out_of_reach_(tin.sample.size(), 0) {}
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
     // nodes whose neighbourhood changed in touched() and returns true. The hole is v's star, else
@@ -183,19 +184,28 @@ class Pass {
                 outside_[e] = tin_.across[3 * std::size_t(star_[e]) + std::size_t(edge_[e])];
             widened_ = -1;
         };
-        star_hole();
-        if (try_hole(v))
-            return true;
-        if (int(n) + 1 > max_ring_)
-            return false;
+        // Whether v's sample is out of reach depends on its ring and the far corners alone: a node
+        // found out of reach is tried again only once they change (most retries at a fine bound).
+        std::uint64_t key = 1;
         for (std::size_t i = 0; i < n; ++i) {
             const std::int32_t o = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
-            if (o < 0)
+            far_[i] = o < 0 ? -1 : tin_.at(o, (tin_.index_of(o, ring_[i]) + 1) % 3);
+            key = (key ^ std::uint64_t(std::uint32_t(ring_[i]))) * 0x100000001b3ULL;
+            key = (key ^ std::uint64_t(std::uint32_t(far_[i]))) * 0x100000001b3ULL;
+        }
+        key |= 1;
+        if (out_of_reach_[std::size_t(v)] == key)
+            return false;
+        star_hole();
+        if (within_reach(-1))
+            return try_hole(v);
+        bool reached = false;
+        for (std::size_t i = 0; i < n && int(n) + 1 <= max_ring_; ++i) {
+            const std::int32_t o = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
+            const std::int32_t d = far_[i];
+            if (o < 0 || std::find(ring_.begin(), ring_.end(), d) != ring_.end())
                 continue;
             const int k = tin_.index_of(o, ring_[i]);
-            const std::int32_t d = tin_.at(o, (k + 1) % 3);
-            if (std::find(ring_.begin(), ring_.end(), d) != ring_.end())
-                continue;
             star_hole();
             hole_.insert(hole_.begin() + std::ptrdiff_t(i + 1), d);
             slots_.push_back(o);
@@ -203,9 +213,14 @@ class Pass {
             outside_.insert(outside_.begin() + std::ptrdiff_t(i + 1),
                             tin_.across[3 * std::size_t(o) + std::size_t((k + 1) % 3)]);
             widened_ = o;
+            if (!within_reach(int(i + 1)))
+                continue;
+            reached = true;
             if (try_hole(v))
                 return true;
         }
+        if (!reached)
+            out_of_reach_[std::size_t(v)] = key;
         return false;
     }
 
@@ -218,8 +233,6 @@ class Pass {
     // each of its edges, -1 on the outline), as erase does.
     bool try_hole(std::int32_t v) {
         const int n = int(hole_.size());
-        if (!within_reach())
-            return false;
         for (int i = 0; i < n; ++i)
             q_[std::size_t(i)] = {double(tin_.col[std::size_t(hole_[std::size_t(i)])]),
                                   double(tin_.row[std::size_t(hole_[std::size_t(i)])])};
@@ -307,10 +320,11 @@ class Pass {
         });
     }
 
-    // Whether v's sample is within reach (reach) of some triangle over three ring nodes whose
+    // Whether v's sample is within reach (reach) of some triangle over three hole nodes whose
     // closed lattice triangle holds it: else no triangulation of the hole can keep it (most of
-    // the nodes fail here, at a few operations each).
-    bool within_reach() const {
+    // the nodes fail here, at a few operations each). `only` >= 0: of the triangles with that
+    // hole node as a corner (a widened hole's far corner; the others are the star's, out of reach).
+    bool within_reach(int only) const {
         const std::size_t n = hole_.size();
         const double z = double(hf_.at(int(own_x_), int(own_y_)));
         std::array<std::int64_t, k_max_ring> rx, ry;
@@ -329,23 +343,38 @@ class Pass {
         }
         if (z < low || z > high)
             return false;
+        // cross(a, b): twice the signed area of (v, a, b).
+        std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> cross;
         for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a + 1; b < n; ++b) {
-                const std::int64_t s0 = rx[a] * ry[b] - ry[a] * rx[b];
-                if (s0 < 0)
-                    continue;
-                for (std::size_t c = b + 1; c < n; ++c) {
-                    const std::int64_t s1 = rx[b] * ry[c] - ry[b] * rx[c],
-                                       s2 = rx[c] * ry[a] - ry[c] * rx[a];
-                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
-                        continue;
-                    // Weights: s1 on a, s2 on b, s0 on c.
-                    const double area = double(s0 + s1 + s2);
-                    if (z * area >= lo[a] * double(s1) + lo[b] * double(s2) + lo[c] * double(s0) &&
-                        z * area <= hi[a] * double(s1) + hi[b] * double(s2) + hi[c] * double(s0))
-                        return true;
-                }
-            }
+            for (std::size_t b = a + 1; b < n; ++b)
+                cross[a][b] = rx[a] * ry[b] - ry[a] * rx[b];
+        // The triangle (a, b, c), a < b < c: holds v's sample and reaches it.
+        const auto reaches = [&](std::size_t a, std::size_t b, std::size_t c) {
+            const std::int64_t s0 = cross[a][b], s1 = cross[b][c], s2 = -cross[a][c];
+            if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                return false;
+            // Weights: s1 on a, s2 on b, s0 on c.
+            const double area = double(s0 + s1 + s2);
+            return z * area >= lo[a] * double(s1) + lo[b] * double(s2) + lo[c] * double(s0) &&
+                   z * area <= hi[a] * double(s1) + hi[b] * double(s2) + hi[c] * double(s0);
+        };
+        if (only < 0) {
+            for (std::size_t a = 0; a < n; ++a)
+                for (std::size_t b = a + 1; b < n; ++b)
+                    if (cross[a][b] >= 0)
+                        for (std::size_t c = b + 1; c < n; ++c)
+                            if (reaches(a, b, c))
+                                return true;
+            return false;
+        }
+        const std::size_t d = std::size_t(only);
+        for (std::size_t p = 0; p < n; ++p)
+            for (std::size_t q = p + 1; q < n; ++q)
+                if (p != d && q != d &&
+                    (d < p   ? reaches(d, p, q)
+                     : d < q ? reaches(p, d, q)
+                             : reaches(p, q, d)))
+                    return true;
         return false;
     }
 
@@ -598,6 +627,8 @@ class Pass {
     const int max_ring_;
     std::vector<std::int32_t> ring_, star_, hole_, slots_, vars_, around_, outside_, touched_;
     std::int32_t widened_ = -1; // the triangle across a ring edge in the hole, -1: none
+    std::array<std::int32_t, k_max_ring> far_; // the far corner across each ring edge, -1: none
+    std::vector<std::uint64_t> out_of_reach_;  // node -> its neighbourhood's key when out of reach
     std::vector<int> edge_;
     std::array<glm::dvec2, k_max_ring> q_;
     std::array<RingTriangle, k_max_ring> tri_;
