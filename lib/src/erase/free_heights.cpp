@@ -197,7 +197,7 @@ class Pass {
         if (out_of_reach_[std::size_t(v)] == key)
             return false;
         star_hole();
-        if (within_reach(-1))
+        if (star_reaches())
             return try_hole(v);
         bool reached = false;
         for (std::size_t i = 0; i < n && int(n) + 1 <= max_ring_; ++i) {
@@ -213,7 +213,7 @@ class Pass {
             outside_.insert(outside_.begin() + std::ptrdiff_t(i + 1),
                             tin_.across[3 * std::size_t(o) + std::size_t((k + 1) % 3)]);
             widened_ = o;
-            if (!within_reach(int(i + 1)))
+            if (!far_reaches(i))
                 continue;
             reached = true;
             if (try_hole(v))
@@ -320,62 +320,79 @@ class Pass {
         });
     }
 
-    // Whether v's sample is within reach (reach) of some triangle over three hole nodes whose
-    // closed lattice triangle holds it: else no triangulation of the hole can keep it (most of
-    // the nodes fail here, at a few operations each). `only` >= 0: of the triangles with that
-    // hole node as a corner (a widened hole's far corner; the others are the star's, out of reach).
-    bool within_reach(int only) const {
-        const std::size_t n = hole_.size();
-        const double z = double(hf_.at(int(own_x_), int(own_y_)));
-        std::array<std::int64_t, k_max_ring> rx, ry;
-        std::array<double, k_max_ring> lo, hi;
-        double low = INFINITY, high = -INFINITY;
+    // Whether v's sample is within reach (reach) of some triangle over three ring nodes whose
+    // closed lattice triangle holds it: else no triangulation of the star can keep it (most of
+    // the nodes fail here, at a few operations each). Keeps what far_reaches needs.
+    bool star_reaches() {
+        const std::size_t n = ring_.size();
+        own_z_ = double(hf_.at(int(own_x_), int(own_y_)));
+        low_reach_ = INFINITY;
+        high_reach_ = -INFINITY;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t u = std::size_t(hole_[i]);
-            rx[i] = tin_.col[u] - own_x_;
-            ry[i] = tin_.row[u] - own_y_;
-            const double h = double(hf_.at(tin_.col[u], tin_.row[u])),
-                         m = tin_.outline[u] ? 0.0 : limit_;
-            lo[i] = h - m - limit_;
-            hi[i] = h + m + limit_;
-            low = std::min(low, lo[i]);
-            high = std::max(high, hi[i]);
+            node_reach(ring_[i], rx_[i], ry_[i], lo_[i], hi_[i]);
+            low_reach_ = std::min(low_reach_, lo_[i]);
+            high_reach_ = std::max(high_reach_, hi_[i]);
         }
-        if (z < low || z > high)
-            return false;
-        // cross(a, b): twice the signed area of (v, a, b).
-        std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> cross;
         for (std::size_t a = 0; a < n; ++a)
             for (std::size_t b = a + 1; b < n; ++b)
-                cross[a][b] = rx[a] * ry[b] - ry[a] * rx[b];
-        // The triangle (a, b, c), a < b < c: holds v's sample and reaches it.
-        const auto reaches = [&](std::size_t a, std::size_t b, std::size_t c) {
-            const std::int64_t s0 = cross[a][b], s1 = cross[b][c], s2 = -cross[a][c];
-            if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
-                return false;
-            // Weights: s1 on a, s2 on b, s0 on c.
-            const double area = double(s0 + s1 + s2);
-            return z * area >= lo[a] * double(s1) + lo[b] * double(s2) + lo[c] * double(s0) &&
-                   z * area <= hi[a] * double(s1) + hi[b] * double(s2) + hi[c] * double(s0);
-        };
-        if (only < 0) {
-            for (std::size_t a = 0; a < n; ++a)
-                for (std::size_t b = a + 1; b < n; ++b)
-                    if (cross[a][b] >= 0)
-                        for (std::size_t c = b + 1; c < n; ++c)
-                            if (reaches(a, b, c))
-                                return true;
+                cross_[a][b] = rx_[a] * ry_[b] - ry_[a] * rx_[b];
+        if (own_z_ < low_reach_ || own_z_ > high_reach_)
             return false;
-        }
-        const std::size_t d = std::size_t(only);
-        for (std::size_t p = 0; p < n; ++p)
-            for (std::size_t q = p + 1; q < n; ++q)
-                if (p != d && q != d &&
-                    (d < p   ? reaches(d, p, q)
-                     : d < q ? reaches(p, d, q)
-                             : reaches(p, q, d)))
-                    return true;
+        for (std::size_t a = 0; a < n; ++a)
+            for (std::size_t b = a + 1; b < n; ++b)
+                if (cross_[a][b] >= 0)
+                    for (std::size_t c = b + 1; c < n; ++c)
+                        if (reaches(a, b, c, cross_[a][b], cross_[b][c], -cross_[a][c]))
+                            return true;
         return false;
+    }
+
+    // After star_reaches failed: whether v's sample is within reach of some triangle over the far
+    // corner across ring edge i -> i + 1 and two ring nodes (the widened hole's new triangles).
+    bool far_reaches(std::size_t i) {
+        const std::size_t n = ring_.size(), d = n; // d's data after the ring's
+        node_reach(far_[i], rx_[d], ry_[d], lo_[d], hi_[d]);
+        if (own_z_ < std::min(low_reach_, lo_[d]) || own_z_ > std::max(high_reach_, hi_[d]))
+            return false;
+        // cross(x, d) for each ring node x.
+        std::array<std::int64_t, k_max_ring> xd;
+        for (std::size_t x = 0; x < n; ++x)
+            xd[x] = rx_[x] * ry_[d] - ry_[x] * rx_[d];
+        // In the hole's order d comes right after ring node i.
+        for (std::size_t p = 0; p < n; ++p)
+            for (std::size_t q = p + 1; q < n; ++q) {
+                const bool ok = q <= i   ? reaches(p, q, d, cross_[p][q], xd[q], -xd[p])
+                                : p <= i ? reaches(p, d, q, xd[p], -xd[q], -cross_[p][q])
+                                         : reaches(d, p, q, -xd[p], cross_[p][q], xd[q]);
+                if (ok)
+                    return true;
+            }
+        return false;
+    }
+
+    // Node u's place around v's sample, and the lowest and highest its corner can take a plane at
+    // v's sample with v's sample within the limit of it (an outline node stays on its sample).
+    void node_reach(std::int32_t u, std::int64_t &x, std::int64_t &y, double &lo,
+                    double &hi) const {
+        const std::size_t s = std::size_t(u);
+        x = tin_.col[s] - own_x_;
+        y = tin_.row[s] - own_y_;
+        const double h = double(hf_.at(tin_.col[s], tin_.row[s])),
+                     m = tin_.outline[s] ? 0.0 : limit_;
+        lo = h - m - limit_;
+        hi = h + m + limit_;
+    }
+
+    // Whether the triangle (a, b, c), counter-clockwise in the hole, holds v's sample and reaches
+    // it: s0, s1, s2 twice the areas (v, a, b), (v, b, c), (v, c, a).
+    bool reaches(std::size_t a, std::size_t b, std::size_t c, std::int64_t s0, std::int64_t s1,
+                 std::int64_t s2) const {
+        if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+            return false;
+        // Weights: s1 on a, s2 on b, s0 on c.
+        const double area = double(s0 + s1 + s2);
+        return own_z_ * area >= lo_[a] * double(s1) + lo_[b] * double(s2) + lo_[c] * double(s0) &&
+               own_z_ * area <= hi_[a] * double(s1) + hi_[b] * double(s2) + hi_[c] * double(s0);
     }
 
     // How far the samples of the triangle over nodes c miss the limit with each interior corner
@@ -629,6 +646,12 @@ class Pass {
     std::int32_t widened_ = -1; // the triangle across a ring edge in the hole, -1: none
     std::array<std::int32_t, k_max_ring> far_; // the far corner across each ring edge, -1: none
     std::vector<std::uint64_t> out_of_reach_;  // node -> its neighbourhood's key when out of reach
+    // star_reaches' data for far_reaches: each ring node's (then the far corner's) place around
+    // v's sample and range, cross(a, b) = twice the signed area (v, a, b), their range.
+    std::array<std::int64_t, k_max_ring + 1> rx_, ry_;
+    std::array<double, k_max_ring + 1> lo_, hi_;
+    std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> cross_;
+    double own_z_ = 0.0, low_reach_ = 0.0, high_reach_ = 0.0;
     std::vector<int> edge_;
     std::array<glm::dvec2, k_max_ring> q_;
     std::array<RingTriangle, k_max_ring> tri_;
