@@ -184,8 +184,10 @@ class Pass {
                 outside_[e] = tin_.across[3 * std::size_t(star_[e]) + std::size_t(edge_[e])];
             widened_ = -1;
         };
-        // Whether v's sample is out of reach depends on its ring and the far corners alone: a node
-        // found out of reach is tried again only once they change (most retries at a fine bound).
+        // Whether v's sample is out of reach, and whether a triangulation of its hole keeps its
+        // samples within reach, depend on its ring and the far corners alone (the samples, not
+        // the heights): a node that fails there is tried again only once they change (most
+        // retries at a fine bound).
         std::uint64_t key = 1;
         for (std::size_t i = 0; i < n; ++i) {
             const std::int32_t o = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
@@ -197,29 +199,30 @@ class Pass {
         if (out_of_reach_[std::size_t(v)] == key)
             return false;
         star_hole();
-        if (star_reaches())
-            return try_hole(v);
-        bool reached = false;
-        for (std::size_t i = 0; i < n && int(n) + 1 <= max_ring_; ++i) {
-            const std::int32_t o = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
-            const std::int32_t d = far_[i];
-            if (o < 0 || std::find(ring_.begin(), ring_.end(), d) != ring_.end())
-                continue;
-            const int k = tin_.index_of(o, ring_[i]);
-            star_hole();
-            hole_.insert(hole_.begin() + std::ptrdiff_t(i + 1), d);
-            slots_.push_back(o);
-            outside_[i] = tin_.across[3 * std::size_t(o) + std::size_t(k)];
-            outside_.insert(outside_.begin() + std::ptrdiff_t(i + 1),
-                            tin_.across[3 * std::size_t(o) + std::size_t((k + 1) % 3)]);
-            widened_ = o;
-            if (!far_reaches(i))
-                continue;
-            reached = true;
+        heights_matter_ = false;
+        if (star_reaches()) {
             if (try_hole(v))
                 return true;
+        } else {
+            for (std::size_t i = 0; i < n && int(n) + 1 <= max_ring_; ++i) {
+                const std::int32_t o =
+                    tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
+                if (o < 0 || std::find(ring_.begin(), ring_.end(), far_[i]) != ring_.end() ||
+                    !far_reaches(i))
+                    continue;
+                const int k = tin_.index_of(o, ring_[i]);
+                star_hole();
+                hole_.insert(hole_.begin() + std::ptrdiff_t(i + 1), far_[i]);
+                slots_.push_back(o);
+                outside_[i] = tin_.across[3 * std::size_t(o) + std::size_t(k)];
+                outside_.insert(outside_.begin() + std::ptrdiff_t(i + 1),
+                                tin_.across[3 * std::size_t(o) + std::size_t((k + 1) % 3)]);
+                widened_ = o;
+                if (try_hole(v))
+                    return true;
+            }
         }
-        if (!reached)
+        if (!heights_matter_)
             out_of_reach_[std::size_t(v)] = key;
         return false;
     }
@@ -246,6 +249,7 @@ class Pass {
             tri_.data());
         if (count != n - 2)
             return false;
+        heights_matter_ = true;
         // The variables: the hole's interior nodes.
         vars_.clear();
         for (const std::int32_t r : hole_)
@@ -646,6 +650,7 @@ class Pass {
     std::int32_t widened_ = -1; // the triangle across a ring edge in the hole, -1: none
     std::array<std::int32_t, k_max_ring> far_; // the far corner across each ring edge, -1: none
     std::vector<std::uint64_t> out_of_reach_;  // node -> its neighbourhood's key when out of reach
+    bool heights_matter_ = false;              // a try of this node came to the programme
     // star_reaches' data for far_reaches: each ring node's (then the far corner's) place around
     // v's sample and range, cross(a, b) = twice the signed area (v, a, b), their range.
     std::array<std::int64_t, k_max_ring + 1> rx_, ry_;
