@@ -168,8 +168,8 @@ class Pass {
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
     // nodes whose neighbourhood changed in touched() and returns true. The hole is v's star, else
-    // (no heights keep it) v's star with the triangle across one ring edge, whose far corner joins
-    // the ring: a triangle on that corner may reach v's sample where none over the ring does.
+    // (v's sample out of reach of every triangle over its ring) v's star with the triangle across
+    // one ring edge, whose far corner joins the ring and may reach v's sample.
     bool erase(std::int32_t v) {
         if (tin_.outline[std::size_t(v)] || !gather(v))
             return false;
