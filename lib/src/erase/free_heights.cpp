@@ -163,104 +163,41 @@ struct Corners {
 class Pass {
   public:
     Pass(TinArrays &tin, const Heightfield &hf, double limit, int max_ring)
-        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring),
-          out_of_reach_(tin.sample.size(), 0) {}
+        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
-    // nodes whose neighbourhood changed in touched() and returns true. The hole is v's star, else
-    // (v's sample out of reach of every triangle over its ring) v's star with the triangle across
-    // one ring edge, whose far corner joins the ring and may reach v's sample.
+    // nodes whose neighbourhood changed in touched() and returns true.
     bool erase(std::int32_t v) {
         if (tin_.outline[std::size_t(v)] || !gather(v))
             return false;
+        const int n = int(ring_.size());
+        for (int i = 0; i < n; ++i)
+            q_[std::size_t(i)] = {double(tin_.col[std::size_t(ring_[std::size_t(i)])]),
+                                  double(tin_.row[std::size_t(ring_[std::size_t(i)])])};
         own_x_ = tin_.col[std::size_t(v)];
         own_y_ = tin_.row[std::size_t(v)];
-        const std::size_t n = ring_.size();
-        const auto star_hole = [&] {
-            hole_ = ring_;
-            slots_ = star_;
-            outside_.resize(n);
-            for (std::size_t e = 0; e < n; ++e)
-                outside_[e] = tin_.across[3 * std::size_t(star_[e]) + std::size_t(edge_[e])];
-            widened_ = -1;
-        };
-        // Whether v's sample is out of reach, and whether a triangulation of its hole keeps its
-        // samples within reach, depend on its ring and the far corners alone (the samples, not
-        // the heights): a node that fails there is tried again only once they change (most
-        // retries at a fine bound).
-        std::uint64_t key = 1;
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::int32_t o = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
-            far_[i] = o < 0 ? -1 : tin_.at(o, (tin_.index_of(o, ring_[i]) + 1) % 3);
-            key = (key ^ std::uint64_t(std::uint32_t(ring_[i]))) * 0x100000001b3ULL;
-            key = (key ^ std::uint64_t(std::uint32_t(far_[i]))) * 0x100000001b3ULL;
-        }
-        key |= 1;
-        if (out_of_reach_[std::size_t(v)] == key)
+        if (!within_reach())
             return false;
-        star_hole();
-        heights_matter_ = false;
-        if (star_reaches()) {
-            if (try_hole(v))
-                return true;
-        } else {
-            for (std::size_t i = 0; i < n && int(n) + 1 <= max_ring_; ++i) {
-                const std::int32_t o =
-                    tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
-                if (o < 0 || std::find(ring_.begin(), ring_.end(), far_[i]) != ring_.end() ||
-                    !far_reaches(i))
-                    continue;
-                const int k = tin_.index_of(o, ring_[i]);
-                star_hole();
-                hole_.insert(hole_.begin() + std::ptrdiff_t(i + 1), far_[i]);
-                slots_.push_back(o);
-                outside_[i] = tin_.across[3 * std::size_t(o) + std::size_t(k)];
-                outside_.insert(outside_.begin() + std::ptrdiff_t(i + 1),
-                                tin_.across[3 * std::size_t(o) + std::size_t((k + 1) % 3)]);
-                widened_ = o;
-                if (try_hole(v))
-                    return true;
-            }
-        }
-        if (!heights_matter_)
-            out_of_reach_[std::size_t(v)] = key;
-        return false;
-    }
-
-    const std::vector<std::int32_t> &touched() const { return touched_; }
-    // Whether the last erase took a widened hole.
-    bool widened() const { return widened_ >= 0; }
-
-  private:
-    // Tries the hole hole_ that v leaves (slots_: its triangles; outside_: the triangle outside
-    // each of its edges, -1 on the outline), as erase does.
-    bool try_hole(std::int32_t v) {
-        const int n = int(hole_.size());
-        for (int i = 0; i < n; ++i)
-            q_[std::size_t(i)] = {double(tin_.col[std::size_t(hole_[std::size_t(i)])]),
-                                  double(tin_.row[std::size_t(hole_[std::size_t(i)])])};
         // The triangulation that keeps its samples farthest within reach of the limit.
         const int count = min_max_triangulation(
             q_.data(), n, limit_,
             [this](int a, int b, int c, double stop) {
-                return reach({hole_[std::size_t(a)], hole_[std::size_t(b)], hole_[std::size_t(c)]},
+                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
                              stop);
             },
             tri_.data());
         if (count != n - 2)
             return false;
-        heights_matter_ = true;
-        // The variables: the hole's interior nodes.
+        // The variables: the ring's interior nodes.
         vars_.clear();
-        for (const std::int32_t r : hole_)
+        for (const std::int32_t r : ring_)
             if (!tin_.outline[std::size_t(r)])
                 vars_.push_back(r);
-        // The triangles whose planes move: the new ones, and those around a variable node outside
-        // the hole.
+        // The triangles whose planes move: the new ones, and those around a variable node but v's.
         tris_.clear();
         for (int j = 0; j < count; ++j)
-            tris_.push_back(corners({hole_[tri_[std::size_t(j)].a], hole_[tri_[std::size_t(j)].b],
-                                     hole_[tri_[std::size_t(j)].c]}));
+            tris_.push_back(corners({ring_[tri_[std::size_t(j)].a], ring_[tri_[std::size_t(j)].b],
+                                     ring_[tri_[std::size_t(j)].c]}));
         new_tris_ = tris_.size();
         around_.clear();
         for (const std::int32_t r : vars_) {
@@ -268,7 +205,7 @@ class Pass {
             const std::int32_t first = t;
             do {
                 const int k = tin_.index_of(t, r);
-                if (t != widened_ && tin_.at(t, 0) != v && tin_.at(t, 1) != v && tin_.at(t, 2) != v)
+                if (tin_.at(t, 0) != v && tin_.at(t, 1) != v && tin_.at(t, 2) != v)
                     around_.push_back(t);
                 t = tin_.across[3 * std::size_t(t) + std::size_t((k + 2) % 3)];
             } while (t != first && t >= 0);
@@ -291,6 +228,9 @@ class Pass {
         return true;
     }
 
+    const std::vector<std::int32_t> &touched() const { return touched_; }
+
+  private:
     bool gather(std::int32_t v) { return tin_.star(v, max_ring_, ring_, star_, edge_); }
 
     Corners corners(std::array<std::int32_t, 3> node) const {
@@ -325,78 +265,45 @@ class Pass {
     }
 
     // Whether v's sample is within reach (reach) of some triangle over three ring nodes whose
-    // closed lattice triangle holds it: else no triangulation of the star can keep it (most of
-    // the nodes fail here, at a few operations each). Keeps what far_reaches needs.
-    bool star_reaches() {
+    // closed lattice triangle holds it: else no triangulation of the hole can keep it (most of
+    // the nodes fail here, at a few operations each).
+    bool within_reach() const {
         const std::size_t n = ring_.size();
-        own_z_ = double(hf_.at(int(own_x_), int(own_y_)));
-        low_reach_ = INFINITY;
-        high_reach_ = -INFINITY;
+        const double z = double(hf_.at(int(own_x_), int(own_y_)));
+        std::array<std::int64_t, k_max_ring> rx, ry;
+        std::array<double, k_max_ring> lo, hi;
+        double low = INFINITY, high = -INFINITY;
         for (std::size_t i = 0; i < n; ++i) {
-            node_reach(ring_[i], rx_[i], ry_[i], lo_[i], hi_[i]);
-            low_reach_ = std::min(low_reach_, lo_[i]);
-            high_reach_ = std::max(high_reach_, hi_[i]);
+            const std::size_t u = std::size_t(ring_[i]);
+            rx[i] = tin_.col[u] - own_x_;
+            ry[i] = tin_.row[u] - own_y_;
+            const double h = double(hf_.at(tin_.col[u], tin_.row[u])),
+                         m = tin_.outline[u] ? 0.0 : limit_;
+            lo[i] = h - m - limit_;
+            hi[i] = h + m + limit_;
+            low = std::min(low, lo[i]);
+            high = std::max(high, hi[i]);
         }
-        for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a + 1; b < n; ++b)
-                cross_[a][b] = rx_[a] * ry_[b] - ry_[a] * rx_[b];
-        if (own_z_ < low_reach_ || own_z_ > high_reach_)
+        if (z < low || z > high)
             return false;
         for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a + 1; b < n; ++b)
-                if (cross_[a][b] >= 0)
-                    for (std::size_t c = b + 1; c < n; ++c)
-                        if (reaches(a, b, c, cross_[a][b], cross_[b][c], -cross_[a][c]))
-                            return true;
-        return false;
-    }
-
-    // After star_reaches failed: whether v's sample is within reach of some triangle over the far
-    // corner across ring edge i -> i + 1 and two ring nodes (the widened hole's new triangles).
-    bool far_reaches(std::size_t i) {
-        const std::size_t n = ring_.size(), d = n; // d's data after the ring's
-        node_reach(far_[i], rx_[d], ry_[d], lo_[d], hi_[d]);
-        if (own_z_ < std::min(low_reach_, lo_[d]) || own_z_ > std::max(high_reach_, hi_[d]))
-            return false;
-        // cross(x, d) for each ring node x.
-        std::array<std::int64_t, k_max_ring> xd;
-        for (std::size_t x = 0; x < n; ++x)
-            xd[x] = rx_[x] * ry_[d] - ry_[x] * rx_[d];
-        // In the hole's order d comes right after ring node i.
-        for (std::size_t p = 0; p < n; ++p)
-            for (std::size_t q = p + 1; q < n; ++q) {
-                const bool ok = q <= i   ? reaches(p, q, d, cross_[p][q], xd[q], -xd[p])
-                                : p <= i ? reaches(p, d, q, xd[p], -xd[q], -cross_[p][q])
-                                         : reaches(d, p, q, -xd[p], cross_[p][q], xd[q]);
-                if (ok)
-                    return true;
+            for (std::size_t b = a + 1; b < n; ++b) {
+                const std::int64_t s0 = rx[a] * ry[b] - ry[a] * rx[b];
+                if (s0 < 0)
+                    continue;
+                for (std::size_t c = b + 1; c < n; ++c) {
+                    const std::int64_t s1 = rx[b] * ry[c] - ry[b] * rx[c],
+                                       s2 = rx[c] * ry[a] - ry[c] * rx[a];
+                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
+                        continue;
+                    // Weights: s1 on a, s2 on b, s0 on c.
+                    const double area = double(s0 + s1 + s2);
+                    if (z * area >= lo[a] * double(s1) + lo[b] * double(s2) + lo[c] * double(s0) &&
+                        z * area <= hi[a] * double(s1) + hi[b] * double(s2) + hi[c] * double(s0))
+                        return true;
+                }
             }
         return false;
-    }
-
-    // Node u's place around v's sample, and the lowest and highest its corner can take a plane at
-    // v's sample with v's sample within the limit of it (an outline node stays on its sample).
-    void node_reach(std::int32_t u, std::int64_t &x, std::int64_t &y, double &lo,
-                    double &hi) const {
-        const std::size_t s = std::size_t(u);
-        x = tin_.col[s] - own_x_;
-        y = tin_.row[s] - own_y_;
-        const double h = double(hf_.at(tin_.col[s], tin_.row[s])),
-                     m = tin_.outline[s] ? 0.0 : limit_;
-        lo = h - m - limit_;
-        hi = h + m + limit_;
-    }
-
-    // Whether the triangle (a, b, c), counter-clockwise in the hole, holds v's sample and reaches
-    // it: s0, s1, s2 twice the areas (v, a, b), (v, b, c), (v, c, a).
-    bool reaches(std::size_t a, std::size_t b, std::size_t c, std::int64_t s0, std::int64_t s1,
-                 std::int64_t s2) const {
-        if (s0 < 0 || s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
-            return false;
-        // Weights: s1 on a, s2 on b, s0 on c.
-        const double area = double(s0 + s1 + s2);
-        return own_z_ * area >= lo_[a] * double(s1) + lo_[b] * double(s2) + lo_[c] * double(s0) &&
-               own_z_ * area <= hi_[a] * double(s1) + hi_[b] * double(s2) + hi_[c] * double(s0);
     }
 
     // How far the samples of the triangle over nodes c miss the limit with each interior corner
@@ -599,23 +506,27 @@ class Pass {
         return true;
     }
 
-    // Replaces the hole's triangles by the new triangles tri_ over its ring.
+    // Replaces v's star by the new triangles tri_ over its ring.
     void rewrite(std::int32_t v, int count) {
-        const std::size_t n = hole_.size();
+        const std::size_t n = ring_.size();
+        // The triangle outside each ring edge ring[i] -> ring[i + 1] (-1 on the outline).
+        outside_.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            outside_[i] = tin_.across[3 * std::size_t(star_[i]) + std::size_t(edge_[i])];
         tin_.fan[std::size_t(v)] = -1;
-        for (std::size_t i = std::size_t(count); i < slots_.size(); ++i)
-            tin_.corner[3 * std::size_t(slots_[i])] = -1;
+        for (std::size_t i = std::size_t(count); i < n; ++i)
+            tin_.corner[3 * std::size_t(star_[i])] = -1;
         for (int j = 0; j < count; ++j) {
-            const std::int32_t t = slots_[std::size_t(j)];
+            const std::int32_t t = star_[std::size_t(j)];
             const std::uint8_t c[3] = {tri_[std::size_t(j)].a, tri_[std::size_t(j)].b,
                                        tri_[std::size_t(j)].c};
             for (int k = 0; k < 3; ++k) {
-                tin_.corner[3 * std::size_t(t) + std::size_t(k)] = hole_[c[k]];
-                tin_.fan[std::size_t(hole_[c[k]])] = t;
+                tin_.corner[3 * std::size_t(t) + std::size_t(k)] = ring_[c[k]];
+                tin_.fan[std::size_t(ring_[c[k]])] = t;
             }
         }
         for (int j = 0; j < count; ++j) {
-            const std::int32_t t = slots_[std::size_t(j)];
+            const std::int32_t t = star_[std::size_t(j)];
             const std::uint8_t c[3] = {tri_[std::size_t(j)].a, tri_[std::size_t(j)].b,
                                        tri_[std::size_t(j)].c};
             for (int k = 0; k < 3; ++k) {
@@ -625,7 +536,7 @@ class Pass {
                     link = outside_[a];
                     if (link >= 0)
                         tin_.across[3 * std::size_t(link) +
-                                    std::size_t(tin_.index_of(link, hole_[b]))] = t;
+                                    std::size_t(tin_.index_of(link, ring_[b]))] = t;
                     continue;
                 }
                 for (int o = 0; o < count; ++o) {
@@ -633,7 +544,7 @@ class Pass {
                                                tri_[std::size_t(o)].c};
                     for (int e = 0; e < 3; ++e)
                         if (d[e] == b && d[(e + 1) % 3] == a)
-                            link = slots_[std::size_t(o)];
+                            link = star_[std::size_t(o)];
                 }
             }
         }
@@ -646,17 +557,7 @@ class Pass {
     const Heightfield &hf_;
     const double limit_;
     const int max_ring_;
-    std::vector<std::int32_t> ring_, star_, hole_, slots_, vars_, around_, outside_, touched_;
-    std::int32_t widened_ = -1; // the triangle across a ring edge in the hole, -1: none
-    std::array<std::int32_t, k_max_ring> far_; // the far corner across each ring edge, -1: none
-    std::vector<std::uint64_t> out_of_reach_;  // node -> its neighbourhood's key when out of reach
-    bool heights_matter_ = false;              // a try of this node came to the programme
-    // star_reaches' data for far_reaches: each ring node's (then the far corner's) place around
-    // v's sample and range, cross(a, b) = twice the signed area (v, a, b), their range.
-    std::array<std::int64_t, k_max_ring + 1> rx_, ry_;
-    std::array<double, k_max_ring + 1> lo_, hi_;
-    std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> cross_;
-    double own_z_ = 0.0, low_reach_ = 0.0, high_reach_ = 0.0;
+    std::vector<std::int32_t> ring_, star_, vars_, around_, outside_, touched_;
     std::vector<int> edge_;
     std::array<glm::dvec2, k_max_ring> q_;
     std::array<RingTriangle, k_max_ring> tri_;
@@ -682,7 +583,6 @@ Mesh free_heights(const Mesh &mesh, const Heightfield &hf, double limit, int max
         if (!pass.erase(v))
             return none;
         ++out.erased;
-        out.widened += pass.widened();
         return pass.touched();
     });
     Mesh left = nodes_left(tin, mesh);

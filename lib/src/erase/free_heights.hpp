@@ -1,12 +1,11 @@
 // After the flip pass at a vertical bound on a DEM: a node's height need not be its sample's, only
 // every sample within the bound of the TIN over it. Each interior node still standing is tried
-// again, its hole (its star; when no triangle over its ring reaches its sample, its star and the
-// triangle across one ring edge) triangulated (the min-max triangulation of how far its samples
-// miss the limit with the hole's interior nodes moved as far as their own samples let them), with
-// those nodes free to move: a small linear programme says whether heights exist that keep every
-// sample of the new triangles and of every triangle around a moved node within the limit. The
-// outline's nodes keep their heights (a neighbouring tile meets them). The nodes near an erase are
-// tried again, until none goes (docs/decisions/034-free-heights.md).
+// again, its hole triangulated (the min-max triangulation of how far its samples miss the limit
+// with the ring's interior nodes moved as far as their own samples let them), with those nodes
+// free to move: a small linear programme says whether heights exist that keep every sample of the
+// new triangles and of every triangle around a moved node within the limit.
+// The outline's nodes keep their heights (a neighbouring tile meets them). The nodes near an erase
+// are tried again, until none goes (docs/decisions/034-free-heights.md).
 #pragma once
 
 #include "tinlod/raster.hpp"
@@ -18,8 +17,7 @@
 namespace tinlod::erase {
 
 struct FreeHeightsStats {
-    std::int64_t erased = 0;  // nodes erased by the pass
-    std::int64_t widened = 0; // of them, those whose hole took the triangle across a ring edge
+    std::int64_t erased = 0; // nodes erased by the pass
 };
 
 // The pass on `tin` (a TIN over hf's samples, origin = sample id, as erase_dem returns it), each
