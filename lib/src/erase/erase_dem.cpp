@@ -187,9 +187,9 @@ struct DemRun {
     const Heightfield &hf;
     const Significance &model;
     const EraseOptions &options;
+    const DemEraseOptions &dem;
     Stopwatch clock; // since erase_dem began, then since the erase ended
     DemEraseStats out;
-    bool free_heights = false; // DemEraseOptions::sample_heights off
 };
 
 // The erase of the first stage's TIN, and its live copy. A retrieval's or an insertion's TIN
@@ -210,7 +210,7 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
         tin = erase::flip_pass(tin, run.hf, run.options.tolerance * (1.0 - 1e-6),
                                run.options.max_valence, &pass);
         run.out.erase.erased += pass.erased;
-        if (run.free_heights) {
+        if (!run.dem.sample_heights) {
             erase::FreeHeightsStats free;
             tin = erase::free_heights(tin, run.hf, run.options.tolerance * (1.0 - 1e-6),
                                       run.options.max_valence, &free);
@@ -238,8 +238,7 @@ Mesh erase_dem(const Heightfield &hf, const Significance &model, const EraseOpti
     check_share("retrieve_share", dem.retrieve_share, 1.0);
     check_share("greedy_cap", dem.greedy_cap, 1.0);
     check_share("budget_share", dem.budget_share, std::numeric_limits<double>::max());
-    DemRun run{hf, model, options, Stopwatch(), DemEraseStats()};
-    run.free_heights = !dem.sample_heights;
+    DemRun run{hf, model, options, dem, Stopwatch(), DemEraseStats()};
     if (const std::optional<GreedyTin> greedy = greedy_first(hf, model, options, dem)) {
         Mesh mesh = to_sparse_lattice_mesh(greedy->tin, hf);
         run.out.retrieved_nodes = std::int64_t(greedy->tin.nodes.size());
