@@ -86,39 +86,20 @@ int min_max_triangulation(const glm::dvec2 *q, int n, double limit, const Cost &
     };
     for (int i = 0; i + 1 < n; ++i)
         best[i][i + 1] = 0.0;
-    std::array<double, k_max_ring> subs;
-    std::array<std::uint8_t, k_max_ring> order;
     for (int len = 2; len < n; ++len)
         for (int i = 0; i + len < n; ++i) {
             const int k = i + len;
             double &b = best[i][k];
             b = std::numeric_limits<double>::infinity();
-            apex[i][k] = std::uint8_t(k); // above every apex
-            // The apexes by their sub-polygons' cost, least first: an early small best makes the
-            // later costs' stops lower. Among equal costs the least apex wins, as in apex order.
-            int m = 0;
             for (int j = i + 1; j < k; ++j) {
                 const double sub = std::max(best[i][j], best[j][k]);
-                if (!(sub <= limit))
-                    continue;
-                int at = m++;
-                for (; at > 0 && subs[at - 1] > sub; --at) {
-                    subs[at] = subs[at - 1];
-                    order[at] = order[at - 1];
-                }
-                subs[at] = sub;
-                order[at] = std::uint8_t(j);
-            }
-            for (int t = 0; t < m; ++t) {
-                const int j = order[t];
-                const double sub = subs[t];
                 const double stop = std::min(limit, b);
-                if (!(sub <= stop))
-                    break;
-                if (!(orient(q[i], q[j], q[k]) > 0.0) || !empty(i, j, k))
+                if (!(sub <= stop) || !(orient(q[i], q[j], q[k]) > 0.0))
+                    continue;
+                if (!empty(i, j, k))
                     continue;
                 const double c = std::max(sub, cost(i, j, k, stop));
-                if (c <= limit && (c < b || (c == b && j < apex[i][k]))) {
+                if (c <= limit && c < b) {
                     b = c;
                     apex[i][k] = std::uint8_t(j);
                 }
