@@ -245,7 +245,9 @@ class Pass {
 
     // The samples of the closed lattice triangle over nodes c (counter-clockwise) but its corners:
     // visit(x, y, sa, sb, sc), with sa, sb, sc the doubled lattice areas that weigh the corners
-    // (their sum: twice the triangle's area); false when a visit stopped the scan.
+    // (their sum: twice the triangle's area); false when a visit stopped the scan. A small triangle
+    // over its box, a larger one a row span at a time, its areas stepped along the row (exact
+    // integers), the corners looked for on their rows alone: in the order of the box either way.
     template <class Visit>
     bool scan(const std::array<std::int32_t, 3> &c, const Visit &visit) const {
         std::int64_t x[3], y[3];
@@ -253,14 +255,30 @@ class Pass {
             x[k] = tin_.col[std::size_t(c[std::size_t(k)])];
             y[k] = tin_.row[std::size_t(c[std::size_t(k)])];
         }
-        return visit_box(x, y, [&](std::int64_t px, std::int64_t py) {
-            if ((px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
-                (px == x[2] && py == y[2]))
-                return true;
-            const std::int64_t sa = (x[1] - px) * (y[2] - py) - (y[1] - py) * (x[2] - px),
-                               sb = (x[2] - px) * (y[0] - py) - (y[2] - py) * (x[0] - px),
-                               sc = (x[0] - px) * (y[1] - py) - (y[0] - py) * (x[1] - px);
-            return visit(px, py, double(sa), double(sb), double(sc));
+        const auto corner = [&](std::int64_t px, std::int64_t py) {
+            return (px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
+                   (px == x[2] && py == y[2]);
+        };
+        // Corner k's doubled area at (px, py): that of the triangle (px, py), corner k + 1, k + 2.
+        const auto area = [&](int k, std::int64_t px, std::int64_t py) {
+            const int a = (k + 1) % 3, b = (k + 2) % 3;
+            return (x[a] - px) * (y[b] - py) - (y[a] - py) * (x[b] - px);
+        };
+        if (box_samples(x, y) <= k_small_box)
+            return visit_box(x, y, [&](std::int64_t px, std::int64_t py) {
+                return corner(px, py) || visit(px, py, double(area(0, px, py)),
+                                               double(area(1, px, py)), double(area(2, px, py)));
+            });
+        const std::int64_t step[3] = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
+        return LatticeTriangle(x, y).for_each_row([&](std::int64_t py, std::int64_t lo,
+                                                      std::int64_t hi) {
+            std::int64_t sa = area(0, lo, py), sb = area(1, lo, py), sc = area(2, lo, py);
+            const bool corners = py == y[0] || py == y[1] || py == y[2];
+            for (std::int64_t px = lo; px <= hi; ++px, sa += step[0], sb += step[1], sc += step[2])
+                if (!(corners && corner(px, py)) &&
+                    !visit(px, py, double(sa), double(sb), double(sc)))
+                    return false;
+            return true;
         });
     }
 
