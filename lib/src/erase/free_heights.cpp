@@ -397,6 +397,8 @@ class Pass {
             high_[k] = off + limit_;
             rows_.push_back({{int(k), -1, -1}, {1.0, 0.0, 0.0}, off, INFINITY});
         }
+        least_ = low_;
+        most_ = high_;
         for (std::size_t t = 0; t < tris_.size(); ++t) {
             // The new triangles' rows alone first: a hole they rule out costs no scan of the
             // triangles around it (most holes at a coarse bound).
@@ -430,7 +432,7 @@ class Pass {
                         return true;
                     row.excess = std::max(hi - r, r - lo);
                     rows_.push_back(row);
-                    return rows_.size() <= k_max_rows;
+                    return narrow(row) && rows_.size() <= k_max_rows;
                 });
             if (!ok)
                 return false;
@@ -444,6 +446,39 @@ class Pass {
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
+        return true;
+    }
+
+    // Narrows the variables' boxes [least_, most_] by a row of the programme: its weights are
+    // >= 0, so the other variables' boxes bound each one's share of it. False when the row's range
+    // over the boxes misses [r - limit, r + limit] by more than k_slack: then no heights keep it
+    // within the limit. Each row as it comes: the boxes rule out nine in ten of the holes the
+    // programme would, most of them before the scan ends. They decide nothing else (the programme
+    // sees the rows it did without them, and finds the same heights).
+    bool narrow(const Row &row) {
+        double least = 0.0, most = 0.0;
+        for (std::size_t k = 0; k < 3; ++k)
+            if (row.var[k] >= 0) {
+                least += row.w[k] * least_[std::size_t(row.var[k])];
+                most += row.w[k] * most_[std::size_t(row.var[k])];
+            }
+        // How far the row's range may rise and fall before it leaves its interval.
+        const double rise = row.r + limit_ - least, fall = most - (row.r - limit_);
+        if (rise < -k_slack || fall < -k_slack)
+            return false;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double w = row.w[k];
+            if (row.var[k] < 0 || w < k_min_weight)
+                continue;
+            double &lo = least_[std::size_t(row.var[k])], &hi = most_[std::size_t(row.var[k])];
+            const double span = w * (hi - lo);
+            if (rise < span - k_slack)
+                hi = lo + rise / w;
+            if (fall < span - k_slack)
+                lo = hi - fall / w; // from the lowered top, if so: a looser bound, still one
+            if (lo > hi + k_slack)
+                return false;
+        }
         return true;
     }
 
@@ -570,6 +605,9 @@ class Pass {
 
     // A linear programme over more samples than this is not tried (coarse bounds' large holes).
     static constexpr std::size_t k_max_rows = 4096;
+    // What narrow() may be off by in metres (far over its rounding, far under a limit), and the
+    // least weight it divides by.
+    static constexpr double k_slack = 1e-7, k_min_weight = 1e-3;
 
     TinArrays &tin_;
     const Heightfield &hf_;
@@ -582,7 +620,7 @@ class Pass {
     std::vector<Corners> tris_;
     std::vector<Row> rows_;
     std::size_t new_tris_ = 0;
-    std::vector<double> dense_, dz_, old_z_, low_, high_;
+    std::vector<double> dense_, dz_, old_z_, low_, high_, least_, most_;
     std::vector<std::uint8_t> picked_;
     ChebyshevFit fit_;
     std::int64_t own_x_ = 0, own_y_ = 0;
