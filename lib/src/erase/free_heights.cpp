@@ -34,24 +34,30 @@ void ChebyshevFit::reset(int n) {
 }
 
 void ChebyshevFit::add_row(const double *a, double b) {
-    for (const double sign : {1.0, -1.0}) {
-        const std::size_t at = col_.size();
-        col_.resize(at + rows_, 0.0);
-        double *c = &col_[at];
-        double d = sign * b;
-        for (std::size_t k = 0; k <= n_; ++k) {
-            const double raw = k < n_ ? sign * a[k] : 1.0;
-            if (raw == 0.0)
-                continue;
-            // B^-1 times the raw column, and its reduced cost g - c_B B^-1 column.
-            const double *inverse = &col_[k * rows_];
-            for (std::size_t r = 0; r < rows_; ++r)
-                c[r] += raw * inverse[r];
-            d += raw * d_[k];
-        }
-        g_.push_back(sign * b);
-        d_.push_back(started_ ? d : 0.0);
+    // The columns (a, 1) and (-a, 1): B^-1 times them is s + B^-1 e_n and -s + B^-1 e_n with s =
+    // B^-1 (a, 0), summed once (a negated sum rounds as the sum negated), and likewise their
+    // reduced costs.
+    const std::size_t at = col_.size();
+    col_.resize(at + 2 * rows_, 0.0);
+    double *plus = &col_[at], *minus = plus + rows_;
+    double d = b;
+    for (std::size_t k = 0; k < n_; ++k) {
+        if (a[k] == 0.0)
+            continue;
+        const double *inverse = &col_[k * rows_];
+        for (std::size_t r = 0; r < rows_; ++r)
+            plus[r] += a[k] * inverse[r];
+        d += a[k] * d_[k];
     }
+    const double *sum = &col_[n_ * rows_];
+    for (std::size_t r = 0; r < rows_; ++r) {
+        minus[r] = -plus[r] + sum[r];
+        plus[r] += sum[r];
+    }
+    g_.push_back(b);
+    g_.push_back(-b);
+    d_.push_back(started_ ? d + d_[n_] : 0.0);
+    d_.push_back(started_ ? -d + d_[n_] : 0.0);
 }
 
 void ChebyshevFit::pivot(std::size_t r, std::size_t j) {
