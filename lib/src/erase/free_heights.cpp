@@ -405,11 +405,10 @@ class Pass {
         }
         least_ = low_;
         most_ = high_;
+        std::size_t new_rows = rows_.size();
         for (std::size_t t = 0; t < tris_.size(); ++t) {
-            // The new triangles' rows alone first: a hole they rule out costs no scan of the
-            // triangles around it (most holes at a coarse bound).
-            if (t == new_tris_ && nv > 0 && !solve(nv, true))
-                return false;
+            if (t == new_tris_)
+                new_rows = rows_.size();
             const Corners &c = tris_[t];
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
                          zc = tin_.z[std::size_t(c.node[2])];
@@ -448,7 +447,10 @@ class Pass {
             old_z_[k] = tin_.z[std::size_t(vars_[k])];
         if (nv == 0)
             return true;
-        if (!solve(nv, new_tris_ == tris_.size()))
+        // The programme on the new triangles' rows first, then on all (the narrowed boxes have
+        // ruled out most holes either would, before either runs).
+        const bool around = new_tris_ < tris_.size();
+        if ((around && !solve(nv, new_rows, true)) || !solve(nv, rows_.size(), !around))
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
@@ -488,16 +490,16 @@ class Pass {
         return true;
     }
 
-    // Heights within the limit of rows_ in dz_: the programme on the rows whose boxes' reach most
-    // exceeds the limit (the variables' own rows first), then with the rows its fit misses, until
-    // it misses none (the fit rests on about as many rows as variables, of up to thousands at a
-    // coarse bound). `fresh`: a new programme; else the last one's, with the rows added since.
-    // False when a programme on some of the rows finds none.
-    bool solve(std::size_t nv, bool fresh) {
-        const std::size_t m = rows_.size();
+    // Heights within the limit of the first m rows_ in dz_: the programme on the rows whose boxes'
+    // reach most exceeds the limit (the variables' own rows first), then with the rows its fit
+    // misses, until it misses none (the fit rests on about as many rows as variables, of up to
+    // thousands at a coarse bound). `fresh`: a new programme; else the last one's, with the rows
+    // added since. False when a programme on some of the rows finds none.
+    bool solve(std::size_t nv, std::size_t m, bool fresh) {
         if (fresh) {
             const std::size_t first = std::min(m, 3 * nv + 4);
-            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1), rows_.end(),
+            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1),
+                             rows_.begin() + std::ptrdiff_t(m),
                              [](const Row &i, const Row &j) { return i.excess > j.excess; });
             picked_.assign(m, 0);
             fit_.reset(int(nv));
