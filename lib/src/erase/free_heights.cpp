@@ -447,8 +447,12 @@ class Pass {
             old_z_[k] = tin_.z[std::size_t(vars_[k])];
         if (nv == 0)
             return true;
-        // The programme on the new triangles' rows first, then on all (the narrowed boxes have
-        // ruled out most holes either would, before either runs).
+        // A second sweep of the narrowing, each row now against the boxes all the others left:
+        // with it the boxes rule out most holes the programme would.
+        for (const Row &row : rows_)
+            if (!narrow(row))
+                return false;
+        // The programme on the new triangles' rows first, then on all.
         const bool around = new_tris_ < tris_.size();
         if ((around && !solve(nv, new_rows, true)) || !solve(nv, rows_.size(), !around))
             return false;
