@@ -13,6 +13,39 @@
 
 namespace tinlod::erase {
 
+void BoxNarrowing::reset(const std::vector<double> &low, const std::vector<double> &high,
+                         double limit) {
+    low_ = low;
+    high_ = high;
+    limit_ = limit;
+}
+
+bool BoxNarrowing::add(const std::array<int, 3> &var, const std::array<double, 3> &w, double r) {
+    double least = 0.0, most = 0.0;
+    for (std::size_t k = 0; k < 3; ++k)
+        if (var[k] >= 0) {
+            least += w[k] * low_[std::size_t(var[k])];
+            most += w[k] * high_[std::size_t(var[k])];
+        }
+    // How far the row's range may rise and fall before it leaves its interval.
+    const double rise = r + limit_ - least, fall = most - (r - limit_);
+    if (rise < -k_slack || fall < -k_slack)
+        return false;
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (var[k] < 0 || w[k] < k_min_weight)
+            continue;
+        double &lo = low_[std::size_t(var[k])], &hi = high_[std::size_t(var[k])];
+        const double span = w[k] * (hi - lo);
+        if (rise < span - k_slack)
+            hi = lo + rise / w[k];
+        if (fall < span - k_slack)
+            lo = hi - fall / w[k]; // from the lowered top, if so: a looser bound, still one
+        if (lo > hi + k_slack)
+            return false;
+    }
+    return true;
+}
+
 // The fit is min t subject to a_i . z - t <= b_i and -a_i . z - t <= -b_i. Its dual: min g . y over
 // y >= 0 with sum_j y_j G_j = 0 on the z rows and sum_j y_j = 1, G_j = +-a_i, g_j = +-b_i; its
 // optimum is -t*, and -g . y bounds t* from below on the way. Phase 1 starts from one artificial
@@ -403,8 +436,7 @@ class Pass {
             high_[k] = off + limit_;
             rows_.push_back({{int(k), -1, -1}, {1.0, 0.0, 0.0}, off, INFINITY});
         }
-        least_ = low_;
-        most_ = high_;
+        boxes_.reset(low_, high_, limit_);
         std::size_t new_rows = rows_.size();
         for (std::size_t t = 0; t < tris_.size(); ++t) {
             if (t == new_tris_)
@@ -437,7 +469,10 @@ class Pass {
                         return true;
                     row.excess = std::max(hi - r, r - lo);
                     rows_.push_back(row);
-                    return narrow(row) && rows_.size() <= k_max_rows;
+                    // Each row narrows the boxes as it comes: they rule out most holes the
+                    // programme would, most of them before the scan ends, and decide nothing else
+                    // (the programmes see the same rows and find the same heights).
+                    return boxes_.add(row.var, row.w, row.r) && rows_.size() <= k_max_rows;
                 });
             if (!ok)
                 return false;
@@ -447,10 +482,10 @@ class Pass {
             old_z_[k] = tin_.z[std::size_t(vars_[k])];
         if (nv == 0)
             return true;
-        // A second sweep of the narrowing, each row now against the boxes all the others left:
-        // with it the boxes rule out most holes the programme would.
+        // A second sweep of the narrowing, each row against the boxes all the others left (a
+        // third, or the rows in reverse, cost more than they save).
         for (const Row &row : rows_)
-            if (!narrow(row))
+            if (!boxes_.add(row.var, row.w, row.r))
                 return false;
         // The programme on the new triangles' rows first, then on all.
         const bool around = new_tris_ < tris_.size();
@@ -458,39 +493,6 @@ class Pass {
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
-        return true;
-    }
-
-    // Narrows the variables' boxes [least_, most_] by a row of the programme: its weights are
-    // >= 0, so the other variables' boxes bound each one's share of it. False when the row's range
-    // over the boxes misses [r - limit, r + limit] by more than k_slack: then no heights keep it
-    // within the limit. Each row as it comes: the boxes rule out nine in ten of the holes the
-    // programme would, most of them before the scan ends. They decide nothing else (the programme
-    // sees the rows it did without them, and finds the same heights).
-    bool narrow(const Row &row) {
-        double least = 0.0, most = 0.0;
-        for (std::size_t k = 0; k < 3; ++k)
-            if (row.var[k] >= 0) {
-                least += row.w[k] * least_[std::size_t(row.var[k])];
-                most += row.w[k] * most_[std::size_t(row.var[k])];
-            }
-        // How far the row's range may rise and fall before it leaves its interval.
-        const double rise = row.r + limit_ - least, fall = most - (row.r - limit_);
-        if (rise < -k_slack || fall < -k_slack)
-            return false;
-        for (std::size_t k = 0; k < 3; ++k) {
-            const double w = row.w[k];
-            if (row.var[k] < 0 || w < k_min_weight)
-                continue;
-            double &lo = least_[std::size_t(row.var[k])], &hi = most_[std::size_t(row.var[k])];
-            const double span = w * (hi - lo);
-            if (rise < span - k_slack)
-                hi = lo + rise / w;
-            if (fall < span - k_slack)
-                lo = hi - fall / w; // from the lowered top, if so: a looser bound, still one
-            if (lo > hi + k_slack)
-                return false;
-        }
         return true;
     }
 
@@ -617,9 +619,6 @@ class Pass {
 
     // A linear programme over more samples than this is not tried (coarse bounds' large holes).
     static constexpr std::size_t k_max_rows = 4096;
-    // What narrow() may be off by in metres (far over its rounding, far under a limit), and the
-    // least weight it divides by.
-    static constexpr double k_slack = 1e-7, k_min_weight = 1e-3;
 
     TinArrays &tin_;
     const Heightfield &hf_;
@@ -632,7 +631,8 @@ class Pass {
     std::vector<Corners> tris_;
     std::vector<Row> rows_;
     std::size_t new_tris_ = 0;
-    std::vector<double> dense_, dz_, old_z_, low_, high_, least_, most_;
+    std::vector<double> dense_, dz_, old_z_, low_, high_;
+    BoxNarrowing boxes_;
     std::vector<std::uint8_t> picked_;
     ChebyshevFit fit_;
     std::int64_t own_x_ = 0, own_y_ = 0;

@@ -11,6 +11,7 @@
 #include "tinlod/raster.hpp"
 #include "tinlod/tin.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,30 @@ struct FreeHeightsStats {
 // take a node's height to be its sample's.
 Mesh free_heights(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
                   FreeHeightsStats *stats = nullptr);
+
+// Boxes [low_k, high_k] of n variables narrowed by rows |sum_k w_k z_(var_k) - r| <= limit, each on
+// at most three variables (var -1: none) with weights >= 0: the other variables' boxes bound each
+// one's share of a row. A row whose range over the boxes misses [r - limit, r + limit] by more
+// than k_slack rules out every z in the boxes: a necessary condition of the free heights'
+// programme at a fraction of its cost (the boxes hold every z that keeps the rows within the
+// limit, give or take k_slack).
+class BoxNarrowing {
+  public:
+    // What the boxes may be off by (far over their rounding, far under a limit), and the least
+    // weight a row narrows its variable by (a smaller one bounds it little).
+    static constexpr double k_slack = 1e-7, k_min_weight = 1e-3;
+
+    // The boxes to start from, and the limit.
+    void reset(const std::vector<double> &low, const std::vector<double> &high, double limit);
+    // Narrows the boxes by the row; false when it rules them out.
+    bool add(const std::array<int, 3> &var, const std::array<double, 3> &w, double r);
+    double low(int k) const { return low_[std::size_t(k)]; }
+    double high(int k) const { return high_[std::size_t(k)]; }
+
+  private:
+    std::vector<double> low_, high_;
+    double limit_ = 0.0;
+};
 
 // The least L-infinity fit: z (n values) minimising max_i |a_i . z - b_i| over rows a_i added one
 // at a time, by the simplex method on its dual (n + 1 equality rows, two columns a row). A solve
