@@ -202,7 +202,8 @@ struct Corners {
 class Pass {
   public:
     Pass(TinArrays &tin, const Heightfield &hf, double limit, int max_ring)
-        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
+        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring), changed_(tin.sample.size(), 0),
+          tried_(tin.sample.size(), 0), kept_(tin.sample.size(), k_none) {}
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
     // nodes whose neighbourhood changed in touched() and returns true.
@@ -210,21 +211,7 @@ class Pass {
         if (tin_.outline[std::size_t(v)] || !gather(v))
             return false;
         const int n = int(ring_.size());
-        for (int i = 0; i < n; ++i)
-            q_[std::size_t(i)] = {double(tin_.col[std::size_t(ring_[std::size_t(i)])]),
-                                  double(tin_.row[std::size_t(ring_[std::size_t(i)])])};
-        own_x_ = tin_.col[std::size_t(v)];
-        own_y_ = tin_.row[std::size_t(v)];
-        if (!within_reach())
-            return false;
-        // The triangulation that keeps its samples farthest within reach of the limit.
-        const int count = min_max_triangulation(
-            q_.data(), n, limit_,
-            [this](int a, int b, int c, double stop) {
-                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
-                             stop);
-            },
-            tri_.data());
+        const int count = hole(v, n);
         if (count != n - 2)
             return false;
         // The variables: the ring's interior nodes.
@@ -261,6 +248,10 @@ class Pass {
             return false;
         }
         rewrite(v, count);
+        // The ring's stars changed (and the variables' heights).
+        ++epoch_;
+        for (const std::int32_t r : ring_)
+            changed_[std::size_t(r)] = epoch_;
         touched_.clear();
         for (const Corners &c : tris_)
             touched_.insert(touched_.end(), c.node.begin(), c.node.end());
@@ -271,6 +262,41 @@ class Pass {
 
   private:
     bool gather(std::int32_t v) { return tin_.star(v, max_ring_, ring_, star_, edge_); }
+
+    // v's hole (its ring of n nodes) triangulated into tri_: the triangulation that keeps its
+    // samples farthest within reach of the limit; its count, or -1 when v's own sample or the
+    // hole's samples are out of reach. It depends on the ring alone: a node tried again after a
+    // neighbour's erase whose star has not changed since gets its last try's.
+    int hole(std::int32_t v, int n) {
+        const std::size_t i = std::size_t(v);
+        if (tried_[i] != 0 && changed_[i] <= tried_[i]) {
+            if (kept_[i] == k_none)
+                return -1;
+            std::copy_n(kept_tri_.begin() + std::ptrdiff_t(kept_[i]), n - 2, tri_.begin());
+            return n - 2;
+        }
+        tried_[i] = epoch_;
+        kept_[i] = k_none;
+        for (int k = 0; k < n; ++k)
+            q_[std::size_t(k)] = {double(tin_.col[std::size_t(ring_[std::size_t(k)])]),
+                                  double(tin_.row[std::size_t(ring_[std::size_t(k)])])};
+        own_x_ = tin_.col[i];
+        own_y_ = tin_.row[i];
+        if (!within_reach())
+            return -1;
+        const int count = min_max_triangulation(
+            q_.data(), n, limit_,
+            [this](int a, int b, int c, double stop) {
+                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
+                             stop);
+            },
+            tri_.data());
+        if (count == n - 2) {
+            kept_[i] = std::uint32_t(kept_tri_.size());
+            kept_tri_.insert(kept_tri_.end(), tri_.begin(), tri_.begin() + count);
+        }
+        return count;
+    }
 
     Corners corners(std::array<std::int32_t, 3> node) const {
         Corners c{node, {-1, -1, -1}};
@@ -636,6 +662,13 @@ class Pass {
     std::vector<std::uint8_t> picked_;
     ChebyshevFit fit_;
     std::int64_t own_x_ = 0, own_y_ = 0;
+    // Per node: the erase after which its star last changed, and the erases before its last
+    // hole() (0: none yet; the pass's count of erases from 1); the hole it found then (its
+    // triangles' first in kept_tri_, k_none when none).
+    std::uint32_t epoch_ = 1;
+    std::vector<std::uint32_t> changed_, tried_, kept_;
+    std::vector<RingTriangle> kept_tri_;
+    static constexpr std::uint32_t k_none = 0xffffffffu;
 };
 
 } // namespace
