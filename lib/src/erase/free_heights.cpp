@@ -20,32 +20,6 @@ void BoxNarrowing::reset(const std::vector<double> &low, const std::vector<doubl
     limit_ = limit;
 }
 
-bool BoxNarrowing::add(const std::array<int, 3> &var, const std::array<double, 3> &w, double r) {
-    double least = 0.0, most = 0.0;
-    for (std::size_t k = 0; k < 3; ++k)
-        if (var[k] >= 0) {
-            least += w[k] * low_[std::size_t(var[k])];
-            most += w[k] * high_[std::size_t(var[k])];
-        }
-    // How far the row's range may rise and fall before it leaves its interval.
-    const double rise = r + limit_ - least, fall = most - (r - limit_);
-    if (rise < -k_slack || fall < -k_slack)
-        return false;
-    for (std::size_t k = 0; k < 3; ++k) {
-        if (var[k] < 0 || w[k] < k_min_weight)
-            continue;
-        double &lo = low_[std::size_t(var[k])], &hi = high_[std::size_t(var[k])];
-        const double span = w[k] * (hi - lo);
-        if (rise < span - k_slack)
-            hi = lo + rise / w[k];
-        if (fall < span - k_slack)
-            lo = hi - fall / w[k]; // from the lowered top, if so: a looser bound, still one
-        if (lo > hi + k_slack)
-            return false;
-    }
-    return true;
-}
-
 // The fit is min t subject to a_i . z - t <= b_i and -a_i . z - t <= -b_i. Its dual: min g . y over
 // y >= 0 with sum_j y_j G_j = 0 on the z rows and sum_j y_j = 1, G_j = +-a_i, g_j = +-b_i; its
 // optimum is -t*, and -g . y bounds t* from below on the way. Phase 1 starts from one artificial

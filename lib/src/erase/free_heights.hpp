@@ -43,7 +43,8 @@ class BoxNarrowing {
 
     // The boxes to start from, and the limit.
     void reset(const std::vector<double> &low, const std::vector<double> &high, double limit);
-    // Narrows the boxes by the row; false when it rules them out.
+    // Narrows the boxes by the row; false when it rules them out (inline: the pass calls it for
+    // each row it makes).
     bool add(const std::array<int, 3> &var, const std::array<double, 3> &w, double r);
     double low(int k) const { return low_[std::size_t(k)]; }
     double high(int k) const { return high_[std::size_t(k)]; }
@@ -52,6 +53,33 @@ class BoxNarrowing {
     std::vector<double> low_, high_;
     double limit_ = 0.0;
 };
+
+inline bool BoxNarrowing::add(const std::array<int, 3> &var, const std::array<double, 3> &w,
+                              double r) {
+    double least = 0.0, most = 0.0;
+    for (std::size_t k = 0; k < 3; ++k)
+        if (var[k] >= 0) {
+            least += w[k] * low_[std::size_t(var[k])];
+            most += w[k] * high_[std::size_t(var[k])];
+        }
+    // How far the row's range may rise and fall before it leaves its interval.
+    const double rise = r + limit_ - least, fall = most - (r - limit_);
+    if (rise < -k_slack || fall < -k_slack)
+        return false;
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (var[k] < 0 || w[k] < k_min_weight)
+            continue;
+        double &lo = low_[std::size_t(var[k])], &hi = high_[std::size_t(var[k])];
+        const double span = w[k] * (hi - lo);
+        if (rise < span - k_slack)
+            hi = lo + rise / w[k];
+        if (fall < span - k_slack)
+            lo = hi - fall / w[k]; // from the lowered top, if so: a looser bound, still one
+        if (lo > hi + k_slack)
+            return false;
+    }
+    return true;
+}
 
 // The least L-infinity fit: z (n values) minimising max_i |a_i . z - b_i| over rows a_i added one
 // at a time, by the simplex method on its dual (n + 1 equality rows, two columns a row). A solve
