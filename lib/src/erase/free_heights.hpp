@@ -66,6 +66,9 @@ inline bool BoxNarrowing::add(const std::array<int, 3> &var, const std::array<do
     const double rise = r + limit_ - least, fall = most - (r - limit_);
     if (rise < -k_slack || fall < -k_slack)
         return false;
+    // Each variable's share of the range is at most all of it: most rows narrow nothing.
+    if (rise >= most - least && fall >= most - least)
+        return true;
     for (std::size_t k = 0; k < 3; ++k) {
         if (var[k] < 0 || w[k] < k_min_weight)
             continue;
