@@ -1,15 +1,23 @@
 // The free-heights pass's linear programme (ChebyshevFit, lib/src/erase/free_heights.hpp): the
 // least L-infinity fit on small problems whose optimum is known in closed form or by a fine search,
-// a solve after added rows against a fresh one, and the early stop.
+// a solve after added rows against a fresh one, and the early stop. Its pre-check (BoxNarrowing)
+// against the programme on problems made as the pass makes them, from real DEMs.
 #include "erase/free_heights.hpp"
+
+#include "assets.hpp"
+
+#include "tinlod/raster.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
+using tinlod::erase::BoxNarrowing;
 using tinlod::erase::ChebyshevFit;
 
 namespace {
@@ -96,4 +104,110 @@ TEST(ChebyshevFit, RandomRowsAgainstAFineSearchAndAFreshSolve) {
             early.add_row(a[i].data(), b[i]);
         EXPECT_GT(early.solve(0.5 * t, z), 0.5 * t);
     }
+}
+
+TEST(BoxNarrowing, RulesOutOnlyHolesTheProgrammeRulesOut) {
+    // Problems as the pass makes them: a few variable nodes and a fixed one on lattice samples of a
+    // real DEM, each at its sample's height, its change within the limit of its own sample (a unit
+    // row), and the samples of triangles over them (barycentric rows, the residual from the plane
+    // through the corners' heights). When the boxes rule a problem out the programme must find no
+    // fit within the limit; when it finds one, its heights must lie in every box.
+    std::mt19937 rng(11);
+    int ruled_out = 0, over = 0, within = 0;
+    for (const char *file : {"dem_srtm30.tif", "crater_u16.png"}) {
+        const tinlod::Heightfield hf = tinlod::load_heightfield(tinlod::test::asset(file));
+        const double zscale = std::string(file) == "crater_u16.png" ? 0.015625 : 1.0;
+        std::uniform_int_distribution<int> cx(0, hf.width - 16), cy(0, hf.height - 16), off(0, 15),
+            count(2, 5);
+        for (int round = 0; round < 400; ++round) {
+            const int x0 = cx(rng), y0 = cy(rng), nv = count(rng);
+            const double limit = std::array<double, 3>{0.5, 2.0, 5.0}[round % 3];
+            std::vector<std::array<int, 2>> at; // nv variable nodes, then a fixed one
+            for (int k = 0; k <= nv; ++k)
+                at.push_back({x0 + off(rng), y0 + off(rng)});
+            const auto height = [&](int x, int y) { return zscale * double(hf.at(x, y)); };
+            std::vector<std::vector<double>> a;
+            std::vector<double> b;
+            std::vector<std::array<int, 3>> vars;
+            std::vector<std::array<double, 3>> weights;
+            for (int k = 0; k < nv; ++k) {
+                a.push_back(std::vector<double>(std::size_t(nv), 0.0));
+                a.back()[std::size_t(k)] = 1.0;
+                b.push_back(0.0);
+                vars.push_back({k, -1, -1});
+                weights.push_back({1.0, 0.0, 0.0});
+            }
+            for (int i = 0; i <= nv; ++i)
+                for (int j = i + 1; j <= nv; ++j)
+                    for (int l = j + 1; l <= nv; ++l) {
+                        const std::array<int, 3> c = {i, j, l};
+                        const auto area = [&](int p, int q, int x, int y) {
+                            return double(at[std::size_t(p)][0] - x) *
+                                       double(at[std::size_t(q)][1] - y) -
+                                   double(at[std::size_t(p)][1] - y) *
+                                       double(at[std::size_t(q)][0] - x);
+                        };
+                        const double whole =
+                            area(j, l, at[std::size_t(i)][0], at[std::size_t(i)][1]);
+                        if (std::abs(whole) < 1.0)
+                            continue;
+                        for (int y = y0; y < y0 + 16; ++y)
+                            for (int x = x0; x < x0 + 16; ++x) {
+                                const std::array<double, 3> w = {area(j, l, x, y) / whole,
+                                                                 area(l, i, x, y) / whole,
+                                                                 area(i, j, x, y) / whole};
+                                if (w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0)
+                                    continue;
+                                std::vector<double> row(std::size_t(nv), 0.0);
+                                std::array<int, 3> var = {-1, -1, -1};
+                                double plane = 0.0;
+                                for (std::size_t k = 0; k < 3; ++k) {
+                                    const auto &p = at[std::size_t(c[k])];
+                                    plane += w[k] * height(p[0], p[1]);
+                                    if (c[k] < nv) {
+                                        row[std::size_t(c[k])] = w[k];
+                                        var[k] = c[k];
+                                    }
+                                }
+                                a.push_back(row);
+                                b.push_back(height(x, y) - plane);
+                                vars.push_back(var);
+                                weights.push_back(w);
+                            }
+                    }
+            ChebyshevFit fit;
+            fit.reset(nv);
+            for (std::size_t i = 0; i < b.size(); ++i)
+                fit.add_row(a[i].data(), b[i]);
+            std::vector<double> z;
+            const double t = fit.solve(INFINITY, z);
+            if (std::isinf(t))
+                continue;
+            BoxNarrowing boxes;
+            boxes.reset(std::vector<double>(std::size_t(nv), -limit),
+                        std::vector<double>(std::size_t(nv), limit), limit);
+            bool out = false;
+            for (int sweep = 0; sweep < 2 && !out; ++sweep)
+                for (std::size_t i = 0; i < b.size() && !out; ++i)
+                    out = !boxes.add(vars[i], weights[i], b[i]);
+            SCOPED_TRACE(std::string(file) + " round " + std::to_string(round));
+            if (out) {
+                ++ruled_out;
+                EXPECT_GT(t, limit);
+            }
+            if (t > limit) {
+                ++over;
+                continue;
+            }
+            ++within;
+            for (int k = 0; k < nv; ++k) {
+                EXPECT_GE(z[std::size_t(k)], boxes.low(k) - 1e-6);
+                EXPECT_LE(z[std::size_t(k)], boxes.high(k) + 1e-6);
+            }
+        }
+    }
+    // Both kinds occur, and the boxes rule out most of the problems over the limit.
+    EXPECT_GT(within, 50);
+    EXPECT_GT(over, 50);
+    EXPECT_GT(ruled_out, over / 2);
 }

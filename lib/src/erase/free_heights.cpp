@@ -13,6 +13,13 @@
 
 namespace tinlod::erase {
 
+void BoxNarrowing::reset(const std::vector<double> &low, const std::vector<double> &high,
+                         double limit) {
+    low_ = low;
+    high_ = high;
+    limit_ = limit;
+}
+
 // The fit is min t subject to a_i . z - t <= b_i and -a_i . z - t <= -b_i. Its dual: min g . y over
 // y >= 0 with sum_j y_j G_j = 0 on the z rows and sum_j y_j = 1, G_j = +-a_i, g_j = +-b_i; its
 // optimum is -t*, and -g . y bounds t* from below on the way. Phase 1 starts from one artificial
@@ -34,24 +41,30 @@ void ChebyshevFit::reset(int n) {
 }
 
 void ChebyshevFit::add_row(const double *a, double b) {
-    for (const double sign : {1.0, -1.0}) {
-        const std::size_t at = col_.size();
-        col_.resize(at + rows_, 0.0);
-        double *c = &col_[at];
-        double d = sign * b;
-        for (std::size_t k = 0; k <= n_; ++k) {
-            const double raw = k < n_ ? sign * a[k] : 1.0;
-            if (raw == 0.0)
-                continue;
-            // B^-1 times the raw column, and its reduced cost g - c_B B^-1 column.
-            const double *inverse = &col_[k * rows_];
-            for (std::size_t r = 0; r < rows_; ++r)
-                c[r] += raw * inverse[r];
-            d += raw * d_[k];
-        }
-        g_.push_back(sign * b);
-        d_.push_back(started_ ? d : 0.0);
+    // The columns (a, 1) and (-a, 1): B^-1 times them is s + B^-1 e_n and -s + B^-1 e_n with s =
+    // B^-1 (a, 0), summed once (a negated sum rounds as the sum negated), and likewise their
+    // reduced costs.
+    const std::size_t at = col_.size();
+    col_.resize(at + 2 * rows_, 0.0);
+    double *plus = &col_[at], *minus = plus + rows_;
+    double d = b;
+    for (std::size_t k = 0; k < n_; ++k) {
+        if (a[k] == 0.0)
+            continue;
+        const double *inverse = &col_[k * rows_];
+        for (std::size_t r = 0; r < rows_; ++r)
+            plus[r] += a[k] * inverse[r];
+        d += a[k] * d_[k];
     }
+    const double *sum = &col_[n_ * rows_];
+    for (std::size_t r = 0; r < rows_; ++r) {
+        minus[r] = -plus[r] + sum[r];
+        plus[r] += sum[r];
+    }
+    g_.push_back(b);
+    g_.push_back(-b);
+    d_.push_back(started_ ? d + d_[n_] : 0.0);
+    d_.push_back(started_ ? -d + d_[n_] : 0.0);
 }
 
 void ChebyshevFit::pivot(std::size_t r, std::size_t j) {
@@ -163,7 +176,8 @@ struct Corners {
 class Pass {
   public:
     Pass(TinArrays &tin, const Heightfield &hf, double limit, int max_ring)
-        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring) {}
+        : tin_(tin), hf_(hf), limit_(limit), max_ring_(max_ring), changed_(tin.sample.size(), 0),
+          tried_(tin.sample.size(), 0), kept_(tin.sample.size(), k_none) {}
 
     // Tries to erase the interior node v; on success rewrites the TIN and its heights, leaves the
     // nodes whose neighbourhood changed in touched() and returns true.
@@ -171,21 +185,7 @@ class Pass {
         if (tin_.outline[std::size_t(v)] || !gather(v))
             return false;
         const int n = int(ring_.size());
-        for (int i = 0; i < n; ++i)
-            q_[std::size_t(i)] = {double(tin_.col[std::size_t(ring_[std::size_t(i)])]),
-                                  double(tin_.row[std::size_t(ring_[std::size_t(i)])])};
-        own_x_ = tin_.col[std::size_t(v)];
-        own_y_ = tin_.row[std::size_t(v)];
-        if (!within_reach())
-            return false;
-        // The triangulation that keeps its samples farthest within reach of the limit.
-        const int count = min_max_triangulation(
-            q_.data(), n, limit_,
-            [this](int a, int b, int c, double stop) {
-                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
-                             stop);
-            },
-            tri_.data());
+        const int count = hole(v, n);
         if (count != n - 2)
             return false;
         // The variables: the ring's interior nodes.
@@ -222,6 +222,10 @@ class Pass {
             return false;
         }
         rewrite(v, count);
+        // The ring's stars changed (and the variables' heights).
+        ++epoch_;
+        for (const std::int32_t r : ring_)
+            changed_[std::size_t(r)] = epoch_;
         touched_.clear();
         for (const Corners &c : tris_)
             touched_.insert(touched_.end(), c.node.begin(), c.node.end());
@@ -232,6 +236,41 @@ class Pass {
 
   private:
     bool gather(std::int32_t v) { return tin_.star(v, max_ring_, ring_, star_, edge_); }
+
+    // v's hole (its ring of n nodes) triangulated into tri_: the triangulation that keeps its
+    // samples farthest within reach of the limit; its count, or -1 when v's own sample or the
+    // hole's samples are out of reach. It depends on the ring alone: a node tried again after a
+    // neighbour's erase whose star has not changed since gets its last try's.
+    int hole(std::int32_t v, int n) {
+        const std::size_t i = std::size_t(v);
+        if (tried_[i] != 0 && changed_[i] <= tried_[i]) {
+            if (kept_[i] == k_none)
+                return -1;
+            std::copy_n(kept_tri_.begin() + std::ptrdiff_t(kept_[i]), n - 2, tri_.begin());
+            return n - 2;
+        }
+        tried_[i] = epoch_;
+        kept_[i] = k_none;
+        for (int k = 0; k < n; ++k)
+            q_[std::size_t(k)] = {double(tin_.col[std::size_t(ring_[std::size_t(k)])]),
+                                  double(tin_.row[std::size_t(ring_[std::size_t(k)])])};
+        own_x_ = tin_.col[i];
+        own_y_ = tin_.row[i];
+        if (!within_reach())
+            return -1;
+        const int count = min_max_triangulation(
+            q_.data(), n, limit_,
+            [this](int a, int b, int c, double stop) {
+                return reach({ring_[std::size_t(a)], ring_[std::size_t(b)], ring_[std::size_t(c)]},
+                             stop);
+            },
+            tri_.data());
+        if (count == n - 2) {
+            kept_[i] = std::uint32_t(kept_tri_.size());
+            kept_tri_.insert(kept_tri_.end(), tri_.begin(), tri_.begin() + count);
+        }
+        return count;
+    }
 
     Corners corners(std::array<std::int32_t, 3> node) const {
         Corners c{node, {-1, -1, -1}};
@@ -245,7 +284,9 @@ class Pass {
 
     // The samples of the closed lattice triangle over nodes c (counter-clockwise) but its corners:
     // visit(x, y, sa, sb, sc), with sa, sb, sc the doubled lattice areas that weigh the corners
-    // (their sum: twice the triangle's area); false when a visit stopped the scan.
+    // (their sum: twice the triangle's area); false when a visit stopped the scan. A small triangle
+    // over its box, a larger one a row span at a time, its areas stepped along the row (exact
+    // integers), the corners looked for on their rows alone: in the order of the box either way.
     template <class Visit>
     bool scan(const std::array<std::int32_t, 3> &c, const Visit &visit) const {
         std::int64_t x[3], y[3];
@@ -253,14 +294,30 @@ class Pass {
             x[k] = tin_.col[std::size_t(c[std::size_t(k)])];
             y[k] = tin_.row[std::size_t(c[std::size_t(k)])];
         }
-        return visit_box(x, y, [&](std::int64_t px, std::int64_t py) {
-            if ((px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
-                (px == x[2] && py == y[2]))
-                return true;
-            const std::int64_t sa = (x[1] - px) * (y[2] - py) - (y[1] - py) * (x[2] - px),
-                               sb = (x[2] - px) * (y[0] - py) - (y[2] - py) * (x[0] - px),
-                               sc = (x[0] - px) * (y[1] - py) - (y[0] - py) * (x[1] - px);
-            return visit(px, py, double(sa), double(sb), double(sc));
+        const auto corner = [&](std::int64_t px, std::int64_t py) {
+            return (px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
+                   (px == x[2] && py == y[2]);
+        };
+        // Corner k's doubled area at (px, py): that of the triangle (px, py), corner k + 1, k + 2.
+        const auto area = [&](int k, std::int64_t px, std::int64_t py) {
+            const int a = (k + 1) % 3, b = (k + 2) % 3;
+            return (x[a] - px) * (y[b] - py) - (y[a] - py) * (x[b] - px);
+        };
+        if (box_samples(x, y) <= k_small_box)
+            return visit_box(x, y, [&](std::int64_t px, std::int64_t py) {
+                return corner(px, py) || visit(px, py, double(area(0, px, py)),
+                                               double(area(1, px, py)), double(area(2, px, py)));
+            });
+        const std::int64_t step[3] = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
+        return LatticeTriangle(x, y).for_each_row([&](std::int64_t py, std::int64_t lo,
+                                                      std::int64_t hi) {
+            std::int64_t sa = area(0, lo, py), sb = area(1, lo, py), sc = area(2, lo, py);
+            const bool corners = py == y[0] || py == y[1] || py == y[2];
+            for (std::int64_t px = lo; px <= hi; ++px, sa += step[0], sb += step[1], sc += step[2])
+                if (!(corners && corner(px, py)) &&
+                    !visit(px, py, double(sa), double(sb), double(sc)))
+                    return false;
+            return true;
         });
     }
 
@@ -379,11 +436,11 @@ class Pass {
             high_[k] = off + limit_;
             rows_.push_back({{int(k), -1, -1}, {1.0, 0.0, 0.0}, off, INFINITY});
         }
+        boxes_.reset(low_, high_, limit_);
+        std::size_t new_rows = rows_.size();
         for (std::size_t t = 0; t < tris_.size(); ++t) {
-            // The new triangles' rows alone first: a hole they rule out costs no scan of the
-            // triangles around it (most holes at a coarse bound).
-            if (t == new_tris_ && nv > 0 && !solve(nv, true))
-                return false;
+            if (t == new_tris_)
+                new_rows = rows_.size();
             const Corners &c = tris_[t];
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
                          zc = tin_.z[std::size_t(c.node[2])];
@@ -412,7 +469,10 @@ class Pass {
                         return true;
                     row.excess = std::max(hi - r, r - lo);
                     rows_.push_back(row);
-                    return rows_.size() <= k_max_rows;
+                    // Each row narrows the boxes as it comes: they rule out most holes the
+                    // programme would, most of them before the scan ends, and decide nothing else
+                    // (the programmes see the same rows and find the same heights).
+                    return boxes_.add(row.var, row.w, row.r) && rows_.size() <= k_max_rows;
                 });
             if (!ok)
                 return false;
@@ -422,23 +482,30 @@ class Pass {
             old_z_[k] = tin_.z[std::size_t(vars_[k])];
         if (nv == 0)
             return true;
-        if (!solve(nv, new_tris_ == tris_.size()))
+        // A second sweep of the narrowing, each row against the boxes all the others left (a
+        // third, or the rows in reverse, cost more than they save).
+        for (const Row &row : rows_)
+            if (!boxes_.add(row.var, row.w, row.r))
+                return false;
+        // The programme on the new triangles' rows first, then on all.
+        const bool around = new_tris_ < tris_.size();
+        if ((around && !solve(nv, new_rows, true)) || !solve(nv, rows_.size(), !around))
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
         return true;
     }
 
-    // Heights within the limit of rows_ in dz_: the programme on the rows whose boxes' reach most
-    // exceeds the limit (the variables' own rows first), then with the rows its fit misses, until
-    // it misses none (the fit rests on about as many rows as variables, of up to thousands at a
-    // coarse bound). `fresh`: a new programme; else the last one's, with the rows added since.
-    // False when a programme on some of the rows finds none.
-    bool solve(std::size_t nv, bool fresh) {
-        const std::size_t m = rows_.size();
+    // Heights within the limit of the first m rows_ in dz_: the programme on the rows whose boxes'
+    // reach most exceeds the limit (the variables' own rows first), then with the rows its fit
+    // misses, until it misses none (the fit rests on about as many rows as variables, of up to
+    // thousands at a coarse bound). `fresh`: a new programme; else the last one's, with the rows
+    // added since. False when a programme on some of the rows finds none.
+    bool solve(std::size_t nv, std::size_t m, bool fresh) {
         if (fresh) {
             const std::size_t first = std::min(m, 3 * nv + 4);
-            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1), rows_.end(),
+            std::nth_element(rows_.begin(), rows_.begin() + std::ptrdiff_t(first - 1),
+                             rows_.begin() + std::ptrdiff_t(m),
                              [](const Row &i, const Row &j) { return i.excess > j.excess; });
             picked_.assign(m, 0);
             fit_.reset(int(nv));
@@ -565,9 +632,17 @@ class Pass {
     std::vector<Row> rows_;
     std::size_t new_tris_ = 0;
     std::vector<double> dense_, dz_, old_z_, low_, high_;
+    BoxNarrowing boxes_;
     std::vector<std::uint8_t> picked_;
     ChebyshevFit fit_;
     std::int64_t own_x_ = 0, own_y_ = 0;
+    // Per node: the erase after which its star last changed, and the erases before its last
+    // hole() (0: none yet; the pass's count of erases from 1); the hole it found then (its
+    // triangles' first in kept_tri_, k_none when none).
+    std::uint32_t epoch_ = 1;
+    std::vector<std::uint32_t> changed_, tried_, kept_;
+    std::vector<RingTriangle> kept_tri_;
+    static constexpr std::uint32_t k_none = 0xffffffffu;
 };
 
 } // namespace

@@ -11,6 +11,7 @@
 #include "tinlod/raster.hpp"
 #include "tinlod/tin.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,61 @@ struct FreeHeightsStats {
 // take a node's height to be its sample's.
 Mesh free_heights(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
                   FreeHeightsStats *stats = nullptr);
+
+// Boxes [low_k, high_k] of n variables narrowed by rows |sum_k w_k z_(var_k) - r| <= limit, each on
+// at most three variables (var -1: none) with weights >= 0: the other variables' boxes bound each
+// one's share of a row. A row whose range over the boxes misses [r - limit, r + limit] by more
+// than k_slack rules out every z in the boxes: a necessary condition of the free heights'
+// programme at a fraction of its cost (the boxes hold every z that keeps the rows within the
+// limit, give or take k_slack).
+class BoxNarrowing {
+  public:
+    // What the boxes may be off by (far over their rounding, far under a limit), and the least
+    // weight a row narrows its variable by (a smaller one bounds it little).
+    static constexpr double k_slack = 1e-7, k_min_weight = 1e-3;
+
+    // The boxes to start from, and the limit.
+    void reset(const std::vector<double> &low, const std::vector<double> &high, double limit);
+    // Narrows the boxes by the row; false when it rules them out (inline: the pass calls it for
+    // each row it makes).
+    bool add(const std::array<int, 3> &var, const std::array<double, 3> &w, double r);
+    double low(int k) const { return low_[std::size_t(k)]; }
+    double high(int k) const { return high_[std::size_t(k)]; }
+
+  private:
+    std::vector<double> low_, high_;
+    double limit_ = 0.0;
+};
+
+inline bool BoxNarrowing::add(const std::array<int, 3> &var, const std::array<double, 3> &w,
+                              double r) {
+    double least = 0.0, most = 0.0;
+    for (std::size_t k = 0; k < 3; ++k)
+        if (var[k] >= 0) {
+            least += w[k] * low_[std::size_t(var[k])];
+            most += w[k] * high_[std::size_t(var[k])];
+        }
+    // How far the row's range may rise and fall before it leaves its interval.
+    const double rise = r + limit_ - least, fall = most - (r - limit_);
+    if (rise < -k_slack || fall < -k_slack)
+        return false;
+    // Each variable's share of the range is at most all of it: most rows narrow nothing.
+    if (rise >= most - least && fall >= most - least)
+        return true;
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (var[k] < 0 || w[k] < k_min_weight)
+            continue;
+        double &lo = low_[std::size_t(var[k])], &hi = high_[std::size_t(var[k])];
+        const double span = w[k] * (hi - lo);
+        if (rise < span - k_slack)
+            hi = lo + rise / w[k];
+        if (fall < span - k_slack)
+            lo = hi - fall / w[k]; // from the lowered top, if so: a looser bound, still one
+        if (lo > hi + k_slack)
+            return false;
+    }
+    return true;
+}
 
 // The least L-infinity fit: z (n values) minimising max_i |a_i . z - b_i| over rows a_i added one
 // at a time, by the simplex method on its dual (n + 1 equality rows, two columns a row). A solve
