@@ -62,16 +62,30 @@ std::pair<float, std::int32_t> face_worst(const EraserState &s, std::uint32_t a,
     const double margin = plane.margin_over(pa, pb, pc);
     double maxdev = 0.0;
     std::int32_t worst = -1;
-    scan_lattice(
-        s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
-        [&](std::uint32_t u, const Mesh::Point &p, double) {
-            const double dev = plane.deviation(p[0], p[1], p[2], margin);
-            if (dev > maxdev) {
-                maxdev = dev;
-                worst = std::int32_t(u);
-            }
-            return true;
+    const auto visit = [&](std::uint32_t u, const Mesh::Point &p) {
+        const double dev = plane.deviation(p[0], p[1], p[2], margin);
+        if (dev > maxdev) {
+            maxdev = dev;
+            worst = std::int32_t(u);
+        }
+        return true;
+    };
+    // A small face's samples over its box (the same samples in the same order as scan_lattice's
+    // rows): most faces of a TIN from greedy insertion hold a few samples, and a row span's
+    // divisions cost more than they do (docs/decisions/038-simplify-speed-7-floor.md).
+    const std::int64_t w = s.input.grid_w;
+    const std::int64_t x[3] = {a % w, b % w, c % w}, y[3] = {a / w, b / w, c / w};
+    if (box_samples(x, y) <= k_small_box) {
+        const Samples g = samples(s.input);
+        visit_box(x, y, [&](std::int64_t col, std::int64_t row) {
+            const std::uint32_t u = std::uint32_t(row * w + col);
+            return u == a || u == b || u == c || visit(u, g.at(col, row));
         });
+    } else {
+        scan_lattice(
+            s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
+            [&](std::uint32_t u, const Mesh::Point &p, double) { return visit(u, p); });
+    }
     return {float_up(maxdev), worst};
 }
 
