@@ -66,8 +66,8 @@ void build_paired(Mesh &mesh, std::span<const std::uint32_t> corners,
 
 // Side i's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the boundary
 // half-edge running the other way when it has none), given each side's twin (k_none: none).
-std::uint32_t number_edges(const std::vector<std::uint32_t> &twin_of,
-                           std::vector<std::uint32_t> &half, std::vector<std::uint32_t> &open) {
+std::uint32_t number_edges(std::span<const std::uint32_t> twin_of, std::vector<std::uint32_t> &half,
+                           std::vector<std::uint32_t> &open) {
     half.assign(twin_of.size(), k_none);
     std::uint32_t edges = 0;
     for (std::size_t i = 0; i < twin_of.size(); ++i) {
@@ -179,6 +179,18 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
     build_paired(mesh, corners, half, open, edges);
 }
 
+void add_paired_triangles(Mesh &mesh, std::span<const std::uint32_t> corners,
+                          std::span<const std::uint32_t> twins) {
+    if (corners.size() % 3 != 0 || twins.size() != corners.size() || mesh.n_edges() != 0 ||
+        mesh.n_faces() != 0)
+        throw std::invalid_argument(
+            "add_paired_triangles: a mesh with faces, a partial triangle or a twin list's size");
+    std::vector<std::uint32_t> half, open;
+    const std::uint32_t edges = number_edges(twins, half, open);
+    check_boundary(corners, open, mesh.n_vertices());
+    build_paired(mesh, corners, half, open, edges);
+}
+
 Mesh grid_vertices(const Heightfield &hf) {
     assert(hf.width >= 2 && hf.height >= 2);
     Mesh mesh;
@@ -230,13 +242,11 @@ Mesh live_copy(const Mesh &mesh) {
             along.push_back(std::uint32_t(h.idx()));
         }
     }
-    std::vector<std::uint32_t> twin_of(corners.size()), half, open;
+    std::vector<std::uint32_t> twin_of(corners.size());
     for (std::size_t i = 0; i < corners.size(); ++i)
         twin_of[i] = side_of[std::size_t(
             mesh.opposite_halfedge_handle(Mesh::HalfedgeHandle(int(along[i]))).idx())];
-    const std::uint32_t edges = number_edges(twin_of, half, open);
-    check_boundary(corners, open, live);
-    build_paired(out, corners, half, open, edges);
+    add_paired_triangles(out, corners, twin_of);
     return out;
 }
 

@@ -240,7 +240,7 @@ Mesh erase_dem(const Heightfield &hf, const Significance &model, const EraseOpti
     check_share("budget_share", dem.budget_share, std::numeric_limits<double>::max());
     DemRun run{hf, model, options, dem, Stopwatch(), DemEraseStats()};
     if (const std::optional<GreedyTin> greedy = greedy_first(hf, model, options, dem)) {
-        Mesh mesh = to_sparse_lattice_mesh(greedy->tin, hf);
+        Mesh mesh = to_sparse_lattice_mesh(*greedy, hf);
         run.out.retrieved_nodes = std::int64_t(greedy->tin.nodes.size());
         run.out.retrieve_tol = options.tolerance;
         return erase_from(run, mesh, FirstStage::greedy, stats);
