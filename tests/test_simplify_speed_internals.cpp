@@ -1,6 +1,7 @@
-// What the faster `simplify --max-error` relies on (docs/decisions/024-simplify-speed.md): a small
-// triangle's samples visited over its box (visit_box) are LatticeTriangle's, in row order, and the
-// erase's early ends keep the bound and the fewest-triangles result it had.
+// What the faster `simplify --max-error` relies on (docs/decisions/024-simplify-speed.md, 039): a
+// small triangle's samples visited over its box (visit_box) are LatticeTriangle's, in row order, so
+// are visit_inside's but the corners, and the erase's early ends keep the bound and the
+// fewest-triangles result it had.
 #include "assets.hpp"
 
 #include "lattice_triangle.hpp"
@@ -73,6 +74,43 @@ TEST(SimplifySpeed, VisitBoxStopsWhenAVisitSaysSo) {
     int visits = 0;
     EXPECT_FALSE(visit_box(x, y, [&](std::int64_t, std::int64_t) { return ++visits < 5; }));
     EXPECT_EQ(visits, 5);
+}
+
+// Random triangles in a 40 x 40 box (small ones scanned over their box, larger ones by row spans,
+// k_small_box), both orientations: visit_inside gives LatticeTriangle's samples but the corners, in
+// row order, and stops when a visit says so.
+TEST(SimplifySpeed, VisitInsideGivesTheSamplesButTheCornersInRowOrder) {
+    std::mt19937 rng(39);
+    std::uniform_int_distribution<std::int64_t> side(0, 39);
+    int small = 0, large = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        std::int64_t x[3], y[3];
+        const std::int64_t reach = trial % 2 == 0 ? 8 : 40; // half of them small
+        for (int k = 0; k < 3; ++k) {
+            x[k] = side(rng) % reach;
+            y[k] = side(rng) % reach;
+        }
+        std::vector<Sample> inside;
+        EXPECT_TRUE(visit_inside(x, y, [&](std::int64_t c, std::int64_t r) {
+            inside.emplace_back(c, r);
+            return true;
+        }));
+        std::vector<Sample> expected;
+        for (const Sample &p : by_spans(x, y))
+            if (p != Sample(x[0], y[0]) && p != Sample(x[1], y[1]) && p != Sample(x[2], y[2]))
+                expected.push_back(p);
+        ASSERT_EQ(inside, expected) << "corners (" << x[0] << "," << y[0] << ") (" << x[1] << ","
+                                    << y[1] << ") (" << x[2] << "," << y[2] << ")";
+        (box_samples(x, y) <= k_small_box ? small : large) += expected.size() > 2;
+        if (expected.size() > 2) {
+            std::size_t visits = 0;
+            EXPECT_FALSE(visit_inside(
+                x, y, [&](std::int64_t, std::int64_t) { return ++visits < expected.size() / 2; }));
+            EXPECT_EQ(visits, expected.size() / 2);
+        }
+    }
+    EXPECT_GT(small, 1000);
+    EXPECT_GT(large, 1000);
 }
 
 // A terrain of ridges and pits at several scales (a 16-bit PNG), where many of the greedy

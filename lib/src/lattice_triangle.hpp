@@ -166,4 +166,32 @@ inline bool visit_box(const std::int64_t (&x)[3], const std::int64_t (&y)[3], co
     return true;
 }
 
+// The lattice samples in the closed triangle with corners (x[k], y[k]) but its corners, in row
+// order: visit(x, y) for each until it returns false. Returns false when a visit stopped the scan.
+// A small triangle over its box (visit_box), a larger one a row span at a time (for_each_row), the
+// corners looked for on their own rows only.
+template <class Visit>
+inline bool visit_inside(const std::int64_t (&x)[3], const std::int64_t (&y)[3],
+                         const Visit &visit) {
+    const auto corner = [&](std::int64_t c, std::int64_t r) {
+        return (c == x[0] && r == y[0]) || (c == x[1] && r == y[1]) || (c == x[2] && r == y[2]);
+    };
+    if (box_samples(x, y) <= k_small_box)
+        return visit_box(
+            x, y, [&](std::int64_t c, std::int64_t r) { return corner(c, r) || visit(c, r); });
+    return LatticeTriangle(x, y).for_each_row(
+        [&](std::int64_t r, std::int64_t lo, std::int64_t hi) {
+            if (r == y[0] || r == y[1] || r == y[2]) {
+                for (std::int64_t c = lo; c <= hi; ++c)
+                    if (!corner(c, r) && !visit(c, r))
+                        return false;
+                return true;
+            }
+            for (std::int64_t c = lo; c <= hi; ++c)
+                if (!visit(c, r))
+                    return false;
+            return true;
+        });
+}
+
 } // namespace tinlod

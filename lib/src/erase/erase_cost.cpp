@@ -6,7 +6,6 @@
 #include "tinlod/significance.hpp"
 
 #include <algorithm>
-#include <type_traits>
 
 namespace tinlod::erase {
 
@@ -269,41 +268,15 @@ static bool min_max_hole(const EraserState &s, Hole &h, double limit) {
             }
         }
         // The triangle's samples but its corners, in row order: the first over `stop` ends the
-        // scan. A small one over its box, a larger one a row span at a time (the corners' rows
-        // apart).
+        // scan.
         double most = 0.0;
         const std::int64_t x[3] = {rx[a], rx[b], rx[c]}, y[3] = {ry[a], ry[b], ry[c]};
-        const auto scan = [&](std::int64_t row, std::int64_t lo, std::int64_t hi, auto corners) {
-            for (std::int64_t col = lo; col <= hi; ++col) {
-                if (corners && ((col == x[0] && row == y[0]) || (col == x[1] && row == y[1]) ||
-                                (col == x[2] && row == y[2])))
-                    continue;
-                const double d = deviation(lattice.at(col, row));
-                if (d > stop) {
-                    add_witness(std::uint32_t(row * w + col));
-                    most = d;
-                    return false;
-                }
-                most = std::max(most, d);
-            }
-            return true;
-        };
-        if (box_samples(x, y) <= k_small_box) {
-            visit_box(x, y, [&](std::int64_t col, std::int64_t row) {
-                if ((col == x[0] && row == y[0]) || (col == x[1] && row == y[1]) ||
-                    (col == x[2] && row == y[2]))
-                    return true; // a corner
-                most = std::max(most, deviation(lattice.at(col, row)));
-                if (!(most > stop))
-                    return true;
-                add_witness(std::uint32_t(row * w + col));
-                return false;
-            });
-            return most;
-        }
-        LatticeTriangle(x, y).for_each_row([&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-            return row == y[0] || row == y[1] || row == y[2] ? scan(row, lo, hi, std::true_type())
-                                                             : scan(row, lo, hi, std::false_type());
+        visit_inside(x, y, [&](std::int64_t col, std::int64_t row) {
+            most = std::max(most, deviation(lattice.at(col, row)));
+            if (!(most > stop))
+                return true;
+            add_witness(std::uint32_t(row * w + col));
+            return false;
         });
         return most;
     };

@@ -182,24 +182,19 @@ class Pass {
                     return d;
             }
         }
-        const std::uint32_t w = std::uint32_t(hf_.width);
-        const std::uint32_t ca = node_[std::size_t(a)], cb = node_[std::size_t(b)],
-                            cc = node_[std::size_t(c)];
-        const LatticeTriangle t(w, ca, cb, cc);
-        for (std::int64_t y = t.first_row; y <= t.last_row; ++y) {
-            const auto [first, last] = t.span(y);
-            for (std::int64_t x = first; x <= last; ++x) {
-                const std::uint32_t u = std::uint32_t(y * w + x);
-                if (u == ca || u == cb || u == cc)
-                    continue;
-                const Mesh::Point p = grid_point(hf_, int(x), int(y));
-                most = std::max(most, plane.deviation(p[0], p[1], p[2], margin));
-                if (most > stop) {
-                    add_witness(u);
-                    return most;
-                }
-            }
-        }
+        const std::int64_t w = hf_.width;
+        const std::int64_t x[3] = {node_[std::size_t(a)] % w, node_[std::size_t(b)] % w,
+                                   node_[std::size_t(c)] % w},
+                           y[3] = {node_[std::size_t(a)] / w, node_[std::size_t(b)] / w,
+                                   node_[std::size_t(c)] / w};
+        visit_inside(x, y, [&](std::int64_t col, std::int64_t row) {
+            const Mesh::Point p = grid_point(hf_, int(col), int(row));
+            most = std::max(most, plane.deviation(p[0], p[1], p[2], margin));
+            if (!(most > stop))
+                return true;
+            add_witness(std::uint32_t(row * w + col));
+            return false;
+        });
         return most;
     }
 
