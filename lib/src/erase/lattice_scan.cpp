@@ -70,22 +70,16 @@ std::pair<float, std::int32_t> face_worst(const EraserState &s, std::uint32_t a,
         }
         return true;
     };
-    // A small face's samples over its box (the same samples in the same order as scan_lattice's
-    // rows): most faces of a TIN from greedy insertion hold a few samples, and a row span's
-    // divisions cost more than they do (docs/decisions/038-simplify-speed-7-floor.md).
+    // The face's samples but its corners in row order, as scan_lattice's rows give them: a small
+    // face over its box, a larger one by spans carried from row to row (visit_inside): most faces
+    // of a TIN from greedy insertion hold a few samples, and scan_lattice's spans cost two
+    // divisions a row and edge (docs/decisions/038-simplify-speed-7-floor.md).
     const std::int64_t w = s.input.grid_w;
     const std::int64_t x[3] = {a % w, b % w, c % w}, y[3] = {a / w, b / w, c / w};
-    if (box_samples(x, y) <= k_small_box) {
-        const Samples g = samples(s.input);
-        visit_box(x, y, [&](std::int64_t col, std::int64_t row) {
-            const std::uint32_t u = std::uint32_t(row * w + col);
-            return u == a || u == b || u == c || visit(u, g.at(col, row));
-        });
-    } else {
-        scan_lattice(
-            s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
-            [&](std::uint32_t u, const Mesh::Point &p, double) { return visit(u, p); });
-    }
+    const Samples g = samples(s.input);
+    visit_inside(x, y, [&](std::int64_t col, std::int64_t row) {
+        return visit(std::uint32_t(row * w + col), g.at(col, row));
+    });
     return {float_up(maxdev), worst};
 }
 
