@@ -126,26 +126,25 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
         ends[k] = b;
     });
     // Each side's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the
-    // boundary half-edge running the other way when it has none). A directed edge used twice shows
-    // as a side with two twins, or as a twin met again after it was paired (or, with no side the
-    // other way, as two boundary half-edges leaving one vertex, refused below).
-    constexpr std::uint32_t none = k_none;
-    std::vector<std::uint32_t> half(sides, none), twin_of(sides, none);
+    // boundary half-edge running the other way when it has none). A directed edge used twice
+    // shows as a side with two twins, or as a twin met again after it was paired (or, with no side
+    // the other way, as two boundary half-edges leaving one vertex, refused below).
+    std::vector<std::uint32_t> half(sides, k_none), twin_of(sides, k_none);
     std::vector<std::uint32_t> open; // sides without a twin, by edge
     std::uint32_t edges = 0;
     for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
-        if (half[i] != none)
+        if (half[i] != k_none)
             return;
         half[i] = 2 * edges;
-        std::uint32_t twin = none;
+        std::uint32_t twin = k_none;
         for (std::uint32_t k = first[b]; k < first[b + 1]; ++k)
             if (ends[k] == a) {
-                if (twin != none)
+                if (twin != k_none)
                     throw std::invalid_argument("add_triangles: a directed edge used twice");
                 twin = leaving[k];
             }
-        if (twin != none) {
-            if (twin_of[twin] != none)
+        if (twin != k_none) {
+            if (twin_of[twin] != k_none)
                 throw std::invalid_argument("add_triangles: a directed edge used twice");
             half[twin] = 2 * edges + 1;
             twin_of[i] = twin;
@@ -158,16 +157,16 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
     check_boundary(corners, open, n);
     // And each vertex one fan: turning from side to side around it (the twin of the side before in
     // the same face) from its open side, or from any side, meets every side leaving it.
-    std::vector<std::uint32_t> start(n, none);
+    std::vector<std::uint32_t> start(n, k_none);
     for (const std::uint32_t i : open)
         start[corners[i]] = i;
     for (std::size_t v = 0; v < n; ++v) {
         const std::uint32_t degree = first[v + 1] - first[v];
         if (degree == 0)
             continue;
-        const std::uint32_t from = start[v] != none ? start[v] : leaving[first[v]];
+        const std::uint32_t from = start[v] != k_none ? start[v] : leaving[first[v]];
         std::uint32_t met = 0;
-        for (std::uint32_t i = from; i != none && met <= degree;) {
+        for (std::uint32_t i = from; i != k_none && met <= degree;) {
             ++met;
             i = twin_of[i % 3 == 0 ? i + 2 : i - 1];
             if (i == from)
