@@ -352,6 +352,7 @@ GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options) {
     r.triangles.reserve(ins.corner.size());
     for (const std::int32_t n : ins.corner)
         r.triangles.push_back(r.nodes[std::size_t(n)]);
+    out.twin = std::move(ins.twin);
     return out;
 }
 

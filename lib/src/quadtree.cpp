@@ -4,6 +4,7 @@
 // paper's method 1), kept restricted as in Röttger et al. 1998 / Pajarola 1998 so the per-node
 // triangle fans meet without cracks.
 #include "tinlod/quadtree.hpp"
+#include "tinlod/greedy.hpp"
 
 #include "float_rounding.hpp"
 #include "node_bound.hpp"
@@ -733,9 +734,10 @@ Mesh to_mesh(const Retrieval &retrieval, const GridFrame &frame) {
 // Adds the triangles t (3 vertex indices each, over `vertices` vertices) in the order of their
 // first vertex, so the half-edges of nearby nodes lie near each other in memory for an erase that
 // sweeps the nodes row by row: a stable counting sort on the first vertex (ties keep the
-// retrieval's order; docs/decisions/022-row-order-triangles.md).
-static void add_in_row_order(Mesh &mesh, const std::vector<std::uint32_t> &t,
-                             std::size_t vertices) {
+// retrieval's order; docs/decisions/022-row-order-triangles.md). With `twin` (per side of t, the
+// side running the other way, -1 on the outline) the edges are paired by it, not searched for.
+static void add_in_row_order(Mesh &mesh, const std::vector<std::uint32_t> &t, std::size_t vertices,
+                             const std::vector<std::int32_t> *twin = nullptr) {
     const std::size_t faces = t.size() / 3;
     const auto first = [&](std::size_t k) {
         return std::min({t[3 * k], t[3 * k + 1], t[3 * k + 2]});
@@ -745,12 +747,25 @@ static void add_in_row_order(Mesh &mesh, const std::vector<std::uint32_t> &t,
         ++start[first(k) + 1];
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
         start[v + 1] += start[v];
-    std::vector<std::uint32_t> corners(t.size());
+    std::vector<std::uint32_t> corners(t.size()), at(faces);
     for (std::size_t k = 0; k < faces; ++k) {
-        const std::size_t at = 3 * std::size_t(start[first(k)]++);
-        std::copy_n(t.begin() + std::ptrdiff_t(3 * k), 3, corners.begin() + std::ptrdiff_t(at));
+        at[k] = start[first(k)]++;
+        std::copy_n(t.begin() + std::ptrdiff_t(3 * k), 3,
+                    corners.begin() + std::ptrdiff_t(3 * std::size_t(at[k])));
     }
-    add_triangles(mesh, corners);
+    if (!twin) {
+        add_triangles(mesh, corners);
+        return;
+    }
+    std::vector<std::uint32_t> twins(t.size());
+    for (std::size_t k = 0; k < faces; ++k)
+        for (std::size_t j = 0; j < 3; ++j) {
+            const std::int32_t o = (*twin)[3 * k + j];
+            twins[3 * std::size_t(at[k]) + j] =
+                o < 0 ? std::numeric_limits<std::uint32_t>::max()
+                      : 3 * at[std::size_t(o) / 3] + std::uint32_t(o) % 3;
+        }
+    add_paired_triangles(mesh, corners, twins);
 }
 
 Mesh to_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
@@ -765,7 +780,9 @@ Mesh to_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
     return mesh;
 }
 
-Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
+// to_sparse_lattice_mesh, the edges paired by `twin` when given (add_in_row_order).
+static Mesh sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf,
+                                const std::vector<std::int32_t> *twin) {
     std::vector<std::uint32_t> nodes = retrieval.nodes;
     std::sort(nodes.begin(), nodes.end());
     Mesh mesh;
@@ -797,8 +814,16 @@ Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
                 std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), retrieval.triangles[i]) -
                               nodes.begin());
     }
-    add_in_row_order(mesh, t, nodes.size());
+    add_in_row_order(mesh, t, nodes.size(), twin);
     return mesh;
+}
+
+Mesh to_sparse_lattice_mesh(const Retrieval &retrieval, const Heightfield &hf) {
+    return sparse_lattice_mesh(retrieval, hf, nullptr);
+}
+
+Mesh to_sparse_lattice_mesh(const GreedyTin &greedy, const Heightfield &hf) {
+    return sparse_lattice_mesh(greedy.tin, hf, &greedy.twin);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -26,95 +26,19 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh &mesh) {
     return handle;
 }
 
-void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
+namespace {
+
+constexpr std::uint32_t k_none = std::numeric_limits<std::uint32_t>::max();
+
+// The mesh of the triangles `corners` over its vertices, with side i's half-edge half[i] (edge
+// half[i] / 2), `open` the sides without a twin, whose boundary half-edges are half[i] ^ 1.
+void build_paired(Mesh &mesh, std::span<const std::uint32_t> corners,
+                  const std::vector<std::uint32_t> &half, const std::vector<std::uint32_t> &open,
+                  std::uint32_t edges) {
     using HH = Mesh::HalfedgeHandle;
-    if (corners.size() % 3 != 0 || mesh.n_edges() != 0 || mesh.n_faces() != 0)
-        throw std::invalid_argument("add_triangles: a mesh with faces, or a partial triangle");
-    const std::size_t n = mesh.n_vertices(), sides = corners.size(), faces = sides / 3;
-    if (sides >= std::size_t(std::numeric_limits<std::int32_t>::max()) / 2)
-        throw std::invalid_argument("add_triangles: too many triangles");
-    // Side i of face i / 3 runs from corners[i] to the next corner of its face; the loops over the
-    // sides go face by face, where that corner needs no division.
+    const std::size_t faces = corners.size() / 3;
     const auto to = [&](std::size_t i) { return corners[i % 3 == 2 ? i - 2 : i + 1]; };
-    const auto for_each_side = [&](auto &&visit) {
-        for (std::size_t f = 0; f < sides; f += 3) {
-            visit(f, corners[f], corners[f + 1]);
-            visit(f + 1, corners[f + 1], corners[f + 2]);
-            visit(f + 2, corners[f + 2], corners[f]);
-        }
-    };
-    // The sides leaving each vertex (counting sort by origin), to find each side's twin.
-    std::vector<std::uint32_t> first(n + 1, 0);
-    for_each_side([&](std::size_t, std::uint32_t a, std::uint32_t b) {
-        if (a >= n || a == b)
-            throw std::invalid_argument("add_triangles: a corner out of range or repeated");
-        ++first[a + 1];
-    });
-    for (std::size_t v = 0; v < n; ++v)
-        first[v + 1] += first[v];
-    std::vector<std::uint32_t> leaving(sides), ends(sides), fill(first.begin(), first.end() - 1);
-    for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
-        const std::uint32_t k = fill[a]++;
-        leaving[k] = std::uint32_t(i);
-        ends[k] = b;
-    });
-    // Each side's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the
-    // boundary half-edge running the other way when it has none). A directed edge used twice shows
-    // as a side with two twins, or as a twin met again after it was paired (or, with no side the
-    // other way, as two boundary half-edges leaving one vertex, refused below).
-    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> half(sides, none), twin_of(sides, none);
-    std::vector<std::uint32_t> open; // sides without a twin, by edge
-    std::uint32_t edges = 0;
-    for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
-        if (half[i] != none)
-            return;
-        half[i] = 2 * edges;
-        std::uint32_t twin = none;
-        for (std::uint32_t k = first[b]; k < first[b + 1]; ++k)
-            if (ends[k] == a) {
-                if (twin != none)
-                    throw std::invalid_argument("add_triangles: a directed edge used twice");
-                twin = leaving[k];
-            }
-        if (twin != none) {
-            if (twin_of[twin] != none)
-                throw std::invalid_argument("add_triangles: a directed edge used twice");
-            half[twin] = 2 * edges + 1;
-            twin_of[i] = twin;
-            twin_of[twin] = std::uint32_t(i);
-        } else {
-            open.push_back(std::uint32_t(i));
-        }
-        ++edges;
-    });
-    // Each boundary vertex must have one boundary half-edge leaving it (checked before the mesh
-    // changes, so a refused list leaves it as it was).
-    std::vector<std::uint8_t> boundary_out(n, 0);
-    for (const std::uint32_t i : open)
-        if (boundary_out[to(i)]++)
-            throw std::invalid_argument("add_triangles: a vertex joins two boundary fans");
-    // And each vertex one fan: turning from side to side around it (the twin of the side before in
-    // the same face) from its open side, or from any side, meets every side leaving it.
-    std::vector<std::uint32_t> start(n, none);
-    for (const std::uint32_t i : open)
-        start[corners[i]] = i;
-    for (std::size_t v = 0; v < n; ++v) {
-        const std::uint32_t degree = first[v + 1] - first[v];
-        if (degree == 0)
-            continue;
-        const std::uint32_t from = start[v] != none ? start[v] : leaving[first[v]];
-        std::uint32_t met = 0;
-        for (std::uint32_t i = from; i != none && met <= degree;) {
-            ++met;
-            i = twin_of[i % 3 == 0 ? i + 2 : i - 1];
-            if (i == from)
-                break;
-        }
-        if (met != degree)
-            throw std::invalid_argument("add_triangles: a vertex joins two fans");
-    }
-    mesh.resize(n, edges, faces);
+    mesh.resize(mesh.n_vertices(), edges, faces);
     for (std::size_t f = 0; f < faces; ++f) {
         const Mesh::FaceHandle fh{int(f)};
         for (int k = 0; k < 3; ++k) {
@@ -138,6 +62,132 @@ void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
         const HH h(int(half[i] ^ 1u));
         mesh.set_next_halfedge_handle(h, mesh.halfedge_handle(Mesh::VertexHandle(int(corners[i]))));
     }
+}
+
+// Side i's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the boundary
+// half-edge running the other way when it has none), given each side's twin (k_none: none).
+std::uint32_t number_edges(std::span<const std::uint32_t> twin_of, std::vector<std::uint32_t> &half,
+                           std::vector<std::uint32_t> &open) {
+    half.assign(twin_of.size(), k_none);
+    std::uint32_t edges = 0;
+    for (std::size_t i = 0; i < twin_of.size(); ++i) {
+        if (half[i] != k_none)
+            continue;
+        half[i] = 2 * edges;
+        if (twin_of[i] != k_none)
+            half[twin_of[i]] = 2 * edges + 1;
+        else
+            open.push_back(std::uint32_t(i));
+        ++edges;
+    }
+    return edges;
+}
+
+// Each boundary vertex must have one boundary half-edge leaving it (checked before the mesh
+// changes, so a refused list leaves it as it was).
+void check_boundary(std::span<const std::uint32_t> corners, const std::vector<std::uint32_t> &open,
+                    std::size_t n) {
+    std::vector<std::uint8_t> boundary_out(n, 0);
+    for (const std::uint32_t i : open)
+        if (boundary_out[corners[i % 3 == 2 ? i - 2 : i + 1]]++)
+            throw std::invalid_argument("add_triangles: a vertex joins two boundary fans");
+}
+
+} // namespace
+
+void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners) {
+    if (corners.size() % 3 != 0 || mesh.n_edges() != 0 || mesh.n_faces() != 0)
+        throw std::invalid_argument("add_triangles: a mesh with faces, or a partial triangle");
+    const std::size_t n = mesh.n_vertices(), sides = corners.size();
+    if (sides >= std::size_t(std::numeric_limits<std::int32_t>::max()) / 2)
+        throw std::invalid_argument("add_triangles: too many triangles");
+    // Side i of face i / 3 runs from corners[i] to the next corner of its face; the loops over the
+    // sides go face by face, where that corner needs no division.
+    const auto for_each_side = [&](auto &&visit) {
+        for (std::size_t f = 0; f < sides; f += 3) {
+            visit(f, corners[f], corners[f + 1]);
+            visit(f + 1, corners[f + 1], corners[f + 2]);
+            visit(f + 2, corners[f + 2], corners[f]);
+        }
+    };
+    // The sides leaving each vertex (counting sort by origin), to find each side's twin.
+    std::vector<std::uint32_t> first(n + 1, 0);
+    for_each_side([&](std::size_t, std::uint32_t a, std::uint32_t b) {
+        if (a >= n || a == b)
+            throw std::invalid_argument("add_triangles: a corner out of range or repeated");
+        ++first[a + 1];
+    });
+    for (std::size_t v = 0; v < n; ++v)
+        first[v + 1] += first[v];
+    std::vector<std::uint32_t> leaving(sides), ends(sides), fill(first.begin(), first.end() - 1);
+    for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
+        const std::uint32_t k = fill[a]++;
+        leaving[k] = std::uint32_t(i);
+        ends[k] = b;
+    });
+    // Each side's half-edge: edge e holds 2e (the first side met) and 2e + 1 (its twin, or the
+    // boundary half-edge running the other way when it has none). A directed edge used twice
+    // shows as a side with two twins, or as a twin met again after it was paired (or, with no side
+    // the other way, as two boundary half-edges leaving one vertex, refused below).
+    std::vector<std::uint32_t> half(sides, k_none), twin_of(sides, k_none);
+    std::vector<std::uint32_t> open; // sides without a twin, by edge
+    std::uint32_t edges = 0;
+    for_each_side([&](std::size_t i, std::uint32_t a, std::uint32_t b) {
+        if (half[i] != k_none)
+            return;
+        half[i] = 2 * edges;
+        std::uint32_t twin = k_none;
+        for (std::uint32_t k = first[b]; k < first[b + 1]; ++k)
+            if (ends[k] == a) {
+                if (twin != k_none)
+                    throw std::invalid_argument("add_triangles: a directed edge used twice");
+                twin = leaving[k];
+            }
+        if (twin != k_none) {
+            if (twin_of[twin] != k_none)
+                throw std::invalid_argument("add_triangles: a directed edge used twice");
+            half[twin] = 2 * edges + 1;
+            twin_of[i] = twin;
+            twin_of[twin] = std::uint32_t(i);
+        } else {
+            open.push_back(std::uint32_t(i));
+        }
+        ++edges;
+    });
+    check_boundary(corners, open, n);
+    // And each vertex one fan: turning from side to side around it (the twin of the side before in
+    // the same face) from its open side, or from any side, meets every side leaving it.
+    std::vector<std::uint32_t> start(n, k_none);
+    for (const std::uint32_t i : open)
+        start[corners[i]] = i;
+    for (std::size_t v = 0; v < n; ++v) {
+        const std::uint32_t degree = first[v + 1] - first[v];
+        if (degree == 0)
+            continue;
+        const std::uint32_t from = start[v] != k_none ? start[v] : leaving[first[v]];
+        std::uint32_t met = 0;
+        for (std::uint32_t i = from; i != k_none && met <= degree;) {
+            ++met;
+            i = twin_of[i % 3 == 0 ? i + 2 : i - 1];
+            if (i == from)
+                break;
+        }
+        if (met != degree)
+            throw std::invalid_argument("add_triangles: a vertex joins two fans");
+    }
+    build_paired(mesh, corners, half, open, edges);
+}
+
+void add_paired_triangles(Mesh &mesh, std::span<const std::uint32_t> corners,
+                          std::span<const std::uint32_t> twins) {
+    if (corners.size() % 3 != 0 || twins.size() != corners.size() || mesh.n_edges() != 0 ||
+        mesh.n_faces() != 0)
+        throw std::invalid_argument(
+            "add_paired_triangles: a mesh with faces, a partial triangle or a twin list's size");
+    std::vector<std::uint32_t> half, open;
+    const std::uint32_t edges = number_edges(twins, half, open);
+    check_boundary(corners, open, mesh.n_vertices());
+    build_paired(mesh, corners, half, open, edges);
 }
 
 Mesh grid_vertices(const Heightfield &hf) {
@@ -175,12 +225,27 @@ Mesh live_copy(const Mesh &mesh) {
         out.set_point(w, mesh.point(v));
         out.property(to, w) = from.is_valid() ? mesh.property(from, v) : v.idx();
     }
-    std::vector<std::uint32_t> corners;
+    // The faces' corners in f.vertices()' order, as add_triangles takes them: side 3f + k runs
+    // along the face's half-edge k + 1 (from its half-edge's end). Each side's twin is the side
+    // of the opposite half-edge, so the mesh is add_triangles' without its search for twins and
+    // its fan test (the input is a mesh already; docs/decisions/038-simplify-speed-7-floor.md).
+    std::vector<std::uint32_t> corners, side_of(mesh.n_halfedges(), k_none), along;
     corners.reserve(3 * mesh.n_faces());
-    for (auto f : mesh.faces())
-        for (auto v : f.vertices())
-            corners.push_back(map[v.idx()]);
-    add_triangles(out, corners);
+    along.reserve(3 * mesh.n_faces());
+    for (auto f : mesh.faces()) {
+        Mesh::HalfedgeHandle h = mesh.halfedge_handle(f);
+        for (int k = 0; k < 3; ++k) {
+            corners.push_back(map[mesh.to_vertex_handle(h).idx()]);
+            h = mesh.next_halfedge_handle(h);
+            side_of[std::size_t(h.idx())] = std::uint32_t(corners.size() - 1);
+            along.push_back(std::uint32_t(h.idx()));
+        }
+    }
+    std::vector<std::uint32_t> twin_of(corners.size());
+    for (std::size_t i = 0; i < corners.size(); ++i)
+        twin_of[i] = side_of[std::size_t(
+            mesh.opposite_halfedge_handle(Mesh::HalfedgeHandle(int(along[i]))).idx())];
+    add_paired_triangles(out, corners, twin_of);
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include "tinlod/raster.hpp"
 
 #include <cstdint>
+#include <vector>
 
 namespace tinlod {
 
@@ -19,6 +20,9 @@ struct GreedyTin {
     // The TIN as a retrieval has it (nodes, z and counter-clockwise triangles by sample id, for
     // to_lattice_mesh); its counters stay 0.
     Retrieval tin;
+    // Per side of tin.triangles (side 3t + k runs from corner k of triangle t to corner k + 1): the
+    // side running the other way, -1 on the outline.
+    std::vector<std::int32_t> twin;
     bool stopped = false; // max_nodes or max_triangles was reached before max_error was
 };
 
@@ -50,5 +54,9 @@ struct GreedyOptions {
 // nodes or max_triangles triangles. Cost: O(samples * log(nodes)) time on a terrain, about 80 bytes
 // per node.
 GreedyTin greedy_tin(const Heightfield &hf, const GreedyOptions &options);
+
+// to_sparse_lattice_mesh of the insertion's TIN, its edges paired by the insertion's twins, not
+// searched for: the same mesh (docs/decisions/038-simplify-speed-7-floor.md).
+Mesh to_sparse_lattice_mesh(const GreedyTin &greedy, const Heightfield &hf);
 
 } // namespace tinlod

@@ -44,6 +44,12 @@ OpenMesh::VPropHandleT<std::int64_t> find_origin_property(const Mesh &mesh);
 // a corner out of range, a repeated corner, a directed edge used twice or a vertex joining two
 // fans.
 void add_triangles(Mesh &mesh, std::span<const std::uint32_t> corners);
+// add_triangles with each side's twin given (twins[i]: the side running the other way, or
+// UINT32_MAX on the boundary), as a mesh's own half-edges or the greedy insertion's give them: the
+// same mesh, without the search for twins and its fan test, for triangles known to form an
+// oriented manifold (a vertex joining two boundary fans is still refused).
+void add_paired_triangles(Mesh &mesh, std::span<const std::uint32_t> corners,
+                          std::span<const std::uint32_t> twins);
 
 // The mesh's vertices and faces that are not marked deleted, as a compact mesh of their own, in
 // the input's order (garbage_collection instead fills the holes from the arrays' ends); the

@@ -239,10 +239,11 @@ Mesh erase_dem(const Heightfield &hf, const Significance &model, const EraseOpti
     check_share("greedy_cap", dem.greedy_cap, 1.0);
     check_share("budget_share", dem.budget_share, std::numeric_limits<double>::max());
     DemRun run{hf, model, options, dem, Stopwatch(), DemEraseStats()};
-    if (const std::optional<GreedyTin> greedy = greedy_first(hf, model, options, dem)) {
-        Mesh mesh = to_sparse_lattice_mesh(greedy->tin, hf);
+    if (std::optional<GreedyTin> greedy = greedy_first(hf, model, options, dem)) {
+        Mesh mesh = to_sparse_lattice_mesh(*greedy, hf);
         run.out.retrieved_nodes = std::int64_t(greedy->tin.nodes.size());
         run.out.retrieve_tol = options.tolerance;
+        greedy.reset(); // the mesh holds it now: its arrays are not kept through the erase
         return erase_from(run, mesh, FirstStage::greedy, stats);
     }
     if (retrieves(hf, model, options, dem)) {

@@ -48,12 +48,14 @@ void swallow_absent(EraserState &s) {
     const Mesh &m = *s.input.mesh;
     for (auto f : m.faces()) {
         const HH he = m.halfedge_handle(f);
-        const std::array<std::uint32_t, 3> ids = {
-            node_of(s, m.from_vertex_handle(he)), node_of(s, m.to_vertex_handle(he)),
-            node_of(s, m.to_vertex_handle(m.next_halfedge_handle(he)))};
+        const std::array<VH, 3> v = {m.from_vertex_handle(he), m.to_vertex_handle(he),
+                                     m.to_vertex_handle(m.next_halfedge_handle(he))};
+        const std::array<std::uint32_t, 3> ids = {node_of(s, v[0]), node_of(s, v[1]),
+                                                  node_of(s, v[2])};
+        // A vertex's point is its node's (bind_nodes checked it): read, not made from the lattice.
         std::array<glm::dvec3, 3> p;
         for (int k = 0; k < 3; ++k)
-            p[k] = to_glm(node_point(s, ids[k]));
+            p[k] = to_glm(m.point(v[k]));
         const TriangleFrame frame = triangle_frame(glm::dvec2(p[0]), glm::dvec2(p[1]),
                                                    glm::dvec2(p[2]), true, p[0].z, p[1].z, p[2].z);
         const auto [maxdev, worst] = face_worst(s, ids[0], ids[1], ids[2], frame, p[0], p[1], p[2]);

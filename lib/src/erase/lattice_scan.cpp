@@ -62,16 +62,24 @@ std::pair<float, std::int32_t> face_worst(const EraserState &s, std::uint32_t a,
     const double margin = plane.margin_over(pa, pb, pc);
     double maxdev = 0.0;
     std::int32_t worst = -1;
-    scan_lattice(
-        s, a, b, c, [](const glm::dvec2 &, const glm::dvec2 &) { return 0.0; },
-        [&](std::uint32_t u, const Mesh::Point &p, double) {
-            const double dev = plane.deviation(p[0], p[1], p[2], margin);
-            if (dev > maxdev) {
-                maxdev = dev;
-                worst = std::int32_t(u);
-            }
-            return true;
-        });
+    const auto visit = [&](std::uint32_t u, const Mesh::Point &p) {
+        const double dev = plane.deviation(p[0], p[1], p[2], margin);
+        if (dev > maxdev) {
+            maxdev = dev;
+            worst = std::int32_t(u);
+        }
+        return true;
+    };
+    // The face's samples but its corners in row order, as scan_lattice's rows give them: a small
+    // face over its box, a larger one by spans carried from row to row (visit_inside): most faces
+    // of a TIN from greedy insertion hold a few samples, and scan_lattice's spans cost two
+    // divisions a row and edge (docs/decisions/038-simplify-speed-7-floor.md).
+    const std::int64_t w = s.input.grid_w;
+    const std::int64_t x[3] = {a % w, b % w, c % w}, y[3] = {a / w, b / w, c / w};
+    const Samples g = samples(s.input);
+    visit_inside(x, y, [&](std::int64_t col, std::int64_t row) {
+        return visit(std::uint32_t(row * w + col), g.at(col, row));
+    });
     return {float_up(maxdev), worst};
 }
 
