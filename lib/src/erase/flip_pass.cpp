@@ -46,6 +46,11 @@ void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
         }
 }
 
+// A triple of polygon indices a < b < c.
+struct Triple {
+    std::uint8_t a, b, c;
+};
+
 // The pass's state: the TIN, the lattice, and the scratch of one node's try.
 class Pass {
   public:
@@ -67,6 +72,7 @@ class Pass {
         witnesses_ = 0;
         add_witness(own_);
         extra_.clear();
+        side_nodes_ = nullptr;
         const int n = int(ring_.size());
         const bool held = coverable(ring_);
         if (held && first)
@@ -89,7 +95,9 @@ class Pass {
             wide_.push_back(d);
             extra_.push_back(u);
         }
-        return !extra_.empty() && coverable(wide_) && triangulate(wide_) ? 2 : 0;
+        // A triple of ring nodes that covers v's sample is one of the widened polygon's too (in
+        // the same order).
+        return !extra_.empty() && (held || coverable(wide_)) && triangulate(wide_) ? 2 : 0;
     }
 
     const std::vector<std::int32_t> &outline() const { return outline_; }
@@ -100,38 +108,60 @@ class Pass {
     // Whether v's sample lies within the limit (a hair over counts) of some triangle over three of
     // the polygon's nodes (counter-clockwise) whose closed lattice triangle holds it: else no
     // triangulation of the polygon holds the bound (most of the nodes the erase leaves fail here).
-    // The plane's height at the sample: near_plane.
-    bool coverable(const std::vector<std::int32_t> &nodes) const {
+    // Leaves the polygon's side areas and the first such triangle for covered to go on from.
+    bool coverable(const std::vector<std::int32_t> &nodes) {
         const std::size_t n = nodes.size();
-        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
         const double z = tin_.z[own_node_];
         const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
-        std::array<std::int64_t, k_max_ring> rx, ry;
-        std::array<double, k_max_ring> rz;
         double lo = INFINITY, hi = -INFINITY;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t u = std::size_t(nodes[i]);
-            rx[i] = tin_.col[u] - xs;
-            ry[i] = tin_.row[u] - ys;
-            rz[i] = tin_.z[u];
-            lo = std::min(lo, rz[i]);
-            hi = std::max(hi, rz[i]);
+            side_z_[i] = tin_.z[std::size_t(nodes[i])];
+            lo = std::min(lo, side_z_[i]);
+            hi = std::max(hi, side_z_[i]);
         }
         // A plane over three nodes lies within their heights: a peak or a pit the nodes do not
         // reach within the limit stays (most of the nodes left at a fine bound).
         if (z - hi > stop || lo - z > stop)
             return false;
-        SideAreas<double> side;
-        side_areas(rx, ry, n, side);
-        for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a + 1; b < n; ++b) {
+        load_sides(nodes);
+        return near_triples(n, {0, 1, 2}, [&](std::size_t a, std::size_t b, std::size_t c) {
+            from_ = {std::uint8_t(a), std::uint8_t(b), std::uint8_t(c)};
+            return true;
+        });
+    }
+
+    // side_: the side areas of the polygon `nodes` (side_nodes_) around v's sample.
+    void load_sides(const std::vector<std::int32_t> &nodes) {
+        const std::size_t n = nodes.size();
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        std::array<std::int64_t, k_max_ring> rx, ry;
+        for (std::size_t i = 0; i < n; ++i) {
+            rx[i] = tin_.col[std::size_t(nodes[i])] - xs;
+            ry[i] = tin_.row[std::size_t(nodes[i])] - ys;
+        }
+        side_areas(rx, ry, n, side_);
+        side_nodes_ = &nodes;
+    }
+
+    // Calls visit(a, b, c) on each triple a < b < c of the polygon in side_ from `from` on, in
+    // lexicographic order, whose closed lattice triangle holds v's sample with v's height within
+    // the limit (a hair over counts) of their plane over the heights side_z_ (near_plane), until a
+    // visit returns true; returns whether one did.
+    template <class Visit> bool near_triples(std::size_t n, Triple from, Visit &&visit) const {
+        const double z = tin_.z[own_node_];
+        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
+        const SideAreas<double> &side = side_;
+        const std::array<double, k_max_ring> &rz = side_z_;
+        std::size_t b = from.b, c = from.c;
+        for (std::size_t a = from.a; a < n; ++a, b = a + 1, c = b + 1)
+            for (; b < n; ++b, c = b + 1) {
                 if (side[a][b] < 0.0)
                     continue;
-                for (std::size_t c = b + 1; c < n; ++c) {
+                for (; c < n; ++c) {
                     const double s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
                     if (s1 < 0.0 || s2 < 0.0 || s0 + s1 + s2 <= 0.0)
                         continue;
-                    if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop))
+                    if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop) && visit(a, b, c))
                         return true;
                 }
             }
@@ -232,16 +262,19 @@ class Pass {
     // triangles, where the search costs all of them.
     bool covered(const std::vector<std::int32_t> &nodes) {
         const int n = int(nodes.size());
-        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
-        const double z = tin_.z[own_node_];
-        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
-        std::array<std::int64_t, k_max_ring> rx, ry;
-        for (int i = 0; i < n; ++i) {
-            rx[std::size_t(i)] = tin_.col[std::size_t(nodes[std::size_t(i)])] - xs;
-            ry[std::size_t(i)] = tin_.row[std::size_t(nodes[std::size_t(i)])] - ys;
+        // The triples before coverable's first have v's sample far from their planes, over the
+        // same heights (the mesh's are the lattice's on a DEM's nodes; else all are tested).
+        bool same = side_nodes_ == &nodes;
+        for (int i = 0; i < n; ++i)
+            same = same && side_z_[std::size_t(i)] == p_[std::size_t(i)].z;
+        Triple from{0, 1, 2};
+        if (same)
+            from = from_;
+        else {
+            load_sides(nodes);
+            for (int i = 0; i < n; ++i)
+                side_z_[std::size_t(i)] = p_[std::size_t(i)].z;
         }
-        SideAreas<std::int64_t> side;
-        side_areas(rx, ry, std::size_t(n), side);
         // known[a][b]: 0 not tested yet, 1 a chord, 2 not (each tested once).
         std::array<std::array<std::uint8_t, k_max_ring>, k_max_ring> known;
         for (int a = 0; a < n; ++a)
@@ -254,34 +287,17 @@ class Pass {
                 k = is_ring_chord(q_.data(), n, a, b) ? 1 : 2;
             return k == 1;
         };
-        for (int a = 0; a < n; ++a)
-            for (int b = a + 1; b < n; ++b) {
-                const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)];
-                if (s0 < 0)
-                    continue;
-                for (int c = b + 1; c < n; ++c) {
-                    const std::int64_t s1 = side[std::size_t(b)][std::size_t(c)],
-                                       s2 = side[std::size_t(c)][std::size_t(a)];
-                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
-                        continue;
-                    if (!near_plane(double(s0), double(s1), double(s2), p_[std::size_t(a)].z,
-                                    p_[std::size_t(b)].z, p_[std::size_t(c)].z, z, stop))
-                        continue;
-                    bool empty = true;
-                    for (int j = 0; j < n && empty; ++j)
-                        empty = j == a || j == b || j == c ||
-                                !(orient(q_[std::size_t(a)], q_[std::size_t(b)],
-                                         q_[std::size_t(j)]) >= 0.0 &&
-                                  orient(q_[std::size_t(b)], q_[std::size_t(c)],
-                                         q_[std::size_t(j)]) >= 0.0 &&
-                                  orient(q_[std::size_t(c)], q_[std::size_t(a)],
-                                         q_[std::size_t(j)]) >= 0.0);
-                    if (empty && chord(a, b) && chord(b, c) && chord(a, c) &&
-                        cost(a, b, c, limit_) <= limit_)
-                        return true;
-                }
-            }
-        return false;
+        return near_triples(
+            std::size_t(n), from, [&](std::size_t sa, std::size_t sb, std::size_t sc) {
+                const int a = int(sa), b = int(sb), c = int(sc);
+                for (int j = 0; j < n; ++j)
+                    if (j != a && j != b && j != c &&
+                        orient(q_[sa], q_[sb], q_[std::size_t(j)]) >= 0.0 &&
+                        orient(q_[sb], q_[sc], q_[std::size_t(j)]) >= 0.0 &&
+                        orient(q_[sc], q_[sa], q_[std::size_t(j)]) >= 0.0)
+                        return false;
+                return chord(a, b) && chord(b, c) && chord(a, c) && cost(a, b, c, limit_) <= limit_;
+            });
     }
 
     // Replaces the triangles old_ (they tile the polygon `nodes`) by `tri` over it.
@@ -349,6 +365,12 @@ class Pass {
     std::vector<glm::dvec3> p_;
     std::vector<std::uint32_t> node_;
     std::array<std::uint32_t, 8> witness_{};
+    // The side areas of the polygon side_nodes_ (null when none), the heights near_triples
+    // measures, and coverable's first triple.
+    SideAreas<double> side_;
+    const std::vector<std::int32_t> *side_nodes_ = nullptr;
+    std::array<double, k_max_ring> side_z_{};
+    Triple from_{0, 1, 2};
     int witnesses_ = 0, next_witness_ = 0;
     std::uint32_t own_ = 0;
     std::size_t own_node_ = 0;
