@@ -46,6 +46,87 @@ void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
         }
 }
 
+// One side of cover_ruled_out from the triangle t that holds the sample, its plane at `at` there
+// under -stop (heights d = sign * (h - z)): whether a plane over every point is too, with the
+// margin `slack` and the points' largest |x|, |y| (scale).
+bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
+                  double stop, double sign, int t[3], double at, double slack, double mx,
+                  double my) {
+    const auto d = [&](int i) { return sign * (h[i] - z); };
+    const auto cross = [&](int a, int b) { return x[a] * y[b] - y[a] * x[b]; };
+    const auto holds = [&](int a, int b, int c) {
+        const std::int64_t s0 = cross(a, b), s1 = cross(b, c), s2 = cross(c, a);
+        return s0 >= 0 && s1 >= 0 && s2 >= 0 && s0 + s1 + s2 > 0;
+    };
+    // Each step's triangle holds the sample, its plane there no lower than the last's (the point
+    // farthest over the plane replaces a corner): the walk ends at the upper hull's facet.
+    for (int step = 0; step < 2 * n + 4; ++step) {
+        if (step > 0) {
+            const double s0 = double(cross(t[0], t[1])), s1 = double(cross(t[1], t[2])),
+                         s2 = double(cross(t[2], t[0]));
+            at = (d(t[0]) * s1 + d(t[1]) * s2 + d(t[2]) * s0) / (s0 + s1 + s2);
+            if (!(at < -stop))
+                return false; // a triangle that holds the sample may cover it
+        }
+        // The plane's slope: d = at + alpha * x + beta * y through the three corners.
+        const double x1 = double(x[t[1]] - x[t[0]]), y1 = double(y[t[1]] - y[t[0]]),
+                     x2 = double(x[t[2]] - x[t[0]]), y2 = double(y[t[2]] - y[t[0]]),
+                     d1 = d(t[1]) - d(t[0]), d2 = d(t[2]) - d(t[0]), det = x1 * y2 - x2 * y1;
+        const double alpha = (d1 * y2 - d2 * y1) / det, beta = (x1 * d2 - x2 * d1) / det;
+        // over: the plane with that slope over every point, its height at the sample.
+        double over = -INFINITY;
+        int far = -1;
+        for (int i = 0; i < n; ++i) {
+            const double top = d(i) - alpha * double(x[i]) - beta * double(y[i]);
+            if (top > over) {
+                over = top;
+                far = i;
+            }
+        }
+        // The margin bounds the rounding of `over` and of near_plane's test.
+        if (over < -stop - 1e-9 * (slack + std::abs(alpha) * mx + std::abs(beta) * my))
+            return true;
+        if (far == t[0] || far == t[1] || far == t[2])
+            return false;
+        if (holds(far, t[1], t[2]))
+            t[0] = far;
+        else if (holds(t[0], far, t[2]))
+            t[1] = far;
+        else if (holds(t[0], t[1], far))
+            t[2] = far;
+        else
+            return false;
+    }
+    return false;
+}
+
+} // namespace
+
+bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
+                     double stop, const int start[3]) {
+    double slack = std::abs(z) + stop, mx = 0.0, my = 0.0;
+    for (int i = 0; i < n; ++i) {
+        slack = std::max(slack, std::abs(h[i]) + std::abs(z) + stop);
+        mx = std::max(mx, std::abs(double(x[i])));
+        my = std::max(my, std::abs(double(y[i])));
+    }
+    int t[3] = {start[0], start[1], start[2]};
+    const double s0 = double(x[t[0]] * y[t[1]] - y[t[0]] * x[t[1]]),
+                 s1 = double(x[t[1]] * y[t[2]] - y[t[1]] * x[t[2]]),
+                 s2 = double(x[t[2]] * y[t[0]] - y[t[2]] * x[t[0]]);
+    const double at =
+        ((h[t[0]] - z) * s1 + (h[t[1]] - z) * s2 + (h[t[2]] - z) * s0) / (s0 + s1 + s2);
+    // The start's plane under z - stop: only an upper hull can keep every plane under; over z +
+    // stop, only a lower one over.
+    if (at < -stop)
+        return planes_under(x, y, h, n, z, stop, 1.0, t, at, slack, mx, my);
+    if (at > stop)
+        return planes_under(x, y, h, n, z, stop, -1.0, t, -at, slack, mx, my);
+    return false;
+}
+
+namespace {
+
 // A triple of polygon indices a < b < c.
 struct Triple {
     std::uint8_t a, b, c;
@@ -74,14 +155,19 @@ class Pass {
         extra_.clear();
         side_nodes_ = nullptr;
         const int n = int(ring_.size());
+        ring_start();
         const bool held = coverable(ring_);
         if (held && first)
             return 0; // the erase failed this hole on other samples than v's
         if (held && n <= max_ring_ && triangulate(ring_))
             return 1;
         wide_.clear();
+        const int ring_at[3] = {start_[0], start_[1], start_[2]};
         for (int i = 0; i < n; ++i) {
             const std::int32_t a = ring_[std::size_t(i)];
+            for (int k = 0; k < 3; ++k)
+                if (ring_at[k] == i)
+                    start_[k] = int(wide_.size());
             wide_.push_back(a);
             const std::int32_t u =
                 tin_.across[std::size_t(3 * star_[std::size_t(i)] + edge_[std::size_t(i)])];
@@ -105,6 +191,27 @@ class Pass {
   private:
     bool gather(std::int32_t v) { return tin_.star(v, k_max_ring, ring_, star_, edge_); }
 
+    // start_: three ring indices whose closed triangle holds v's sample, for cover_ruled_out: node
+    // 0, the last of the nodes after it less than a half-turn on, the next (the ring goes around
+    // v); -1 when that triangle does not hold it.
+    void ring_start() {
+        const std::size_t n = ring_.size();
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        const auto x = [&](std::size_t i) { return tin_.col[std::size_t(ring_[i])] - xs; };
+        const auto y = [&](std::size_t i) { return tin_.row[std::size_t(ring_[i])] - ys; };
+        const auto cross = [&](std::size_t a, std::size_t b) { return x(a) * y(b) - y(a) * x(b); };
+        std::size_t b = 1;
+        while (b + 1 < n && cross(0, b + 1) > 0)
+            ++b;
+        start_[0] = -1;
+        if (b + 1 < n && cross(0, b) >= 0 && cross(b, b + 1) >= 0 && cross(b + 1, 0) >= 0 &&
+            cross(0, b) + cross(b, b + 1) + cross(b + 1, 0) > 0) {
+            start_[0] = 0;
+            start_[1] = int(b);
+            start_[2] = int(b + 1);
+        }
+    }
+
     // Whether v's sample lies within the limit (a hair over counts) of some triangle over three of
     // the polygon's nodes (counter-clockwise) whose closed lattice triangle holds it: else no
     // triangulation of the polygon holds the bound (most of the nodes the erase leaves fail here).
@@ -123,24 +230,27 @@ class Pass {
         // reach within the limit stays (most of the nodes left at a fine bound).
         if (z - hi > stop || lo - z > stop)
             return false;
-        load_sides(nodes);
+        // Most nodes left stand over (or under) every plane their polygon's triangles can give
+        // them: a few steps of a walk towards the hull show it, where the triples cost O(n^3).
+        load_offsets(nodes);
+        if (start_[0] >= 0 &&
+            cover_ruled_out(rx_.data(), ry_.data(), side_z_.data(), int(n), z, stop, start_))
+            return false;
+        side_areas(rx_, ry_, n, side_);
+        side_nodes_ = &nodes;
         return near_triples(n, {0, 1, 2}, [&](std::size_t a, std::size_t b, std::size_t c) {
             from_ = {std::uint8_t(a), std::uint8_t(b), std::uint8_t(c)};
             return true;
         });
     }
 
-    // side_: the side areas of the polygon `nodes` (side_nodes_) around v's sample.
-    void load_sides(const std::vector<std::int32_t> &nodes) {
-        const std::size_t n = nodes.size();
+    // rx_, ry_: the columns and rows of the polygon `nodes` relative to v's sample.
+    void load_offsets(const std::vector<std::int32_t> &nodes) {
         const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
-        std::array<std::int64_t, k_max_ring> rx, ry;
-        for (std::size_t i = 0; i < n; ++i) {
-            rx[i] = tin_.col[std::size_t(nodes[i])] - xs;
-            ry[i] = tin_.row[std::size_t(nodes[i])] - ys;
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            rx_[i] = tin_.col[std::size_t(nodes[i])] - xs;
+            ry_[i] = tin_.row[std::size_t(nodes[i])] - ys;
         }
-        side_areas(rx, ry, n, side_);
-        side_nodes_ = &nodes;
     }
 
     // Calls visit(a, b, c) on each triple a < b < c of the polygon in side_ from `from` on, in
@@ -271,7 +381,9 @@ class Pass {
         if (same)
             from = from_;
         else {
-            load_sides(nodes);
+            load_offsets(nodes);
+            side_areas(rx_, ry_, std::size_t(n), side_);
+            side_nodes_ = &nodes;
             for (int i = 0; i < n; ++i)
                 side_z_[std::size_t(i)] = p_[std::size_t(i)].z;
         }
@@ -370,7 +482,9 @@ class Pass {
     SideAreas<double> side_;
     const std::vector<std::int32_t> *side_nodes_ = nullptr;
     std::array<double, k_max_ring> side_z_{};
+    std::array<std::int64_t, k_max_ring> rx_{}, ry_{};
     Triple from_{0, 1, 2};
+    int start_[3] = {-1, -1, -1};
     int witnesses_ = 0, next_witness_ = 0;
     std::uint32_t own_ = 0;
     std::size_t own_node_ = 0;
