@@ -130,8 +130,9 @@ TEST(FlipPassCover, RuledOutOnlyWhereNoTriangleCoversOnRealCrops) {
             if (p.start[0] < 0)
                 continue;
             ++started;
+            int start[3] = {p.start[0], p.start[1], p.start[2]};
             const bool out = erase::cover_ruled_out(p.x.data(), p.y.data(), p.h.data(),
-                                                    int(p.x.size()), p.z, c.bound, p.start);
+                                                    int(p.x.size()), p.z, c.bound, start);
             // Ruled out: no triangle comes within the bound, nor within a hair over it.
             if (out) {
                 EXPECT_FALSE(brute_covers(p, c.bound, 1e-6L));

@@ -50,8 +50,7 @@ void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
 // under -stop (heights d = sign * (h - z)): whether a plane over every point is too, with the
 // margin `slack` and the points' largest |x|, |y| (scale).
 bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
-                  double stop, double sign, int t[3], double at, double slack, double mx,
-                  double my) {
+                  double stop, double sign, int t[3], double at) {
     const auto d = [&](int i) { return sign * (h[i] - z); };
     const auto cross = [&](int a, int b) { return x[a] * y[b] - y[a] * x[b]; };
     const auto holds = [&](int a, int b, int c) {
@@ -83,9 +82,17 @@ bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h,
                 far = i;
             }
         }
-        // The margin bounds the rounding of `over` and of near_plane's test.
-        if (over < -stop - 1e-9 * (slack + std::abs(alpha) * mx + std::abs(beta) * my))
-            return true;
+        if (over < -stop) {
+            // The margin bounds the rounding of `over` and of near_plane's test (measured only
+            // here: most walks end before).
+            double slack = std::abs(z) + stop, mx = 0.0, my = 0.0;
+            for (int i = 0; i < n; ++i) {
+                slack = std::max(slack, std::abs(h[i]) + std::abs(z) + stop);
+                mx = std::max(mx, std::abs(double(x[i])));
+                my = std::max(my, std::abs(double(y[i])));
+            }
+            return over < -stop - 1e-9 * (slack + std::abs(alpha) * mx + std::abs(beta) * my);
+        }
         if (far == t[0] || far == t[1] || far == t[2])
             return false;
         if (holds(far, t[1], t[2]))
@@ -103,14 +110,8 @@ bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h,
 } // namespace
 
 bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
-                     double stop, const int start[3]) {
-    double slack = std::abs(z) + stop, mx = 0.0, my = 0.0;
-    for (int i = 0; i < n; ++i) {
-        slack = std::max(slack, std::abs(h[i]) + std::abs(z) + stop);
-        mx = std::max(mx, std::abs(double(x[i])));
-        my = std::max(my, std::abs(double(y[i])));
-    }
-    int t[3] = {start[0], start[1], start[2]};
+                     double stop, int start[3]) {
+    int *t = start;
     const double s0 = double(x[t[0]] * y[t[1]] - y[t[0]] * x[t[1]]),
                  s1 = double(x[t[1]] * y[t[2]] - y[t[1]] * x[t[2]]),
                  s2 = double(x[t[2]] * y[t[0]] - y[t[2]] * x[t[0]]);
@@ -119,9 +120,9 @@ bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double 
     // The start's plane under z - stop: only an upper hull can keep every plane under; over z +
     // stop, only a lower one over.
     if (at < -stop)
-        return planes_under(x, y, h, n, z, stop, 1.0, t, at, slack, mx, my);
+        return planes_under(x, y, h, n, z, stop, 1.0, t, at);
     if (at > stop)
-        return planes_under(x, y, h, n, z, stop, -1.0, t, -at, slack, mx, my);
+        return planes_under(x, y, h, n, z, stop, -1.0, t, -at);
     return false;
 }
 

@@ -34,8 +34,9 @@ Mesh flip_pass(const Mesh &tin, const Heightfield &hf, double limit, int max_val
 // than that under (over) z at the sample: the simplex walk over the triangles that hold the sample
 // from `start` (three indices whose closed triangle holds it, counter-clockwise), towards the
 // lifted points' upper (lower) hull, until such a plane or a triangle within reach of z turns up.
-// False when neither side rules the cover out (not a proof that some triangle covers).
+// False when neither side rules the cover out (not a proof that some triangle covers). Leaves
+// in `start` the walk's last triangle (it holds the sample too).
 bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
-                     double stop, const int start[3]);
+                     double stop, int start[3]);
 
 } // namespace tinlod::erase
