@@ -47,8 +47,8 @@ void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
 }
 
 // One side of cover_ruled_out from the triangle t that holds the sample, its plane at `at` there
-// under -stop (heights d = sign * (h - z)): whether a plane over every point is too, with the
-// margin `slack` and the points' largest |x|, |y| (scale).
+// under -stop (heights d = sign * (h - z)): whether a plane over every point is too, a rounding
+// margin under. Leaves in t the walk's last triangle.
 bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
                   double stop, double sign, int t[3], double at) {
     const auto d = [&](int i) { return sign * (h[i] - z); };
@@ -163,6 +163,7 @@ class Pass {
         if (held && n <= max_ring_ && triangulate(ring_))
             return 1;
         wide_.clear();
+        // The widened polygon's walk goes on from the ring's last triangle (left in start_).
         const int ring_at[3] = {start_[0], start_[1], start_[2]};
         for (int i = 0; i < n; ++i) {
             const std::int32_t a = ring_[std::size_t(i)];
