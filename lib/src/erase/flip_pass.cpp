@@ -33,15 +33,14 @@ bool near_plane(double s0, double s1, double s2, double za, double zb, double zc
 }
 
 // side[a][b]: twice the signed area of (node a, node b, the sample), lattice units, from the nodes'
-// columns rx and rows ry relative to the sample's; once per pair, as T (exact: lattice areas are
-// far under 2^53).
-template <class T> using SideAreas = std::array<std::array<T, k_max_ring>, k_max_ring>;
-template <class T>
+// columns rx and rows ry relative to the sample's; once per pair, as doubles (exact: lattice areas
+// are far under 2^53).
+using SideAreas = std::array<std::array<double, k_max_ring>, k_max_ring>;
 void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
-                const std::array<std::int64_t, k_max_ring> &ry, std::size_t n, SideAreas<T> &side) {
+                const std::array<std::int64_t, k_max_ring> &ry, std::size_t n, SideAreas &side) {
     for (std::size_t a = 0; a < n; ++a)
         for (std::size_t b = a + 1; b < n; ++b) {
-            side[a][b] = T(rx[a] * ry[b] - ry[a] * rx[b]);
+            side[a][b] = double(rx[a] * ry[b] - ry[a] * rx[b]);
             side[b][a] = -side[a][b];
         }
 }
@@ -262,7 +261,7 @@ class Pass {
     template <class Visit> bool near_triples(std::size_t n, Triple from, Visit &&visit) const {
         const double z = tin_.z[own_node_];
         const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
-        const SideAreas<double> &side = side_;
+        const SideAreas &side = side_;
         const std::array<double, k_max_ring> &rz = side_z_;
         std::size_t b = from.b, c = from.c;
         for (std::size_t a = from.a; a < n; ++a, b = a + 1, c = b + 1)
@@ -481,7 +480,7 @@ class Pass {
     std::array<std::uint32_t, 8> witness_{};
     // The side areas of the polygon side_nodes_ (null when none), the heights near_triples
     // measures, and coverable's first triple.
-    SideAreas<double> side_;
+    SideAreas side_;
     const std::vector<std::int32_t> *side_nodes_ = nullptr;
     std::array<double, k_max_ring> side_z_{};
     std::array<std::int64_t, k_max_ring> rx_{}, ry_{};
