@@ -33,18 +33,104 @@ bool near_plane(double s0, double s1, double s2, double za, double zb, double zc
 }
 
 // side[a][b]: twice the signed area of (node a, node b, the sample), lattice units, from the nodes'
-// columns rx and rows ry relative to the sample's; once per pair, as T (exact: lattice areas are
-// far under 2^53).
-template <class T> using SideAreas = std::array<std::array<T, k_max_ring>, k_max_ring>;
-template <class T>
+// columns rx and rows ry relative to the sample's; once per pair, as doubles (exact: lattice areas
+// are far under 2^53).
+using SideAreas = std::array<std::array<double, k_max_ring>, k_max_ring>;
 void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
-                const std::array<std::int64_t, k_max_ring> &ry, std::size_t n, SideAreas<T> &side) {
+                const std::array<std::int64_t, k_max_ring> &ry, std::size_t n, SideAreas &side) {
     for (std::size_t a = 0; a < n; ++a)
         for (std::size_t b = a + 1; b < n; ++b) {
-            side[a][b] = T(rx[a] * ry[b] - ry[a] * rx[b]);
+            side[a][b] = double(rx[a] * ry[b] - ry[a] * rx[b]);
             side[b][a] = -side[a][b];
         }
 }
+
+// One side of cover_ruled_out from the triangle t that holds the sample, its plane at `at` there
+// under -stop (heights d = sign * (h - z)): whether a plane over every point is too, a rounding
+// margin under. Leaves in t the walk's last triangle.
+bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
+                  double stop, double sign, int t[3], double at) {
+    const auto d = [&](int i) { return sign * (h[i] - z); };
+    const auto cross = [&](int a, int b) { return x[a] * y[b] - y[a] * x[b]; };
+    const auto holds = [&](int a, int b, int c) {
+        const std::int64_t s0 = cross(a, b), s1 = cross(b, c), s2 = cross(c, a);
+        return s0 >= 0 && s1 >= 0 && s2 >= 0 && s0 + s1 + s2 > 0;
+    };
+    // Each step's triangle holds the sample, its plane there no lower than the last's (the point
+    // farthest over the plane replaces a corner): the walk ends at the upper hull's facet.
+    for (int step = 0; step < 2 * n + 4; ++step) {
+        if (step > 0) {
+            const double s0 = double(cross(t[0], t[1])), s1 = double(cross(t[1], t[2])),
+                         s2 = double(cross(t[2], t[0]));
+            at = (d(t[0]) * s1 + d(t[1]) * s2 + d(t[2]) * s0) / (s0 + s1 + s2);
+            if (!(at < -stop))
+                return false; // a triangle that holds the sample may cover it
+        }
+        // The plane's slope: d = at + alpha * x + beta * y through the three corners.
+        const double x1 = double(x[t[1]] - x[t[0]]), y1 = double(y[t[1]] - y[t[0]]),
+                     x2 = double(x[t[2]] - x[t[0]]), y2 = double(y[t[2]] - y[t[0]]),
+                     d1 = d(t[1]) - d(t[0]), d2 = d(t[2]) - d(t[0]), det = x1 * y2 - x2 * y1;
+        const double alpha = (d1 * y2 - d2 * y1) / det, beta = (x1 * d2 - x2 * d1) / det;
+        // over: the plane with that slope over every point, its height at the sample.
+        double over = -INFINITY;
+        int far = -1;
+        for (int i = 0; i < n; ++i) {
+            const double top = d(i) - alpha * double(x[i]) - beta * double(y[i]);
+            if (top > over) {
+                over = top;
+                far = i;
+            }
+        }
+        if (over < -stop) {
+            // The margin bounds the rounding of `over` and of near_plane's test (measured only
+            // here: most walks end before).
+            double slack = std::abs(z) + stop, mx = 0.0, my = 0.0;
+            for (int i = 0; i < n; ++i) {
+                slack = std::max(slack, std::abs(h[i]) + std::abs(z) + stop);
+                mx = std::max(mx, std::abs(double(x[i])));
+                my = std::max(my, std::abs(double(y[i])));
+            }
+            return over < -stop - 1e-9 * (slack + std::abs(alpha) * mx + std::abs(beta) * my);
+        }
+        if (far == t[0] || far == t[1] || far == t[2])
+            return false;
+        if (holds(far, t[1], t[2]))
+            t[0] = far;
+        else if (holds(t[0], far, t[2]))
+            t[1] = far;
+        else if (holds(t[0], t[1], far))
+            t[2] = far;
+        else
+            return false;
+    }
+    return false;
+}
+
+} // namespace
+
+bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
+                     double stop, int start[3]) {
+    int *t = start;
+    const double s0 = double(x[t[0]] * y[t[1]] - y[t[0]] * x[t[1]]),
+                 s1 = double(x[t[1]] * y[t[2]] - y[t[1]] * x[t[2]]),
+                 s2 = double(x[t[2]] * y[t[0]] - y[t[2]] * x[t[0]]);
+    const double at =
+        ((h[t[0]] - z) * s1 + (h[t[1]] - z) * s2 + (h[t[2]] - z) * s0) / (s0 + s1 + s2);
+    // The start's plane under z - stop: only an upper hull can keep every plane under; over z +
+    // stop, only a lower one over.
+    if (at < -stop)
+        return planes_under(x, y, h, n, z, stop, 1.0, t, at);
+    if (at > stop)
+        return planes_under(x, y, h, n, z, stop, -1.0, t, -at);
+    return false;
+}
+
+namespace {
+
+// A triple of polygon indices a < b < c.
+struct Triple {
+    std::uint8_t a, b, c;
+};
 
 // The pass's state: the TIN, the lattice, and the scratch of one node's try.
 class Pass {
@@ -67,15 +153,22 @@ class Pass {
         witnesses_ = 0;
         add_witness(own_);
         extra_.clear();
+        side_nodes_ = nullptr;
         const int n = int(ring_.size());
+        ring_start();
         const bool held = coverable(ring_);
         if (held && first)
             return 0; // the erase failed this hole on other samples than v's
         if (held && n <= max_ring_ && triangulate(ring_))
             return 1;
         wide_.clear();
+        // The widened polygon's walk goes on from the ring's last triangle (left in start_).
+        const int ring_at[3] = {start_[0], start_[1], start_[2]};
         for (int i = 0; i < n; ++i) {
             const std::int32_t a = ring_[std::size_t(i)];
+            for (int k = 0; k < 3; ++k)
+                if (ring_at[k] == i)
+                    start_[k] = int(wide_.size());
             wide_.push_back(a);
             const std::int32_t u =
                 tin_.across[std::size_t(3 * star_[std::size_t(i)] + edge_[std::size_t(i)])];
@@ -89,7 +182,9 @@ class Pass {
             wide_.push_back(d);
             extra_.push_back(u);
         }
-        return !extra_.empty() && coverable(wide_) && triangulate(wide_) ? 2 : 0;
+        // A triple of ring nodes that covers v's sample is one of the widened polygon's too (in
+        // the same order).
+        return !extra_.empty() && (held || coverable(wide_)) && triangulate(wide_) ? 2 : 0;
     }
 
     const std::vector<std::int32_t> &outline() const { return outline_; }
@@ -97,41 +192,87 @@ class Pass {
   private:
     bool gather(std::int32_t v) { return tin_.star(v, k_max_ring, ring_, star_, edge_); }
 
+    // start_: three ring indices whose closed triangle holds v's sample, for cover_ruled_out: node
+    // 0, the last of the nodes after it less than a half-turn on, the next (the ring goes around
+    // v); -1 when that triangle does not hold it.
+    void ring_start() {
+        const std::size_t n = ring_.size();
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        const auto x = [&](std::size_t i) { return tin_.col[std::size_t(ring_[i])] - xs; };
+        const auto y = [&](std::size_t i) { return tin_.row[std::size_t(ring_[i])] - ys; };
+        const auto cross = [&](std::size_t a, std::size_t b) { return x(a) * y(b) - y(a) * x(b); };
+        std::size_t b = 1;
+        while (b + 1 < n && cross(0, b + 1) > 0)
+            ++b;
+        start_[0] = -1;
+        if (b + 1 < n && cross(0, b) >= 0 && cross(b, b + 1) >= 0 && cross(b + 1, 0) >= 0 &&
+            cross(0, b) + cross(b, b + 1) + cross(b + 1, 0) > 0) {
+            start_[0] = 0;
+            start_[1] = int(b);
+            start_[2] = int(b + 1);
+        }
+    }
+
     // Whether v's sample lies within the limit (a hair over counts) of some triangle over three of
     // the polygon's nodes (counter-clockwise) whose closed lattice triangle holds it: else no
     // triangulation of the polygon holds the bound (most of the nodes the erase leaves fail here).
-    // The plane's height at the sample: near_plane.
-    bool coverable(const std::vector<std::int32_t> &nodes) const {
+    // Leaves the polygon's side areas and the first such triangle for covered to go on from.
+    bool coverable(const std::vector<std::int32_t> &nodes) {
         const std::size_t n = nodes.size();
-        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
         const double z = tin_.z[own_node_];
         const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
-        std::array<std::int64_t, k_max_ring> rx, ry;
-        std::array<double, k_max_ring> rz;
         double lo = INFINITY, hi = -INFINITY;
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t u = std::size_t(nodes[i]);
-            rx[i] = tin_.col[u] - xs;
-            ry[i] = tin_.row[u] - ys;
-            rz[i] = tin_.z[u];
-            lo = std::min(lo, rz[i]);
-            hi = std::max(hi, rz[i]);
+            side_z_[i] = tin_.z[std::size_t(nodes[i])];
+            lo = std::min(lo, side_z_[i]);
+            hi = std::max(hi, side_z_[i]);
         }
         // A plane over three nodes lies within their heights: a peak or a pit the nodes do not
         // reach within the limit stays (most of the nodes left at a fine bound).
         if (z - hi > stop || lo - z > stop)
             return false;
-        SideAreas<double> side;
-        side_areas(rx, ry, n, side);
-        for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a + 1; b < n; ++b) {
+        // Most nodes left stand over (or under) every plane their polygon's triangles can give
+        // them: a few steps of a walk towards the hull show it, where the triples cost O(n^3).
+        load_offsets(nodes);
+        if (start_[0] >= 0 &&
+            cover_ruled_out(rx_.data(), ry_.data(), side_z_.data(), int(n), z, stop, start_))
+            return false;
+        side_areas(rx_, ry_, n, side_);
+        side_nodes_ = &nodes;
+        return near_triples(n, {0, 1, 2}, [&](std::size_t a, std::size_t b, std::size_t c) {
+            from_ = {std::uint8_t(a), std::uint8_t(b), std::uint8_t(c)};
+            return true;
+        });
+    }
+
+    // rx_, ry_: the columns and rows of the polygon `nodes` relative to v's sample.
+    void load_offsets(const std::vector<std::int32_t> &nodes) {
+        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            rx_[i] = tin_.col[std::size_t(nodes[i])] - xs;
+            ry_[i] = tin_.row[std::size_t(nodes[i])] - ys;
+        }
+    }
+
+    // Calls visit(a, b, c) on each triple a < b < c of the polygon in side_ from `from` on, in
+    // lexicographic order, whose closed lattice triangle holds v's sample with v's height within
+    // the limit (a hair over counts) of their plane over the heights side_z_ (near_plane), until a
+    // visit returns true; returns whether one did.
+    template <class Visit> bool near_triples(std::size_t n, Triple from, Visit &&visit) const {
+        const double z = tin_.z[own_node_];
+        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
+        const SideAreas &side = side_;
+        const std::array<double, k_max_ring> &rz = side_z_;
+        std::size_t b = from.b, c = from.c;
+        for (std::size_t a = from.a; a < n; ++a, b = a + 1, c = b + 1)
+            for (; b < n; ++b, c = b + 1) {
                 if (side[a][b] < 0.0)
                     continue;
-                for (std::size_t c = b + 1; c < n; ++c) {
+                for (; c < n; ++c) {
                     const double s0 = side[a][b], s1 = side[b][c], s2 = side[c][a];
                     if (s1 < 0.0 || s2 < 0.0 || s0 + s1 + s2 <= 0.0)
                         continue;
-                    if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop))
+                    if (near_plane(s0, s1, s2, rz[a], rz[b], rz[c], z, stop) && visit(a, b, c))
                         return true;
                 }
             }
@@ -232,16 +373,21 @@ class Pass {
     // triangles, where the search costs all of them.
     bool covered(const std::vector<std::int32_t> &nodes) {
         const int n = int(nodes.size());
-        const std::int64_t xs = tin_.col[own_node_], ys = tin_.row[own_node_];
-        const double z = tin_.z[own_node_];
-        const double stop = limit_ * (1.0 + 1e-9) + 1e-12 * std::abs(z);
-        std::array<std::int64_t, k_max_ring> rx, ry;
-        for (int i = 0; i < n; ++i) {
-            rx[std::size_t(i)] = tin_.col[std::size_t(nodes[std::size_t(i)])] - xs;
-            ry[std::size_t(i)] = tin_.row[std::size_t(nodes[std::size_t(i)])] - ys;
+        // The triples before coverable's first have v's sample far from their planes, over the
+        // same heights (the mesh's are the lattice's on a DEM's nodes; else all are tested).
+        bool same = side_nodes_ == &nodes;
+        for (int i = 0; i < n; ++i)
+            same = same && side_z_[std::size_t(i)] == p_[std::size_t(i)].z;
+        Triple from{0, 1, 2};
+        if (same)
+            from = from_;
+        else {
+            load_offsets(nodes);
+            side_areas(rx_, ry_, std::size_t(n), side_);
+            side_nodes_ = &nodes;
+            for (int i = 0; i < n; ++i)
+                side_z_[std::size_t(i)] = p_[std::size_t(i)].z;
         }
-        SideAreas<std::int64_t> side;
-        side_areas(rx, ry, std::size_t(n), side);
         // known[a][b]: 0 not tested yet, 1 a chord, 2 not (each tested once).
         std::array<std::array<std::uint8_t, k_max_ring>, k_max_ring> known;
         for (int a = 0; a < n; ++a)
@@ -254,34 +400,17 @@ class Pass {
                 k = is_ring_chord(q_.data(), n, a, b) ? 1 : 2;
             return k == 1;
         };
-        for (int a = 0; a < n; ++a)
-            for (int b = a + 1; b < n; ++b) {
-                const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)];
-                if (s0 < 0)
-                    continue;
-                for (int c = b + 1; c < n; ++c) {
-                    const std::int64_t s1 = side[std::size_t(b)][std::size_t(c)],
-                                       s2 = side[std::size_t(c)][std::size_t(a)];
-                    if (s1 < 0 || s2 < 0 || s0 + s1 + s2 <= 0)
-                        continue;
-                    if (!near_plane(double(s0), double(s1), double(s2), p_[std::size_t(a)].z,
-                                    p_[std::size_t(b)].z, p_[std::size_t(c)].z, z, stop))
-                        continue;
-                    bool empty = true;
-                    for (int j = 0; j < n && empty; ++j)
-                        empty = j == a || j == b || j == c ||
-                                !(orient(q_[std::size_t(a)], q_[std::size_t(b)],
-                                         q_[std::size_t(j)]) >= 0.0 &&
-                                  orient(q_[std::size_t(b)], q_[std::size_t(c)],
-                                         q_[std::size_t(j)]) >= 0.0 &&
-                                  orient(q_[std::size_t(c)], q_[std::size_t(a)],
-                                         q_[std::size_t(j)]) >= 0.0);
-                    if (empty && chord(a, b) && chord(b, c) && chord(a, c) &&
-                        cost(a, b, c, limit_) <= limit_)
-                        return true;
-                }
-            }
-        return false;
+        return near_triples(
+            std::size_t(n), from, [&](std::size_t sa, std::size_t sb, std::size_t sc) {
+                const int a = int(sa), b = int(sb), c = int(sc);
+                for (int j = 0; j < n; ++j)
+                    if (j != a && j != b && j != c &&
+                        orient(q_[sa], q_[sb], q_[std::size_t(j)]) >= 0.0 &&
+                        orient(q_[sb], q_[sc], q_[std::size_t(j)]) >= 0.0 &&
+                        orient(q_[sc], q_[sa], q_[std::size_t(j)]) >= 0.0)
+                        return false;
+                return chord(a, b) && chord(b, c) && chord(a, c) && cost(a, b, c, limit_) <= limit_;
+            });
     }
 
     // Replaces the triangles old_ (they tile the polygon `nodes`) by `tri` over it.
@@ -349,6 +478,14 @@ class Pass {
     std::vector<glm::dvec3> p_;
     std::vector<std::uint32_t> node_;
     std::array<std::uint32_t, 8> witness_{};
+    // The side areas of the polygon side_nodes_ (null when none), the heights near_triples
+    // measures, and coverable's first triple.
+    SideAreas side_;
+    const std::vector<std::int32_t> *side_nodes_ = nullptr;
+    std::array<double, k_max_ring> side_z_{};
+    std::array<std::int64_t, k_max_ring> rx_{}, ry_{};
+    Triple from_{0, 1, 2};
+    int start_[3] = {-1, -1, -1};
     int witnesses_ = 0, next_witness_ = 0;
     std::uint32_t own_ = 0;
     std::size_t own_node_ = 0;

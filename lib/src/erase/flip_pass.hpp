@@ -28,4 +28,15 @@ bool flip_pass_applies(const Significance &model, const EraseOptions &options);
 Mesh flip_pass(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
                FlipPassStats *stats = nullptr);
 
+// Whether no triangle over three of n points (columns x, rows y relative to a sample, none at it;
+// heights h) whose closed lattice triangle holds the sample has its plane within `stop` of height
+// z there, a rounding margin over. Shown by a plane above every point (or below every one) more
+// than that under (over) z at the sample: the simplex walk over the triangles that hold the sample
+// from `start` (three indices whose closed triangle holds it, counter-clockwise), towards the
+// lifted points' upper (lower) hull, until such a plane or a triangle within reach of z turns up.
+// False when neither side rules the cover out (not a proof that some triangle covers). Leaves
+// in `start` the walk's last triangle (it holds the sample too).
+bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
+                     double stop, int start[3]);
+
 } // namespace tinlod::erase
