@@ -210,7 +210,8 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
     // heights put many deviations exactly at the bound), far over the heights' rounding.
     const double stop = limit * (1.0 + 1e-9) + 1e-12 * std::abs(p.z);
     least = INFINITY;
-    // side[a][b]: twice the signed area of (ring node a, ring node b, the sample), lattice units.
+    // side[a][b] (a < b): twice the signed area of (ring node a, ring node b, the sample), lattice
+    // units; side[b][a] is its negation.
     std::array<std::int64_t, k_max_ring> rx, ry;
     std::array<std::array<std::int64_t, k_max_ring>, k_max_ring> side;
     for (int i = 0; i < h.n; ++i) {
@@ -219,23 +220,22 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
         ry[std::size_t(i)] = u / w - ys;
     }
     for (int a = 0; a < h.n; ++a)
-        for (int b = a + 1; b < h.n; ++b) {
-            side[std::size_t(a)][std::size_t(b)] = rx[a] * ry[b] - ry[a] * rx[b];
-            side[std::size_t(b)][std::size_t(a)] = -side[std::size_t(a)][std::size_t(b)];
-        }
-    for (int a = 0; a < h.n; ++a)
         for (int b = a + 1; b < h.n; ++b)
+            side[std::size_t(a)][std::size_t(b)] = rx[a] * ry[b] - ry[a] * rx[b];
+    for (int a = 0; a < h.n; ++a)
+        for (int b = a + 1; b < h.n; ++b) {
+            const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)];
+            const double high = std::max(h.p[a].z, h.p[b].z), low = std::min(h.p[a].z, h.p[b].z);
             for (int c = b + 1; c < h.n; ++c) {
-                const std::int64_t s0 = side[std::size_t(a)][std::size_t(b)],
-                                   s1 = side[std::size_t(b)][std::size_t(c)],
-                                   s2 = side[std::size_t(c)][std::size_t(a)];
+                const std::int64_t s1 = side[std::size_t(b)][std::size_t(c)],
+                                   s2 = -side[std::size_t(a)][std::size_t(c)];
                 if (!((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)))
                     continue;
                 if (!(orient(h.q[a], h.q[b], h.q[c]) > 0.0))
                     continue;
                 // The plane at the sample lies between the corners' heights.
-                const double below = p.z - std::max({h.p[a].z, h.p[b].z, h.p[c].z}),
-                             above = std::min({h.p[a].z, h.p[b].z, h.p[c].z}) - p.z;
+                const double below = p.z - std::max(high, h.p[c].z),
+                             above = std::min(low, h.p[c].z) - p.z;
                 if (below > stop || above > stop) {
                     least = std::min(least, std::max(below, above));
                     continue;
@@ -249,6 +249,7 @@ static bool over_every_triangle(const EraserState &s, const Hole &h, std::uint32
                 if (least <= stop)
                     return false;
             }
+        }
     return true;
 }
 
