@@ -214,8 +214,13 @@ class Pass {
         around_.erase(std::unique(around_.begin(), around_.end()), around_.end());
         for (const std::int32_t t : around_)
             tris_.push_back(corners({tin_.at(t, 0), tin_.at(t, 1), tin_.at(t, 2)}));
-        if (!fit())
+        if (!fit()) {
+            // In heights (not changes) the new triangles' rows depend on the ring alone: when they
+            // rule the hole out, it stays ruled out while v's star stands.
+            if (by_hole_)
+                kept_[std::size_t(v)] = k_none;
             return false;
+        }
         if (!holds()) {
             for (std::size_t k = 0; k < vars_.size(); ++k)
                 tin_.z[std::size_t(vars_[k])] = old_z_[k];
@@ -424,6 +429,7 @@ class Pass {
     bool fit() {
         const std::size_t nv = vars_.size();
         rows_.clear();
+        by_hole_ = true;
         double fixed = 0.0; // the largest deviation no variable changes
         // Each variable's own sample keeps its change within [low, high]: a row whose weighted
         // range misses its own [r - limit, r + limit] rules the erase out before the programme.
@@ -439,8 +445,10 @@ class Pass {
         boxes_.reset(low_, high_, limit_);
         std::size_t new_rows = rows_.size();
         for (std::size_t t = 0; t < tris_.size(); ++t) {
-            if (t == new_tris_)
+            if (t == new_tris_) {
                 new_rows = rows_.size();
+                by_hole_ = false;
+            }
             const Corners &c = tris_[t];
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
                          zc = tin_.z[std::size_t(c.node[2])];
@@ -489,7 +497,11 @@ class Pass {
                 return false;
         // The programme on the new triangles' rows first, then on all.
         const bool around = new_tris_ < tris_.size();
-        if ((around && !solve(nv, new_rows, true)) || !solve(nv, rows_.size(), !around))
+        by_hole_ = true;
+        if (around && !solve(nv, new_rows, true))
+            return false;
+        by_hole_ = !around;
+        if (!solve(nv, rows_.size(), !around))
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
@@ -631,6 +643,7 @@ class Pass {
     std::vector<Corners> tris_;
     std::vector<Row> rows_;
     std::size_t new_tris_ = 0;
+    bool by_hole_ = false; // the last fit() was ruled out by the new triangles' rows alone
     std::vector<double> dense_, dz_, old_z_, low_, high_;
     BoxNarrowing boxes_;
     std::vector<std::uint8_t> picked_;
