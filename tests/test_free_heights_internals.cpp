@@ -211,3 +211,115 @@ TEST(BoxNarrowing, RulesOutOnlyHolesTheProgrammeRulesOut) {
     EXPECT_GT(over, 50);
     EXPECT_GT(ruled_out, over / 2);
 }
+
+// The pass's stepped scan (scan_stepped) on triangles over a real DEM against each sample of
+// visit_inside (the erase's scan) weighed here by its own cross products: the samples it visits
+// come in visit_inside's order with their doubled areas; every sample whose planes miss the test
+// by over 1e-9 m is visited, every one passed over keeps it within 1e-9 m; and the largest miss
+// over the samples, tracked with the thresholds moving as the pass's reach tests move them, is
+// the largest a full scan finds, to the bit.
+TEST(ScanStepped, VisitsWhatTheTestCannotPassOver) {
+    const tinlod::Heightfield hf = tinlod::load_heightfield(tinlod::test::asset("crater_u16.png"));
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> cx(0, hf.width - 48), cy(0, hf.height - 48), off(0, 47);
+    std::uniform_real_distribution<double> room(0.0, 3.0);
+    int triangles = 0, visited = 0, passed = 0;
+    for (int trial = 0; trial < 600; ++trial) {
+        const int x0 = cx(rng), y0 = cy(rng);
+        std::int64_t x[3], y[3];
+        for (int k = 0; k < 3; ++k) {
+            x[k] = x0 + off(rng);
+            y[k] = y0 + off(rng);
+        }
+        std::int64_t o = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        if (o < 0) {
+            std::swap(x[1], x[2]);
+            std::swap(y[1], y[2]);
+            o = -o;
+        }
+        if (o == 0 || tinlod::box_samples(x, y) <= tinlod::k_small_box)
+            continue;
+        ++triangles;
+        std::array<double, 3> h, down, up;
+        for (std::size_t k = 0; k < 3; ++k) {
+            h[k] = double(hf.at(int(x[k]), int(y[k])));
+            down[k] = h[k] + room(rng);
+            up[k] = h[k] - room(rng);
+        }
+        const auto areas = [&](std::int64_t c, std::int64_t r) {
+            std::array<std::int64_t, 3> a;
+            for (int k = 0; k < 3; ++k) {
+                const int b = (k + 1) % 3, d = (k + 2) % 3;
+                a[std::size_t(k)] = (x[b] - c) * (y[d] - r) - (y[b] - r) * (x[d] - c);
+            }
+            return a;
+        };
+        const auto plane = [&](const std::array<double, 3> &z,
+                               const std::array<std::int64_t, 3> &a) {
+            return (double(a[0]) * z[0] + double(a[1]) * z[1] + double(a[2]) * z[2]) / double(o);
+        };
+        std::vector<std::array<std::int64_t, 2>> all, seen;
+        tinlod::visit_inside(x, y, [&](std::int64_t c, std::int64_t r) {
+            all.push_back({c, r});
+            return true;
+        });
+        // Fixed thresholds: about half the samples pass.
+        const double floor = -1.5, ceiling = 1.5;
+        bool same_areas = true;
+        tinlod::erase::scan_stepped(
+            hf, x, y, down, up, floor, ceiling,
+            [&](std::int64_t c, std::int64_t r, double sa, double sb, double sc) {
+                const auto a = areas(c, r);
+                same_areas =
+                    same_areas && sa == double(a[0]) && sb == double(a[1]) && sc == double(a[2]);
+                seen.push_back({c, r});
+                return true;
+            });
+        EXPECT_TRUE(same_areas) << "trial " << trial;
+        std::size_t next = 0;
+        for (const auto &s : all) {
+            const auto a = areas(s[0], s[1]);
+            const double z = double(hf.at(int(s[0]), int(s[1])));
+            const double l = plane(down, a) - z, u = plane(up, a) - z;
+            const bool is_seen = next < seen.size() && seen[next] == s;
+            if (is_seen) {
+                ++next;
+                ++visited;
+            } else {
+                ++passed;
+                EXPECT_TRUE(l >= floor - 1e-9 && u <= ceiling + 1e-9) << "trial " << trial;
+            }
+            if (l < floor - 1e-9 || u > ceiling + 1e-9) {
+                EXPECT_TRUE(is_seen) << "trial " << trial;
+            }
+        }
+        EXPECT_EQ(next, seen.size()) << "visited out of order or outside, trial " << trial;
+        // The reach tests' use: the largest |z - p| - m, p the plane through the corners' samples,
+        // m through their rooms (here 1.5 m each), the thresholds following the largest so far.
+        const std::array<double, 3> m = {1.5, 1.5, 1.5};
+        const auto miss = [&](std::int64_t c, std::int64_t r) {
+            const auto a = areas(c, r);
+            return std::abs(double(hf.at(int(c), int(r))) - plane(h, a)) - plane(m, a);
+        };
+        double full = 0.0;
+        for (const auto &s : all)
+            full = std::max(full, miss(s[0], s[1]));
+        std::array<double, 3> raised, lowered;
+        for (std::size_t k = 0; k < 3; ++k) {
+            raised[k] = h[k] + m[k];
+            lowered[k] = h[k] - m[k];
+        }
+        double most = 0.0, top = most - 1e-6, bottom = -top;
+        tinlod::erase::scan_stepped(hf, x, y, raised, lowered, bottom, top,
+                                    [&](std::int64_t c, std::int64_t r, double, double, double) {
+                                        most = std::max(most, miss(c, r));
+                                        top = most - 1e-6;
+                                        bottom = -top;
+                                        return true;
+                                    });
+        EXPECT_EQ(most, full) << "trial " << trial;
+    }
+    EXPECT_GT(triangles, 200);
+    EXPECT_GT(visited, 1000);
+    EXPECT_GT(passed, 1000); // the test passes some over, and visits some
+}

@@ -214,8 +214,13 @@ class Pass {
         around_.erase(std::unique(around_.begin(), around_.end()), around_.end());
         for (const std::int32_t t : around_)
             tris_.push_back(corners({tin_.at(t, 0), tin_.at(t, 1), tin_.at(t, 2)}));
-        if (!fit())
+        if (!fit()) {
+            // In heights (not changes) the new triangles' rows depend on the ring alone: when they
+            // rule the hole out, it stays ruled out while v's star stands.
+            if (by_hole_)
+                kept_[std::size_t(v)] = k_none;
             return false;
+        }
         if (!holds()) {
             for (std::size_t k = 0; k < vars_.size(); ++k)
                 tin_.z[std::size_t(vars_[k])] = old_z_[k];
@@ -396,10 +401,29 @@ class Pass {
             if (most > stop)
                 return most;
         }
-        scan(c, [&](std::int64_t px, std::int64_t py, double wa, double wb, double wc) {
-            most = std::max(most, miss(px, py, wa, wb, wc));
-            return most <= stop;
-        });
+        if (box_samples(x, y) <= k_small_box) {
+            scan(c, [&](std::int64_t px, std::int64_t py, double wa, double wb, double wc) {
+                most = std::max(most, miss(px, py, wa, wb, wc));
+                return most <= stop;
+            });
+            return most;
+        }
+        // A larger triangle: the planes through the corners' samples raised and lowered by their
+        // room, stepped, pass over the samples that cannot raise the largest miss by k_near;
+        // miss() gives the others exactly, in scan()'s order.
+        std::array<double, 3> raised, lowered;
+        for (std::size_t k = 0; k < 3; ++k) {
+            raised[k] = h[k] + free[k];
+            lowered[k] = h[k] - free[k];
+        }
+        double ceiling = most - k_near, floor = -ceiling;
+        scan_stepped(hf_, x, y, raised, lowered, floor, ceiling,
+                     [&](std::int64_t px, std::int64_t py, double wa, double wb, double wc) {
+                         most = std::max(most, miss(px, py, wa, wb, wc));
+                         ceiling = most - k_near;
+                         floor = -ceiling;
+                         return most <= stop;
+                     });
         return most;
     }
 
@@ -424,6 +448,7 @@ class Pass {
     bool fit() {
         const std::size_t nv = vars_.size();
         rows_.clear();
+        by_hole_ = true;
         double fixed = 0.0; // the largest deviation no variable changes
         // Each variable's own sample keeps its change within [low, high]: a row whose weighted
         // range misses its own [r - limit, r + limit] rules the erase out before the programme.
@@ -439,41 +464,64 @@ class Pass {
         boxes_.reset(low_, high_, limit_);
         std::size_t new_rows = rows_.size();
         for (std::size_t t = 0; t < tris_.size(); ++t) {
-            if (t == new_tris_)
+            if (t == new_tris_) {
                 new_rows = rows_.size();
+                by_hole_ = false;
+            }
             const Corners &c = tris_[t];
             const double za = tin_.z[std::size_t(c.node[0])], zb = tin_.z[std::size_t(c.node[1])],
                          zc = tin_.z[std::size_t(c.node[2])];
             const bool moves = c.var[0] >= 0 || c.var[1] >= 0 || c.var[2] >= 0;
-            const bool ok =
-                scan(c.node, [&](std::int64_t x, std::int64_t y, double sa, double sb, double sc) {
-                    const double area = sa + sb + sc;
-                    const double r =
-                        double(hf_.at(int(x), int(y))) - (sa * za + sb * zb + sc * zc) / area;
-                    if (!moves) {
-                        fixed = std::max(fixed, std::abs(r));
-                        return fixed <= limit_;
+            const auto exact = [&](std::int64_t x, std::int64_t y, double sa, double sb,
+                                   double sc) {
+                const double area = sa + sb + sc;
+                const double r =
+                    double(hf_.at(int(x), int(y))) - (sa * za + sb * zb + sc * zc) / area;
+                if (!moves) {
+                    fixed = std::max(fixed, std::abs(r));
+                    return fixed <= limit_;
+                }
+                Row row{c.var, {sa / area, sb / area, sc / area}, r, 0.0};
+                double lo = 0.0, hi = 0.0;
+                for (std::size_t k = 0; k < 3; ++k)
+                    if (row.var[k] >= 0) {
+                        lo += row.w[k] * low_[std::size_t(row.var[k])];
+                        hi += row.w[k] * high_[std::size_t(row.var[k])];
                     }
-                    Row row{c.var, {sa / area, sb / area, sc / area}, r, 0.0};
-                    double lo = 0.0, hi = 0.0;
-                    for (std::size_t k = 0; k < 3; ++k)
-                        if (row.var[k] >= 0) {
-                            lo += row.w[k] * low_[std::size_t(row.var[k])];
-                            hi += row.w[k] * high_[std::size_t(row.var[k])];
-                        }
-                    if (lo > r + limit_ || hi < r - limit_)
-                        return false;
-                    // A row the box keeps within the limit needs no place in the programme: a fit
-                    // within the limit keeps every variable in its box.
-                    if (lo >= r - limit_ && hi <= r + limit_)
-                        return true;
-                    row.excess = std::max(hi - r, r - lo);
-                    rows_.push_back(row);
-                    // Each row narrows the boxes as it comes: they rule out most holes the
-                    // programme would, most of them before the scan ends, and decide nothing else
-                    // (the programmes see the same rows and find the same heights).
-                    return boxes_.add(row.var, row.w, row.r) && rows_.size() <= k_max_rows;
-                });
+                if (lo > r + limit_ || hi < r - limit_)
+                    return false;
+                // A row the box keeps within the limit needs no place in the programme: a fit
+                // within the limit keeps every variable in its box.
+                if (lo >= r - limit_ && hi <= r + limit_)
+                    return true;
+                row.excess = std::max(hi - r, r - lo);
+                rows_.push_back(row);
+                // Each row narrows the boxes as it comes: they rule out most holes the
+                // programme would, most of them before the scan ends, and decide nothing else
+                // (the programmes see the same rows and find the same heights).
+                return boxes_.add(row.var, row.w, row.r) && rows_.size() <= k_max_rows;
+            };
+            std::int64_t x[3], y[3];
+            for (std::size_t k = 0; k < 3; ++k) {
+                x[k] = tin_.col[std::size_t(c.node[k])];
+                y[k] = tin_.row[std::size_t(c.node[k])];
+            }
+            // A larger triangle: the planes through its corners at the lowest and the highest
+            // heights their boxes let them take (a fixed corner at its own) tell the samples whose
+            // residual both keep within the limit by k_near, which exact() would pass over (in a
+            // fixed triangle the two are one: the samples within the limit of it).
+            bool ok;
+            if (box_samples(x, y) <= k_small_box) {
+                ok = scan(c.node, exact);
+            } else {
+                std::array<double, 3> down, up;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const double z = tin_.z[std::size_t(c.node[k])];
+                    down[k] = c.var[k] >= 0 ? z + low_[std::size_t(c.var[k])] : z;
+                    up[k] = c.var[k] >= 0 ? z + high_[std::size_t(c.var[k])] : z;
+                }
+                ok = scan_stepped(hf_, x, y, down, up, -limit_ + k_near, limit_ - k_near, exact);
+            }
             if (!ok)
                 return false;
         }
@@ -489,7 +537,11 @@ class Pass {
                 return false;
         // The programme on the new triangles' rows first, then on all.
         const bool around = new_tris_ < tris_.size();
-        if ((around && !solve(nv, new_rows, true)) || !solve(nv, rows_.size(), !around))
+        by_hole_ = true;
+        if (around && !solve(nv, new_rows, true))
+            return false;
+        by_hole_ = !around;
+        if (!solve(nv, rows_.size(), !around))
             return false;
         for (std::size_t k = 0; k < nv; ++k)
             tin_.z[std::size_t(vars_[k])] = double(float(old_z_[k] + dz_[k]));
@@ -562,12 +614,28 @@ class Pass {
                              plane.deviation(q.x, q.y, h, margin)) > limit_)
                     return false;
             }
-            const bool ok =
-                scan(c.node, [&](std::int64_t x, std::int64_t y, double, double, double) {
-                    const Mesh::Point g = grid_point(hf_, int(x), int(y));
-                    return plane.deviation(g[0], g[1], g[2], margin) <= limit_;
-                });
-            if (!ok)
+            const auto exact = [&](std::int64_t x, std::int64_t y, double, double, double) {
+                const Mesh::Point g = grid_point(hf_, int(x), int(y));
+                return plane.deviation(g[0], g[1], g[2], margin) <= limit_;
+            };
+            std::int64_t x[3], y[3];
+            for (std::size_t k = 0; k < 3; ++k) {
+                x[k] = tin_.col[std::size_t(c.node[k])];
+                y[k] = tin_.row[std::size_t(c.node[k])];
+            }
+            if (box_samples(x, y) <= k_small_box) {
+                if (!scan(c.node, exact))
+                    return false;
+                continue;
+            }
+            // A larger triangle: its plane in lattice units passes over the samples within the
+            // limit by more than the steps' rounding and what the float coordinates (grid_point)
+            // move the plane by (the slope times their rounding).
+            const double coord = std::max({std::abs(p[0].x), std::abs(p[0].y), std::abs(p[1].x),
+                                           std::abs(p[1].y), std::abs(p[2].x), std::abs(p[2].y)});
+            const double sure = limit_ - margin - k_near - 4.0 * plane.slope() * coord * 0x1p-24;
+            const std::array<double, 3> z = {p[0].z, p[1].z, p[2].z};
+            if (!scan_stepped(hf_, x, y, z, z, -sure, sure, exact))
                 return false;
         }
         return true;
@@ -617,6 +685,9 @@ class Pass {
         }
     }
 
+    // How far a value stepped along a row may be off the one computed at its sample (metres: far
+    // over the steps' rounding, far under a limit).
+    static constexpr double k_near = 1e-6;
     // A linear programme over more samples than this is not tried (coarse bounds' large holes).
     static constexpr std::size_t k_max_rows = 4096;
 
@@ -631,6 +702,7 @@ class Pass {
     std::vector<Corners> tris_;
     std::vector<Row> rows_;
     std::size_t new_tris_ = 0;
+    bool by_hole_ = false; // the last fit() was ruled out by the new triangles' rows alone
     std::vector<double> dense_, dz_, old_z_, low_, high_;
     BoxNarrowing boxes_;
     std::vector<std::uint8_t> picked_;

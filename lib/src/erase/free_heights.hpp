@@ -8,6 +8,7 @@
 // are tried again, until none goes (docs/decisions/034-free-heights.md).
 #pragma once
 
+#include "lattice_triangle.hpp"
 #include "tinlod/raster.hpp"
 #include "tinlod/tin.hpp"
 
@@ -28,6 +29,52 @@ struct FreeHeightsStats {
 // take a node's height to be its sample's.
 Mesh free_heights(const Mesh &tin, const Heightfield &hf, double limit, int max_valence,
                   FreeHeightsStats *stats = nullptr);
+
+// The samples of the closed lattice triangle with corners (x[k], y[k]) (counter-clockwise, a box
+// of over k_small_box samples) but its corners, in row order (LatticeTriangle), less those a cheap
+// test passes over: two planes through heights down[k] and up[k] at the corners, stepped along
+// each row, pass over a sample of height h when down - h >= floor and up - h <= ceiling (both read
+// at each sample: a visit may move them). visit(x, y, sa, sb, sc) for the others, with the doubled
+// lattice areas that weigh the corners, until it returns false; false when it stopped. The steps
+// round (far under 1e-9 m on a DEM): a test wants a margin over that (the pass's k_near).
+template <class Visit>
+bool scan_stepped(const Heightfield &hf, const std::int64_t (&x)[3], const std::int64_t (&y)[3],
+                  const std::array<double, 3> &down, const std::array<double, 3> &up,
+                  const double &floor, const double &ceiling, const Visit &visit) {
+    const auto area = [&](int k, std::int64_t px, std::int64_t py) {
+        const int a = (k + 1) % 3, b = (k + 2) % 3;
+        return (x[a] - px) * (y[b] - py) - (y[a] - py) * (x[b] - px);
+    };
+    const std::int64_t step[3] = {y[1] - y[2], y[2] - y[0], y[0] - y[1]};
+    const double whole = double(area(0, x[0], y[0]));
+    const auto plane = [&](const std::array<double, 3> &z, double a0, double a1, double a2) {
+        return (a0 * z[0] + a1 * z[1] + a2 * z[2]) / whole;
+    };
+    const double d_down = plane(down, double(step[0]), double(step[1]), double(step[2])),
+                 d_up = plane(up, double(step[0]), double(step[1]), double(step[2]));
+    return LatticeTriangle(x, y).for_each_row(
+        [&](std::int64_t py, std::int64_t lo, std::int64_t hi) {
+            if (lo > hi)
+                return true;
+            const std::int64_t a0 = area(0, lo, py), a1 = area(1, lo, py), a2 = area(2, lo, py);
+            double l = plane(down, double(a0), double(a1), double(a2)),
+                   u = plane(up, double(a0), double(a1), double(a2));
+            const float *z = &hf.z[std::size_t(py) * std::size_t(hf.width)];
+            for (std::int64_t px = lo; px <= hi; ++px, l += d_down, u += d_up) {
+                const double h = double(z[px]);
+                if (l - h >= floor && u - h <= ceiling)
+                    continue;
+                if ((px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
+                    (px == x[2] && py == y[2]))
+                    continue;
+                const std::int64_t k = px - lo;
+                if (!visit(px, py, double(a0 + k * step[0]), double(a1 + k * step[1]),
+                           double(a2 + k * step[2])))
+                    return false;
+            }
+            return true;
+        });
+}
 
 // Boxes [low_k, high_k] of n variables narrowed by rows |sum_k w_k z_(var_k) - r| <= limit, each on
 // at most three variables (var -1: none) with weights >= 0: the other variables' boxes bound each
