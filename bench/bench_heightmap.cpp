@@ -476,6 +476,7 @@ Options parse(int argc, char **argv) {
 }
 
 void run(const Options &options) {
+    bench::require_node_peers(options.peers);
     Stopwatch section;
     Bench b;
     b.options = options;

@@ -1252,6 +1252,7 @@ SuiteOptions parse(int argc, char **argv) {
 }
 
 void run(const SuiteOptions &options) {
+    bench::require_node_peers(options.peers);
     Suite s;
     s.options = options;
     if (!options.flight.empty()) {

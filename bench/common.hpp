@@ -239,6 +239,15 @@ struct NodePeerRun {
 
 // delatin or martini through Node on the grid `grid_path` (write_grid_f32 of `hf`), `reps` times:
 // mode "max_error" (value = the vertical bound) or "nodes" (value = the node count to reach).
+// The npm peers run_node_peer needs, checked before a bench starts: without them every peer row
+// would fail one by one, deep in a run of many minutes.
+inline void require_node_peers(const std::string &peers) {
+    for (const char *package : {"delatin", "@mapbox/martini"})
+        if (!std::filesystem::exists(peers + "/node_modules/" + package + "/package.json"))
+            throw std::runtime_error(peers + ": npm package " + package +
+                                     " is not installed (run `npm ci` there; `make bench` does)");
+}
+
 inline NodePeerRun run_node_peer(const std::string &peers, const std::string &grid_path,
                                  const Heightfield &hf, const std::string &prefix,
                                  const std::string &tool, const std::string &mode, double value,
