@@ -35,21 +35,15 @@ Mesh erase_dem_from_grid(const Heightfield &hf, const Significance &model,
     return erase_dem(hf, model, options, dem);
 }
 
-struct Case {
-    const char *file;
-    int x0, y0, side;
-    double bound;
-};
-
 } // namespace
 
 TEST(FlipPass, FewerTrianglesWithinTheBoundOnRealCrops) {
-    for (const Case &c :
-         {Case{"dem_srtm30.tif", 40, 60, 96, 1.0}, Case{"dem_srtm30.tif", 150, 120, 96, 0.5},
-          Case{"N42E001.hgt", 300, 700, 96, 2.0}, Case{"crater_u16.png", 100, 150, 96, 0.5}}) {
-        SCOPED_TRACE(std::string(c.file) + " at " + std::to_string(c.bound));
-        const Heightfield hf =
-            test::crop(load_heightfield(test::asset(c.file)), c.x0, c.y0, c.side, c.side);
+    for (const test::CropCase &c : {test::CropCase{"dem_srtm30.tif", 40, 60, 96, 1.0},
+                                    test::CropCase{"dem_srtm30.tif", 150, 120, 96, 0.5},
+                                    test::CropCase{"N42E001.hgt", 300, 700, 96, 2.0},
+                                    test::CropCase{"crater_u16.png", 100, 150, 96, 0.5}}) {
+        SCOPED_TRACE(c.name());
+        const Heightfield hf = c.load();
         EraseOptions options;
         options.tolerance = c.bound;
         const Mesh before = erase_only(hf, Significance(), options);

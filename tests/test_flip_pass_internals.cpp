@@ -113,17 +113,12 @@ std::vector<Polygon> polygons(const Heightfield &hf, double bound) {
 } // namespace
 
 TEST(FlipPassCover, RuledOutOnlyWhereNoTriangleCoversOnRealCrops) {
-    struct Case {
-        const char *file;
-        int x0, y0, side;
-        double bound;
-    };
-    for (const Case &c :
-         {Case{"dem_srtm30.tif", 40, 60, 64, 1.0}, Case{"dem_srtm30.tif", 150, 120, 64, 5.0},
-          Case{"N42E001.hgt", 300, 700, 64, 2.0}, Case{"crater_u16.png", 100, 150, 64, 0.5}}) {
-        SCOPED_TRACE(std::string(c.file) + " at " + std::to_string(c.bound));
-        const Heightfield hf =
-            test::crop(load_heightfield(test::asset(c.file)), c.x0, c.y0, c.side, c.side);
+    for (const test::CropCase &c : {test::CropCase{"dem_srtm30.tif", 40, 60, 64, 1.0},
+                                    test::CropCase{"dem_srtm30.tif", 150, 120, 64, 5.0},
+                                    test::CropCase{"N42E001.hgt", 300, 700, 64, 2.0},
+                                    test::CropCase{"crater_u16.png", 100, 150, 64, 0.5}}) {
+        SCOPED_TRACE(c.name());
+        const Heightfield hf = c.load();
         const std::vector<Polygon> all = polygons(hf, c.bound);
         int started = 0, open = 0, ruled_out = 0;
         for (const Polygon &p : all) {

@@ -31,6 +31,12 @@ Heightfield crop(const Heightfield &hf, int x0, int y0, int w, int h) {
     return c;
 }
 
+Heightfield CropCase::load() const {
+    return crop(load_heightfield(asset(file)), x0, y0, side, side);
+}
+
+std::string CropCase::name() const { return std::string(file) + " at " + std::to_string(bound); }
+
 namespace {
 struct TempDirs {
     std::vector<fs::path> dirs;

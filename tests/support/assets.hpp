@@ -20,6 +20,14 @@ std::string asset(const std::string &name);
 // The w x h samples of `hf` from column x0, row y0 (a crop of a real DEM for a small test); the
 // void mask is dropped.
 Heightfield crop(const Heightfield &hf, int x0, int y0, int w, int h);
+// A square crop of a bundled DEM and a vertical bound: the real cases the erase's tests run on.
+struct CropCase {
+    const char *file; // in meshes/
+    int x0, y0, side;
+    double bound;
+    Heightfield load() const; // crop(load_heightfield(asset(file)), x0, y0, side, side)
+    std::string name() const; // "FILE at BOUND", for SCOPED_TRACE
+};
 // A fresh empty temporary folder for this test (removed at exit).
 std::string temp_dir();
 // The bytes of the file at `path` (empty when it cannot be read).
