@@ -3,12 +3,14 @@
 // path it replaces: face_worst over a small face's box gives what a scan of the closed triangle's
 // rows gives; the greedy insertion's TIN paired by its own twins is the mesh add_triangles builds
 // from the same triangles; live_copy, pairing by the source's half-edges, is the copy add_triangles
-// builds from its faces.
+// builds from its faces; nodes_left, pairing by the arrays' neighbours, is the mesh add_vertex and
+// add_triangles build from the live nodes and triangles.
 #include "assets.hpp"
 
 #include "erase/hole_geometry.hpp"
 #include "erase/lattice_scan.hpp"
 #include "erase/state.hpp"
+#include "erase/tin_arrays.hpp"
 #include "lattice_triangle.hpp"
 #include "tinlod/decimate.hpp"
 #include "tinlod/greedy.hpp"
@@ -186,4 +188,75 @@ TEST(SimplifySpeed7, LiveCopyIsAddTrianglesOfTheLiveFaces) {
         EXPECT_LT(copy.n_faces(), mesh.n_faces());
         EXPECT_EQ(fingerprint(copy), fingerprint(expected));
     }
+}
+
+namespace {
+
+// Erases each interior node of three triangles in the arrays (its hole, one triangle, takes its
+// first triangle's slot; the other two slots are freed), as the passes leave them. Returns how
+// many.
+int erase_nodes_of_three(TinArrays &tin) {
+    int erased = 0;
+    std::vector<std::int32_t> ring, triangles;
+    std::vector<int> edge;
+    for (std::size_t v = 0; v < tin.fan.size(); ++v) {
+        if (tin.outline[v] || !tin.star(std::int32_t(v), 3, ring, triangles, edge) ||
+            ring.size() != 3)
+            continue;
+        // Triangle i is (v, ring[i], ring[i + 1]); its outer edge ring[i] -> ring[i + 1].
+        std::int32_t outer[3];
+        for (int i = 0; i < 3; ++i)
+            outer[i] = tin.across[3 * std::size_t(triangles[i]) + std::size_t(edge[i])];
+        const std::int32_t t = triangles[0];
+        for (int i = 0; i < 3; ++i) {
+            tin.corner[3 * std::size_t(t) + std::size_t(i)] = ring[i];
+            tin.across[3 * std::size_t(t) + std::size_t(i)] = outer[i];
+            tin.fan[std::size_t(ring[i])] = t;
+            if (outer[i] >= 0) // the neighbour's side back along ring[i + 1] -> ring[i]
+                tin.across[3 * std::size_t(outer[i]) +
+                           std::size_t(tin.index_of(outer[i], ring[(i + 1) % 3]))] = t;
+        }
+        for (int i = 1; i < 3; ++i)
+            for (int k = 0; k < 3; ++k)
+                tin.corner[3 * std::size_t(triangles[i]) + std::size_t(k)] = -1;
+        tin.fan[v] = -1;
+        ++erased;
+    }
+    return erased;
+}
+
+} // namespace
+
+// nodes_left pairs each side with the side of the triangle across it: array for array, the mesh
+// add_vertex and add_triangles build from the live nodes in order and the live triangles' corners.
+TEST(SimplifySpeed7, NodesLeftIsAddTrianglesOfTheLiveTriangles) {
+    int erased_in_all = 0;
+    for (const auto &[hf, greedy] : greedy_tins()) {
+        const Mesh source = to_sparse_lattice_mesh(greedy, hf);
+        TinArrays tin = tin_arrays(source, hf);
+        for (std::size_t v = 0; v < tin.z.size(); ++v)
+            tin.z[v] += 0.25 * double(v % 3); // heights off the mesh's, as the free heights leave
+        const int erased = erase_nodes_of_three(tin);
+        erased_in_all += erased;
+        Mesh expected;
+        const auto origin = get_origin_property(expected);
+        std::vector<std::uint32_t> map(tin.fan.size()), corners;
+        for (std::size_t v = 0; v < tin.fan.size(); ++v)
+            if (tin.fan[v] >= 0) {
+                Mesh::Point p = source.point(VH(int(v)));
+                p[2] = float(tin.z[v]);
+                const VH w = expected.add_vertex(p);
+                expected.property(origin, w) = tin.sample[v];
+                map[v] = std::uint32_t(w.idx());
+            }
+        for (std::size_t i = 0; i < tin.corner.size(); i += 3)
+            if (tin.corner[i] >= 0)
+                for (std::size_t k = 0; k < 3; ++k)
+                    corners.push_back(map[std::size_t(tin.corner[i + k])]);
+        add_triangles(expected, corners);
+        const Mesh left = nodes_left(tin, source);
+        EXPECT_EQ(left.n_faces(), source.n_faces() - 2 * std::size_t(erased));
+        EXPECT_EQ(fingerprint(left), fingerprint(expected));
+    }
+    EXPECT_GT(erased_in_all, 10); // freed slots and erased nodes met
 }

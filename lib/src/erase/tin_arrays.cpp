@@ -1,6 +1,8 @@
 // Triangle arrays of a lattice TIN (tin_arrays.hpp).
 #include "erase/tin_arrays.hpp"
 
+#include <limits>
+
 namespace tinlod::erase {
 
 bool TinArrays::star(std::int32_t v, int max_ring, std::vector<std::int32_t> &ring,
@@ -64,21 +66,47 @@ Mesh nodes_left(const TinArrays &tin, const Mesh &source) {
     Mesh left;
     const auto origin = get_origin_property(left);
     const std::size_t nodes = tin.sample.size();
-    std::vector<std::uint32_t> vertex(nodes), corners;
+    // One resize, then the points written in place (add_vertex grows every vertex property per
+    // vertex, as in grid_vertices).
+    std::vector<std::uint32_t> vertex(nodes);
+    std::size_t kept = 0;
+    for (std::size_t v = 0; v < nodes; ++v)
+        if (tin.fan[v] >= 0)
+            vertex[v] = std::uint32_t(kept++);
+    left.resize(kept, 0, 0);
     for (std::size_t v = 0; v < nodes; ++v)
         if (tin.fan[v] >= 0) {
+            const Mesh::VertexHandle h{int(vertex[v])};
             Mesh::Point p = source.point(Mesh::VertexHandle(int(v)));
             p[2] = float(tin.z[v]);
-            const Mesh::VertexHandle h = left.add_vertex(p);
+            left.set_point(h, p);
             left.property(origin, h) = tin.sample[v];
-            vertex[v] = std::uint32_t(h.idx());
         }
-    corners.reserve(tin.corner.size());
-    for (std::size_t i = 0; i < tin.corner.size(); i += 3)
-        if (tin.corner[i] >= 0)
-            for (std::size_t k = 0; k < 3; ++k)
-                corners.push_back(vertex[std::size_t(tin.corner[i + k])]);
-    add_triangles(left, corners);
+    // The live triangles in slot order; side 3t' + k's twin is the side of triangle `across` that
+    // runs back along it (add_triangles' mesh without its search for twins).
+    const std::size_t slots = tin.corner.size() / 3;
+    std::vector<std::uint32_t> triangle(slots);
+    std::size_t live = 0;
+    for (std::size_t t = 0; t < slots; ++t)
+        if (tin.corner[3 * t] >= 0)
+            triangle[t] = std::uint32_t(live++);
+    std::vector<std::uint32_t> corners, twins;
+    corners.reserve(3 * live);
+    twins.reserve(3 * live);
+    for (std::size_t t = 0; t < slots; ++t) {
+        if (tin.corner[3 * t] < 0)
+            continue;
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t i = 3 * t + std::size_t(k);
+            corners.push_back(vertex[std::size_t(tin.corner[i])]);
+            const std::int32_t u = tin.across[i];
+            twins.push_back(
+                u < 0 ? std::numeric_limits<std::uint32_t>::max()
+                      : 3 * triangle[std::size_t(u)] +
+                            std::uint32_t(tin.index_of(u, tin.at(std::int32_t(t), (k + 1) % 3))));
+        }
+    }
+    add_paired_triangles(left, corners, twins);
     return left;
 }
 
