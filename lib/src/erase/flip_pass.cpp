@@ -45,11 +45,21 @@ void side_areas(const std::array<std::int64_t, k_max_ring> &rx,
         }
 }
 
-// One side of cover_ruled_out from the triangle t that holds the sample, its plane at `at` there
-// under -stop (heights d = sign * (h - z)): whether a plane over every point is too, a rounding
-// margin under. Leaves in t the walk's last triangle.
+// The height at the sample (the origin) of the plane through the points t at heights
+// sign * (h - z).
+double plane_at(const std::int64_t *x, const std::int64_t *y, const double *h, double z,
+                double sign, const int t[3]) {
+    const auto cross = [&](int a, int b) { return double(x[a] * y[b] - y[a] * x[b]); };
+    const double s0 = cross(t[0], t[1]), s1 = cross(t[1], t[2]), s2 = cross(t[2], t[0]);
+    return (sign * (h[t[0]] - z) * s1 + sign * (h[t[1]] - z) * s2 + sign * (h[t[2]] - z) * s0) /
+           (s0 + s1 + s2);
+}
+
+// One side of cover_ruled_out from the triangle t that holds the sample (heights d = sign *
+// (h - z)): whether a plane over every point is under -stop there, a rounding margin under.
+// Leaves in t the walk's last triangle.
 bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
-                  double stop, double sign, int t[3], double at) {
+                  double stop, double sign, int t[3]) {
     const auto d = [&](int i) { return sign * (h[i] - z); };
     const auto cross = [&](int a, int b) { return x[a] * y[b] - y[a] * x[b]; };
     const auto holds = [&](int a, int b, int c) {
@@ -59,13 +69,8 @@ bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h,
     // Each step's triangle holds the sample, its plane there no lower than the last's (the point
     // farthest over the plane replaces a corner): the walk ends at the upper hull's facet.
     for (int step = 0; step < 2 * n + 4; ++step) {
-        if (step > 0) {
-            const double s0 = double(cross(t[0], t[1])), s1 = double(cross(t[1], t[2])),
-                         s2 = double(cross(t[2], t[0]));
-            at = (d(t[0]) * s1 + d(t[1]) * s2 + d(t[2]) * s0) / (s0 + s1 + s2);
-            if (!(at < -stop))
-                return false; // a triangle that holds the sample may cover it
-        }
+        if (!(plane_at(x, y, h, z, sign, t) < -stop))
+            return false; // a triangle that holds the sample may cover it
         // The plane's slope: d = at + alpha * x + beta * y through the three corners.
         const double x1 = double(x[t[1]] - x[t[0]]), y1 = double(y[t[1]] - y[t[0]]),
                      x2 = double(x[t[2]] - x[t[0]]), y2 = double(y[t[2]] - y[t[0]]),
@@ -110,18 +115,13 @@ bool planes_under(const std::int64_t *x, const std::int64_t *y, const double *h,
 
 bool cover_ruled_out(const std::int64_t *x, const std::int64_t *y, const double *h, int n, double z,
                      double stop, int start[3]) {
-    int *t = start;
-    const double s0 = double(x[t[0]] * y[t[1]] - y[t[0]] * x[t[1]]),
-                 s1 = double(x[t[1]] * y[t[2]] - y[t[1]] * x[t[2]]),
-                 s2 = double(x[t[2]] * y[t[0]] - y[t[2]] * x[t[0]]);
-    const double at =
-        ((h[t[0]] - z) * s1 + (h[t[1]] - z) * s2 + (h[t[2]] - z) * s0) / (s0 + s1 + s2);
+    const double at = plane_at(x, y, h, z, 1.0, start);
     // The start's plane under z - stop: only an upper hull can keep every plane under; over z +
     // stop, only a lower one over.
     if (at < -stop)
-        return planes_under(x, y, h, n, z, stop, 1.0, t, at);
+        return planes_under(x, y, h, n, z, stop, 1.0, start);
     if (at > stop)
-        return planes_under(x, y, h, n, z, stop, -1.0, t, -at);
+        return planes_under(x, y, h, n, z, stop, -1.0, start);
     return false;
 }
 

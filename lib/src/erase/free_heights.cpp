@@ -287,6 +287,15 @@ class Pass {
         return c;
     }
 
+    // The lattice columns x and rows y of nodes c.
+    void cells(const std::array<std::int32_t, 3> &c, std::int64_t (&x)[3],
+               std::int64_t (&y)[3]) const {
+        for (std::size_t k = 0; k < 3; ++k) {
+            x[k] = tin_.col[std::size_t(c[k])];
+            y[k] = tin_.row[std::size_t(c[k])];
+        }
+    }
+
     // The samples of the closed lattice triangle over nodes c (counter-clockwise) but its corners:
     // visit(x, y, sa, sb, sc), with sa, sb, sc the doubled lattice areas that weigh the corners
     // (their sum: twice the triangle's area); false when a visit stopped the scan. A small triangle
@@ -295,10 +304,7 @@ class Pass {
     template <class Visit>
     bool scan(const std::array<std::int32_t, 3> &c, const Visit &visit) const {
         std::int64_t x[3], y[3];
-        for (int k = 0; k < 3; ++k) {
-            x[k] = tin_.col[std::size_t(c[std::size_t(k)])];
-            y[k] = tin_.row[std::size_t(c[std::size_t(k)])];
-        }
+        cells(c, x, y);
         const auto corner = [&](std::int64_t px, std::int64_t py) {
             return (px == x[0] && py == y[0]) || (px == x[1] && py == y[1]) ||
                    (px == x[2] && py == y[2]);
@@ -502,10 +508,7 @@ class Pass {
                 return boxes_.add(row.var, row.w, row.r) && rows_.size() <= k_max_rows;
             };
             std::int64_t x[3], y[3];
-            for (std::size_t k = 0; k < 3; ++k) {
-                x[k] = tin_.col[std::size_t(c.node[k])];
-                y[k] = tin_.row[std::size_t(c.node[k])];
-            }
+            cells(c.node, x, y);
             // A larger triangle: the planes through its corners at the lowest and the highest
             // heights their boxes let them take (a fixed corner at its own) tell the samples whose
             // residual both keep within the limit by k_near, which exact() would pass over (in a
@@ -619,10 +622,7 @@ class Pass {
                 return plane.deviation(g[0], g[1], g[2], margin) <= limit_;
             };
             std::int64_t x[3], y[3];
-            for (std::size_t k = 0; k < 3; ++k) {
-                x[k] = tin_.col[std::size_t(c.node[k])];
-                y[k] = tin_.row[std::size_t(c.node[k])];
-            }
+            cells(c.node, x, y);
             if (box_samples(x, y) <= k_small_box) {
                 if (!scan(c.node, exact))
                     return false;
