@@ -1,7 +1,8 @@
-// The erase's last pass at a vertical bound (lib/src/erase/flip_pass.hpp), through erase_dem: on
-// crops of real DEMs it leaves fewer triangles than the erase alone, every sample within the bound
-// as measure_error measures it (not the pass's own check), the same outline, no fold; with a
-// budget or a view it changes nothing.
+// The flip pass at a vertical bound (lib/src/erase/flip_pass.hpp), through erase_dem and the CLI
+// when asked for (DemEraseOptions::flip_pass, --flip-pass; off by default): on crops of real DEMs
+// it leaves fewer triangles than the erase alone and than erase_dem without it, every sample
+// within the bound as measure_error measures it (not the pass's own check), the same outline, no
+// fold; with a budget or a view it changes nothing.
 #include "assets.hpp"
 #include "erase_fixtures.hpp"
 
@@ -12,8 +13,10 @@
 #include "tinlod/tin.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 
 using namespace tinlod;
@@ -27,21 +30,25 @@ Mesh erase_only(const Heightfield &hf, const Significance &model, const EraseOpt
     return live_copy(grid);
 }
 
-// erase_dem from the full grid (no greedy insertion first, so both start alike).
+// erase_dem from the full grid (no greedy insertion first, so both start alike), with the pass.
 Mesh erase_dem_from_grid(const Heightfield &hf, const Significance &model,
                          const EraseOptions &options) {
     DemEraseOptions dem;
     dem.greedy_cap = 0.0;
+    dem.flip_pass = true;
     return erase_dem(hf, model, options, dem);
 }
+
+// Crops of real DEMs at a fine bound each, where the pass erases nodes.
+const test::CropCase k_crops[] = {{"dem_srtm30.tif", 40, 60, 96, 1.0},
+                                  {"dem_srtm30.tif", 150, 120, 96, 0.5},
+                                  {"N42E001.hgt", 300, 700, 96, 2.0},
+                                  {"crater_u16.png", 100, 150, 96, 0.5}};
 
 } // namespace
 
 TEST(FlipPass, FewerTrianglesWithinTheBoundOnRealCrops) {
-    for (const test::CropCase &c : {test::CropCase{"dem_srtm30.tif", 40, 60, 96, 1.0},
-                                    test::CropCase{"dem_srtm30.tif", 150, 120, 96, 0.5},
-                                    test::CropCase{"N42E001.hgt", 300, 700, 96, 2.0},
-                                    test::CropCase{"crater_u16.png", 100, 150, 96, 0.5}}) {
+    for (const test::CropCase &c : k_crops) {
         SCOPED_TRACE(c.name());
         const Heightfield hf = c.load();
         EraseOptions options;
@@ -50,6 +57,38 @@ TEST(FlipPass, FewerTrianglesWithinTheBoundOnRealCrops) {
         const Mesh after = erase_dem_from_grid(hf, Significance(), options);
         test::expect_fewer_within(hf, before, after, c.bound);
     }
+}
+
+TEST(FlipPass, AskedForKeepsFewerTrianglesThanWithout) {
+    for (const test::CropCase &c : k_crops) {
+        SCOPED_TRACE(c.name());
+        const Heightfield hf = c.load();
+        EraseOptions options;
+        options.tolerance = c.bound;
+        // On the samples' heights, so that only the flip pass differs.
+        DemEraseOptions without;
+        without.sample_heights = true;
+        DemEraseOptions with = without;
+        with.flip_pass = true;
+        const Mesh before = erase_dem(hf, Significance(), options, without);
+        const Mesh after = erase_dem(hf, Significance(), options, with);
+        test::expect_fewer_within(hf, before, after, c.bound);
+    }
+}
+
+TEST(FlipPass, CliFlagRunsThePass) {
+    const std::string dir = test::temp_dir(), dem = test::asset("dem_srtm30.tif");
+    const auto run = [&](const std::string &name, const std::string &flag) {
+        const test::RunResult r =
+            test::run_cli("simplify '" + dem + "' --max-error 1 --sample-heights -o '" + dir + "/" +
+                          name + ".ply' --stats '" + dir + "/" + name + ".json'" + flag);
+        EXPECT_EQ(r.status, 0) << r.err;
+        return nlohmann::json::parse(std::ifstream(dir + "/" + name + ".json"));
+    };
+    const auto plain = run("plain", ""), flipped = run("flipped", " --flip-pass");
+    EXPECT_LE(double(flipped["error"]["max_vertical"]), 1.0);
+    EXPECT_LT(std::int64_t(flipped["output"]["triangles"]),
+              std::int64_t(plain["output"]["triangles"]));
 }
 
 TEST(FlipPass, OnlyAtAVerticalBoundWithoutABudget) {

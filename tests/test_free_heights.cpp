@@ -1,4 +1,4 @@
-// The free-heights pass after the flip pass (lib/src/erase/free_heights.hpp), through erase_dem
+// The free-heights pass after the erase (lib/src/erase/free_heights.hpp), through erase_dem
 // and the CLI: on crops of real DEMs it leaves fewer triangles than with every node on its sample
 // (DemEraseOptions::sample_heights, --sample-heights), every sample within the bound as
 // measure_error measures it (not the pass's own check), the outline's nodes on their samples, the

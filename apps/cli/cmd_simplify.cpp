@@ -51,6 +51,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
         double retrieve_share = DemEraseOptions{}.retrieve_share;
         double cache_mb = StoreOptions{}.cache_mb;
         bool sample_heights = false;
+        bool flip_pass = false;
         CameraOptions camera;
         RasterOptions raster;
     };
@@ -97,6 +98,10 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
     cmd.add_flag("--sample-heights", args->sample_heights,
                  "DEM with --max-error alone: keep every node on its sample's height (by default "
                  "the last pass moves interior nodes' heights within the bound to erase more)");
+    cmd.add_flag("--flip-pass", args->flip_pass,
+                 "DEM with --max-error alone: after the erase, try every node left again with "
+                 "its hole widened by a neighbouring triangle (0.3-2.3 % fewer triangles for "
+                 "1.1-1.7 x the time)");
     cmd.add_option("--cache-mb", args->cache_mb,
                    "store input with a camera: store tiles the retrieval (and with --tol alone, "
                    "the erase) keeps in memory, MiB")
@@ -224,6 +229,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                 }
                 dem_options.retrieve_share = args->retrieve_share;
                 dem_options.sample_heights = args->sample_heights;
+                dem_options.flip_pass = args->flip_pass;
                 if (args->retrieve_share == 0.0) {
                     dem_options.budget_share = 0.0;
                     dem_options.greedy_cap = 0.0;

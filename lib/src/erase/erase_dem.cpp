@@ -204,12 +204,14 @@ Mesh erase_from(DemRun &run, Mesh &mesh, FirstStage stage, DemEraseStats *stats)
     run.clock.reset();
     Mesh tin = live_copy(mesh);
     // At a vertical bound the nodes left may still go with a neighbouring triangle in their hole
-    // (docs/decisions/026-fewer-at-fine-bounds.md), within the erase's limit.
+    // (docs/decisions/026-fewer-at-fine-bounds.md), within the erase's limit, when asked for.
     if (erase::flip_pass_applies(run.model, run.options)) {
-        erase::FlipPassStats pass;
-        tin = erase::flip_pass(tin, run.hf, run.options.tolerance * (1.0 - 1e-6),
-                               run.options.max_valence, &pass);
-        run.out.erase.erased += pass.erased;
+        if (run.dem.flip_pass) {
+            erase::FlipPassStats pass;
+            tin = erase::flip_pass(tin, run.hf, run.options.tolerance * (1.0 - 1e-6),
+                                   run.options.max_valence, &pass);
+            run.out.erase.erased += pass.erased;
+        }
         if (!run.dem.sample_heights) {
             erase::FreeHeightsStats free;
             tin = erase::free_heights(tin, run.hf, run.options.tolerance * (1.0 - 1e-6),
