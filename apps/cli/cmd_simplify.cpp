@@ -100,7 +100,7 @@ static Register simplify("simplify", 40, [](CLI::App &cmd) {
                  "the last pass moves interior nodes' heights within the bound to erase more)");
     cmd.add_flag("--flip-pass", args->flip_pass,
                  "DEM with --max-error alone: after the erase, try every node left again with "
-                 "its hole widened by a neighbouring triangle (0.3-2.3 % fewer triangles for "
+                 "its hole widened by a neighbouring triangle (0.4-3.1 % fewer triangles for "
                  "1.1-1.7 x the time)");
     cmd.add_option("--cache-mb", args->cache_mb,
                    "store input with a camera: store tiles the retrieval (and with --tol alone, "

@@ -239,7 +239,7 @@ struct DemEraseOptions {
     bool sample_heights = false;
     // The vertical model with a bound (no budget): true runs the flip pass after the erase (each
     // node left tried again with its hole widened by the triangle across one of its ring edges),
-    // 0.3-2.3 % fewer triangles for 1.1-1.7 times the run; off by default
+    // 0.4-3.1 % fewer triangles for 1.1-1.7 times the run; off by default
     // (docs/decisions/046-flip-pass-opt-in.md).
     bool flip_pass = false;
 };
