@@ -237,8 +237,6 @@ struct NodePeerRun {
     double peak_mb = 0.0;            // Node's own peak
 };
 
-// delatin or martini through Node on the grid `grid_path` (write_grid_f32 of `hf`), `reps` times:
-// mode "max_error" (value = the vertical bound) or "nodes" (value = the node count to reach).
 // The npm peers run_node_peer needs, checked before a bench starts: without them every peer row
 // would fail one by one, deep in a run of many minutes.
 inline void require_node_peers(const std::string &peers) {
@@ -248,6 +246,8 @@ inline void require_node_peers(const std::string &peers) {
                                      " is not installed (run `npm ci` there; `make bench` does)");
 }
 
+// delatin or martini through Node on the grid `grid_path` (write_grid_f32 of `hf`), `reps` times:
+// mode "max_error" (value = the vertical bound) or "nodes" (value = the node count to reach).
 inline NodePeerRun run_node_peer(const std::string &peers, const std::string &grid_path,
                                  const Heightfield &hf, const std::string &prefix,
                                  const std::string &tool, const std::string &mode, double value,

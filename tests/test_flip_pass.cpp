@@ -13,10 +13,8 @@
 #include "tinlod/tin.hpp"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <string>
 
 using namespace tinlod;
@@ -83,15 +81,9 @@ TEST(FlipPass, AskedForKeepsFewerTrianglesThanWithout) {
 }
 
 TEST(FlipPass, CliFlagRunsThePass) {
-    const std::string dir = test::temp_dir(), dem = test::asset("dem_srtm30.tif");
-    const auto run = [&](const std::string &name, const std::string &flag) {
-        const test::RunResult r =
-            test::run_cli("simplify '" + dem + "' --max-error 1 --sample-heights -o '" + dir + "/" +
-                          name + ".ply' --stats '" + dir + "/" + name + ".json'" + flag);
-        EXPECT_EQ(r.status, 0) << r.err;
-        return nlohmann::json::parse(std::ifstream(dir + "/" + name + ".json"));
-    };
-    const auto plain = run("plain", ""), flipped = run("flipped", " --flip-pass");
+    const auto plain = test::simplify_stats("dem_srtm30.tif", "--max-error 1 --sample-heights"),
+               flipped = test::simplify_stats("dem_srtm30.tif",
+                                              "--max-error 1 --sample-heights --flip-pass");
     EXPECT_LE(double(flipped["error"]["max_vertical"]), 1.0);
     EXPECT_LT(std::int64_t(flipped["output"]["triangles"]),
               std::int64_t(plain["output"]["triangles"]));

@@ -13,10 +13,8 @@
 #include "tinlod/tin.hpp"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <string>
 
 using namespace tinlod;
@@ -100,15 +98,8 @@ TEST(FreeHeights, OnlyAtAVerticalBoundWithoutABudget) {
 }
 
 TEST(FreeHeights, CliFlagKeepsSampleHeights) {
-    const std::string dir = test::temp_dir(), dem = test::asset("dem_srtm30.tif");
-    const auto run = [&](const std::string &name, const std::string &flag) {
-        const test::RunResult r =
-            test::run_cli("simplify '" + dem + "' --max-error 0.5 -o '" + dir + "/" + name +
-                          ".ply' --stats '" + dir + "/" + name + ".json'" + flag);
-        EXPECT_EQ(r.status, 0) << r.err;
-        return nlohmann::json::parse(std::ifstream(dir + "/" + name + ".json"));
-    };
-    const auto fixed = run("fixed", " --sample-heights"), free = run("free", "");
+    const auto fixed = test::simplify_stats("dem_srtm30.tif", "--max-error 0.5 --sample-heights"),
+               free = test::simplify_stats("dem_srtm30.tif", "--max-error 0.5");
     EXPECT_LE(double(free["error"]["max_vertical"]), 0.5);
     EXPECT_LE(double(fixed["error"]["max_vertical"]), 0.5);
     EXPECT_LT(std::int64_t(free["output"]["triangles"]),

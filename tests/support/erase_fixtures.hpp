@@ -1,5 +1,6 @@
 // Test helpers over erased TINs, shared by the erase's tests (test_decimate) and the tests of its
-// internals: triangle sets, the invariants of a TIN, cropped DEM assets and a view over them.
+// internals: triangle sets, the invariants of a TIN, cropped DEM assets and a view over them,
+// the stats of a `simplify` run.
 #pragma once
 
 #include "assets.hpp"
@@ -10,14 +11,27 @@
 #include "tinlod/view.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <string>
 #include <vector>
 
 namespace tinlod::test {
+
+// The --stats of `tinlod simplify DEM ARGS` (DEM in meshes/), its output in a fresh temporary
+// folder; the run is expected to succeed.
+inline nlohmann::json simplify_stats(const std::string &dem, const std::string &args) {
+    const std::string dir = temp_dir(), path = asset(dem);
+    const RunResult r = run_cli("simplify '" + path + "' " + args + " -o '" + dir +
+                                "/out.ply' --stats '" + dir + "/stats.json'");
+    EXPECT_EQ(r.status, 0) << r.err;
+    return nlohmann::json::parse(std::ifstream(dir + "/stats.json"));
+}
 
 using Triangle = std::array<std::int64_t, 3>;
 
